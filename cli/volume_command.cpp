@@ -1,0 +1,76 @@
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "geometry/error.hpp"
+#include "io/contact_volume_format.hpp"
+#include "io/shape_spec.hpp"
+#include "volume/contact.hpp"
+
+namespace vcontact::cli {
+
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "vcontact: warning: " << w << '\n';
+}
+
+namespace {
+
+struct VolumeOptions {
+  std::string a, b;
+  std::string poseA = "0,0,0", poseB = "0,0,0";
+  std::string method;
+  bool json = false;
+  std::string out;
+};
+
+void runVolume(const VolumeOptions& o) {
+  const io::ParsedShape a = io::parseShape(o.a, "A (" + o.a + ")");
+  const io::ParsedShape b = io::parseShape(o.b, "B (" + o.b + ")");
+  printWarnings(a.warnings);
+  printWarnings(b.warnings);
+  const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
+  const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
+  std::optional<volume::Method> method;
+  if (!o.method.empty()) method = volume::parseMethod(o.method);
+  const volume::ContactVolume cv = volume::computeContact(a.shape, X_WA, b.shape, X_WB, method);
+
+  nlohmann::json j = io::toJson(cv);
+  j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
+  j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
+  if (!o.out.empty()) {
+    std::ofstream f(o.out);
+    if (!f) throw InputError(o.out, "cannot open for writing");
+    f << j.dump(2) << '\n';
+  }
+  if (o.json) {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
+              << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
+              << io::toTable(cv);
+  }
+}
+
+}  // namespace
+
+void addVolumeCommand(CLI::App& app) {
+  auto opts = std::make_shared<VolumeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "volume",
+      "Interference of body A (payload, B1) with body B (plate, B2): volume, centroid, "
+      "normal (out of B into A), inertia tensors J_v and J_s, area, r_gyr.");
+  cmd->add_option("A", opts->a, "shape of body A")->required();
+  cmd->add_option("B", opts->b, "shape of body B")->required();
+  cmd->add_option("--pose-a", opts->poseA, "pose of A in the world")->capture_default_str();
+  cmd->add_option("--pose-b", opts->poseB, "pose of B in the world")->capture_default_str();
+  cmd->add_option("--method", opts->method,
+                  "analytic | halfspace (default: the best the pair allows)");
+  cmd->add_flag("--json", opts->json, "print JSON instead of a table");
+  cmd->add_option("--out", opts->out, "also write the JSON to this file");
+  cmd->callback([opts] { runVolume(*opts); });
+}
+
+}  // namespace vcontact::cli

@@ -1,0 +1,29 @@
+#pragma once
+// Checks a triangle mesh before use and repairs what can be repaired without guessing.
+//
+// Rejected (InputError, one message naming the defect, its count and the first place):
+//   - a non-finite vertex coordinate;
+//   - a face index out of range;
+//   - a degenerate face (repeated vertex or zero area);
+//   - an edge used by one face only (the mesh is not closed) or by more than two;
+//   - two faces listing a shared edge in the same direction (inconsistent orientation);
+//   - zero enclosed volume.
+// Repaired with a warning: a consistently inverted mesh (negative enclosed volume) is flipped.
+
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.hpp"
+
+namespace vcontact::geometry {
+
+struct MeshCheckResult {
+  std::vector<std::string> warnings;  ///< repairs made, one sentence each
+  bool flipped = false;               ///< the faces were inverted and have been flipped
+};
+
+/// @param[in,out] mesh  the mesh; flipped in place when inverted
+/// @throws InputError (empty source: the caller names the file) on any defect listed above
+MeshCheckResult checkAndRepair(TriangleMesh& mesh);
+
+}  // namespace vcontact::geometry

@@ -1,0 +1,15 @@
+#pragma once
+// ContactVolume as a human-readable table or as JSON (schema in README, "vcontact volume").
+
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::io {
+
+nlohmann::json toJson(const volume::ContactVolume& cv);
+std::string toTable(const volume::ContactVolume& cv);
+
+}  // namespace vcontact::io

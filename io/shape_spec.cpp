@@ -1,0 +1,134 @@
+#include "io/shape_spec.hpp"
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "geometry/error.hpp"
+#include "io/mesh_io.hpp"
+
+namespace vcontact::io {
+namespace {
+
+// A quaternion typed with six or more digits is unit to 1e-6; further off, the user most
+// likely wrote something else (Euler angles, a wrong order) and is told so.
+constexpr double kUnitQuaternionTolerance = 1e-6;
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  const auto e = s.find_last_not_of(" \t");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+}  // namespace
+
+std::vector<double> parseNumberList(const std::string& text, const std::string& source) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const std::string t = trim(item);
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(t, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (t.empty() || used != t.size()) {
+      throw InputError(source, "'" + t + "' is not a number (in '" + text + "')");
+    }
+    if (!std::isfinite(v)) throw InputError(source, "'" + t + "' is not finite");
+    values.push_back(v);
+  }
+  return values;
+}
+
+Eigen::Isometry3d poseFromRpyDegrees(const Eigen::Vector3d& t, const Eigen::Vector3d& rpy) {
+  const Eigen::Vector3d r = rpy * (M_PI / 180.0);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = (Eigen::AngleAxisd(r.z(), Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  X.translation() = t;
+  return X;
+}
+
+Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& t, const Eigen::Vector4d& wxyz,
+                                     const std::string& source) {
+  const double norm = wxyz.norm();
+  if (!std::isfinite(norm) || std::abs(norm - 1.0) > kUnitQuaternionTolerance) {
+    std::ostringstream os;
+    os << "quaternion (w, x, y, z) must be unit length, |q| = " << norm;
+    throw InputError(source, os.str());
+  }
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(wxyz(0), wxyz(1), wxyz(2), wxyz(3)).normalized()
+                   .toRotationMatrix();
+  X.translation() = t;
+  return X;
+}
+
+Eigen::Isometry3d parsePose(const std::string& text, const std::string& source) {
+  const std::vector<double> v = parseNumberList(text, source);
+  const Eigen::Vector3d t = v.size() >= 3 ? Eigen::Vector3d(v[0], v[1], v[2])
+                                          : Eigen::Vector3d::Zero();
+  switch (v.size()) {
+    case 3: {
+      Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+      X.translation() = t;
+      return X;
+    }
+    case 6: return poseFromRpyDegrees(t, Eigen::Vector3d(v[3], v[4], v[5]));
+    case 7: return poseFromQuaternion(t, Eigen::Vector4d(v[3], v[4], v[5], v[6]), source);
+    default:
+      throw InputError(source, "a pose is x,y,z or x,y,z,roll,pitch,yaw (degrees) or "
+                               "x,y,z,qw,qx,qy,qz; got " + std::to_string(v.size()) +
+                                   " numbers");
+  }
+}
+
+ParsedShape parseShape(const std::string& text, const std::string& source) {
+  const auto colon = text.find(':');
+  const std::string kind = text.substr(0, colon);
+  const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
+  auto numbers = [&](std::size_t count, const char* form) {
+    const auto v = args.empty() ? std::vector<double>{} : parseNumberList(args, source);
+    if (v.size() != count) {
+      throw InputError(source, std::string("expected ") + form + ", got '" + text + "'");
+    }
+    return v;
+  };
+  ParsedShape out;
+  if (kind == "sphere") {
+    out.shape = geometry::Sphere{numbers(1, "sphere:R")[0]};
+  } else if (kind == "cylinder") {
+    const auto v = numbers(2, "cylinder:R,L");
+    out.shape = geometry::Cylinder{v[0], v[1]};
+  } else if (kind == "box") {
+    const auto v = numbers(3, "box:X,Y,Z");
+    out.shape = geometry::Box{Eigen::Vector3d(v[0], v[1], v[2])};
+  } else if (kind == "halfspace" && args.empty()) {
+    out.shape = geometry::HalfSpace{};
+  } else {
+    // A mesh file, optionally PATH@SCALE.
+    const auto at = text.rfind('@');
+    std::string path = text;
+    double scale = 1.0;
+    if (at != std::string::npos) {
+      path = text.substr(0, at);
+      const auto s = parseNumberList(text.substr(at + 1), source);
+      if (s.size() != 1) throw InputError(source, "expected PATH@SCALE, got '" + text + "'");
+      scale = s[0];
+    }
+    auto read = readMesh(path, scale);
+    out.warnings = std::move(read.warnings);
+    out.shape = geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)),
+                               path};
+  }
+  geometry::validate(out.shape, source);
+  return out;
+}
+
+}  // namespace vcontact::io

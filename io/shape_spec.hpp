@@ -1,0 +1,39 @@
+#pragma once
+// Text forms of shapes and poses, shared by the command line and the JSON readers.
+//
+//   shape:  sphere:R | cylinder:R,L | box:X,Y,Z | halfspace | PATH[@SCALE]
+//           (lengths in metres; PATH is a mesh file, SCALE multiplies its coordinates)
+//   pose:   x,y,z | x,y,z,roll,pitch,yaw | x,y,z,qw,qx,qy,qz
+//           (metres; roll, pitch, yaw in degrees about the fixed x, y, z axes, applied in
+//            that order: R = Rz(yaw) Ry(pitch) Rx(roll); a quaternion is normalised after a
+//            check that it is within 1e-6 of unit length)
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "geometry/primitives.hpp"
+
+namespace vcontact::io {
+
+struct ParsedShape {
+  geometry::Shape shape;
+  std::vector<std::string> warnings;  ///< mesh repairs
+};
+
+/// @param source names the input in messages ("--pose-a", "scene.json: bodies[2].shape")
+/// @throws InputError naming `source` and what was expected
+ParsedShape parseShape(const std::string& text, const std::string& source);
+Eigen::Isometry3d parsePose(const std::string& text, const std::string& source);
+
+/// Pose from a translation and a quaternion (w, x, y, z), checked as parsePose does.
+Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& t, const Eigen::Vector4d& wxyz,
+                                     const std::string& source);
+/// Pose from a translation and roll, pitch, yaw in degrees.
+Eigen::Isometry3d poseFromRpyDegrees(const Eigen::Vector3d& t, const Eigen::Vector3d& rpy);
+
+/// Splits "a,b,c" into numbers; throws InputError naming `source` on a non-number.
+std::vector<double> parseNumberList(const std::string& text, const std::string& source);
+
+}  // namespace vcontact::io

@@ -1,0 +1,54 @@
+#include "volume/contact.hpp"
+
+#include "geometry/error.hpp"
+#include "volume/analytic.hpp"
+#include "volume/halfspace_clip.hpp"
+
+namespace vcontact::volume {
+namespace {
+
+bool isHalfspace(const geometry::Shape& s) { return std::holds_alternative<geometry::HalfSpace>(s); }
+
+const geometry::TriangleMesh* meshOf(const geometry::Shape& s) {
+  const auto* m = std::get_if<geometry::Mesh>(&s);
+  return m ? m->mesh.get() : nullptr;
+}
+
+[[noreturn]] void unsupported(Method method, const geometry::Shape& a, const geometry::Shape& b,
+                              const std::string& hint) {
+  throw InputError("--method " + methodName(method),
+                   "cannot compute " + geometry::describe(a) + " against " +
+                       geometry::describe(b) + " with this method; " + hint);
+}
+
+ContactVolume halfspaceClip(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                            const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+  if (const auto* m = meshOf(a); m && isHalfspace(b)) return meshHalfspaceContact(*m, X_WA, X_WB);
+  if (const auto* m = meshOf(b); m && isHalfspace(a)) {
+    return swapped(meshHalfspaceContact(*m, X_WB, X_WA));
+  }
+  unsupported(Method::kHalfspace, a, b, "it clips a mesh by a half-space");
+}
+
+}  // namespace
+
+Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
+  if (analyticSupports(a, b)) return Method::kAnalytic;
+  if ((meshOf(a) && isHalfspace(b)) || (meshOf(b) && isHalfspace(a))) return Method::kHalfspace;
+  throw InputError("", "no volume method in this build handles " + geometry::describe(a) +
+                           " against " + geometry::describe(b));
+}
+
+ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                             std::optional<Method> method) {
+  const Method m = method.value_or(defaultMethod(a, b));
+  switch (m) {
+    case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
+    case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);
+    default:
+      unsupported(m, a, b, "this backend is not part of this build yet");
+  }
+}
+
+}  // namespace vcontact::volume

@@ -1,0 +1,25 @@
+#pragma once
+// One entry point over every backend: the interference of two placed shapes by a chosen
+// method, or by the best method the pair allows.
+
+#include <optional>
+
+#include <Eigen/Geometry>
+
+#include "geometry/primitives.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::volume {
+
+/// The method used when none is asked for: analytic for a primitive against a half-space,
+/// the exact half-space clip for a mesh against a half-space.
+/// @throws InputError when no backend in this build handles the pair
+Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
+
+/// ContactVolume of A (B1) and B (B2) by `method` (default: defaultMethod).
+/// @throws InputError when the method does not handle the pair, naming both shapes
+ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                             std::optional<Method> method = std::nullopt);
+
+}  // namespace vcontact::volume

@@ -1,0 +1,38 @@
+#pragma once
+// Exact interference of a closed triangle mesh with a half-space: the polyhedron clipped by
+// the plane, integrated by the divergence theorem over the clipped triangles.
+
+#include <Eigen/Geometry>
+
+#include "geometry/moments.hpp"
+#include "geometry/triangle_mesh.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::volume {
+
+/// Moments of (mesh ∩ {z_H ≤ 0}) about a point o on the plane, in the half-space frame H.
+struct ClippedMoments {
+  geometry::Moments moments;                   ///< about o, H axes
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< o, in H, with o.z = 0
+  double area = 0.0;   ///< projected area of the downward-facing clipped faces onto z = 0, m²
+  double depth = 0.0;  ///< −min z_H over the vertices, m (≤ 0: apart)
+};
+
+/// Clips every triangle (O(n)); the reference the accelerated clip is checked against.
+/// With the apex of every tetrahedron on the plane, the cap polygon contributes nothing
+/// and need not be built. o is the deepest vertex projected onto the plane, so that the
+/// terms stay of the size of the region (a shallow 1 µm contact keeps its digits).
+/// @param X_HM  pose of the mesh frame M in the half-space frame H
+ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
+                                   const Eigen::Isometry3d& X_HM);
+
+/// ContactVolume of a mesh body (pose X_WM) against a half-space (pose X_WH); the mesh is B1.
+ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
+                                   const Eigen::Isometry3d& X_WM,
+                                   const Eigen::Isometry3d& X_WH);
+
+/// Turns moments about o in H into a ContactVolume in W with n = +z_H (half-space is B2).
+ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,
+                                        const Eigen::Isometry3d& X_WH, Method method);
+
+}  // namespace vcontact::volume
