@@ -242,7 +242,9 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
   // Projected area of a convex region: half of ∫|n_s·n| over its boundary.
   const double area = 0.5 * (total(7) + total(8) + capArea);
   const Matrix3d R_WC = X_WC.linear();
-  ContactVolume cv = assembleContactVolume(V, X_WC * (o + cOff),
+  // o and the offset are mapped separately: o + cOff would round the offset (~d) against
+  // the radius, losing digits for shallow contact.
+  ContactVolume cv = assembleContactVolume(V, X_WC * o + R_WC * cOff,
                                            R_WC * Sigma_C * R_WC.transpose(), n_W, area, depth,
                                            Method::kAnalytic);
   cv.relative_error = relErr;

@@ -81,7 +81,7 @@ ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,
   const Vector3d c_o = M.m1 / M.m0;  // centroid relative to o, H axes
   const Eigen::Matrix3d Sigma_H = M.m2 - M.m0 * c_o * c_o.transpose();
   const Eigen::Matrix3d R_WH = X_WH.linear();
-  ContactVolume cv = assembleContactVolume(M.m0, X_WH * (clipped.origin + c_o),
+  ContactVolume cv = assembleContactVolume(M.m0, X_WH * clipped.origin + R_WH * c_o,
                                            R_WH * Sigma_H * R_WH.transpose(),
                                            R_WH.col(2), clipped.area, clipped.depth, method);
   return cv;
