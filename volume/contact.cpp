@@ -42,7 +42,7 @@ Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
 ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
                              std::optional<Method> method) {
-  const Method m = method.value_or(defaultMethod(a, b));
+  const Method m = method ? *method : defaultMethod(a, b);  // value_or would evaluate eagerly
   switch (m) {
     case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
     case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);

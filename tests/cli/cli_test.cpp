@@ -1,0 +1,97 @@
+// The vcontact command as a user runs it: exit codes, messages, output files.
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "geometry/tessellate.hpp"
+#include "io/mesh_io.hpp"
+
+namespace vcontact {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exitCode;
+  std::string out, err;
+};
+
+CommandResult run(const std::string& args) {
+  const fs::path errFile = fs::temp_directory_path() / "vcontact_cli_test_stderr.txt";
+  const std::string cmd = std::string(VCONTACT_BINARY) + " " + args + " 2>" + errFile.string();
+  CommandResult r{};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(errFile);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+TEST(Cli, HelpListsEverySubcommand) {
+  const CommandResult r = run("--help");
+  EXPECT_EQ(r.exitCode, 0);
+  for (const char* cmd : {"volume", "mesh-info", "tessellate"}) {
+    EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
+  }
+}
+
+TEST(Cli, VolumeJsonMatchesSphereCap) {
+  const CommandResult r = run("volume sphere:0.01 halfspace --pose-a 0,0,0.0095 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double d = 0.01 - 0.0095;
+  EXPECT_NEAR(j["volume"].get<double>() / (M_PI * d * d * (0.03 - d) / 3), 1.0, 1e-12);
+  EXPECT_EQ(j["method"], "analytic");
+  EXPECT_EQ(j["normal"][2], 1.0);
+}
+
+TEST(Cli, MeshAgainstHalfspaceUsesTheClip) {
+  const fs::path file = fs::temp_directory_path() / "vcontact_cli_box.stl";
+  io::writeStl(geometry::tessellateBox({0.02, 0.02, 0.02}), file.string());
+  const CommandResult r = run("volume " + file.string() + " halfspace --pose-a 0,0,0.009 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "halfspace");
+  // 0.02 × 0.02 × 0.001 m, with the float coordinates of STL (~1e-7 relative).
+  EXPECT_NEAR(j["volume"].get<double>() / 4e-7, 1.0, 1e-5);
+  fs::remove(file);
+}
+
+TEST(Cli, BadMeshGivesOneMessageNonZeroExitAndNoOutputFile) {
+  const fs::path file = fs::temp_directory_path() / "vcontact_cli_open.obj";
+  const fs::path out = fs::temp_directory_path() / "vcontact_cli_should_not_exist.json";
+  fs::remove(out);
+  geometry::TriangleMesh open = geometry::tessellateBox({0.01, 0.01, 0.01});
+  open.triangles.conservativeResize(10, 3);  // two faces missing
+  io::writeObj(open, file.string());
+  const CommandResult r = run("volume " + file.string() + " halfspace --out " + out.string());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find(file.string() + ": "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("boundary edges, mesh is not closed; first at vertex ("), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove(file);
+}
+
+TEST(Cli, UnsupportedPairNamesBothShapes) {
+  const CommandResult r = run("volume sphere:1 sphere:1 --method analytic");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("got sphere and sphere"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadPoseNamesTheOption) {
+  const CommandResult r = run("volume sphere:1 halfspace --pose-a 1,2");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--pose-a: a pose is"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace vcontact
