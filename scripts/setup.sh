@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian packages vcontact needs (only those missing), then configures and
+# builds in Release. Safe to run again: it installs nothing and rebuilds nothing that is
+# already up to date.
+#
+# Environment: VCONTACT_BUILD_DIR (default: build), VCONTACT_JOBS (default: nproc).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+PACKAGES=(
+  g++ make cmake pkg-config
+  libeigen3-dev libboost-dev libtbb-dev
+  libassimp-dev nlohmann-json3-dev libcli11-dev
+  libcgal-dev libgmp-dev libmpfr-dev
+  libfcl-dev libccd-dev libembree-dev
+  libceres-dev libsundials-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "vcontact setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >/dev/null
+  echo "vcontact setup: packages installed"
+fi
+
+build="${VCONTACT_BUILD_DIR:-build}"
+jobs="${VCONTACT_JOBS:-$(nproc)}"
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+echo "vcontact setup: building in $build with $jobs jobs"
+cmake --build "$build" -j"$jobs"
