@@ -5,6 +5,8 @@
 #include "volume/analytic.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <vector>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -25,6 +27,29 @@ using LD = long double;
 // The backend promises 1e-9 relative; the closed forms are evaluated in long double
 // (64-bit mantissa) with series where they would cancel, so they are good to ~1e-15.
 constexpr double kPromised = 1e-9;
+
+// The worst relative error each case reached, printed when the suite ends, so that a log
+// shows how far inside the promise the backend is (and a regression in accuracy shows up
+// before it fails).
+class AccuracyLog : public testing::Environment {
+ public:
+  static void record(const std::string& name, double error) {
+    double& worst = table()[name];
+    worst = std::max(worst, std::abs(error));
+  }
+  void TearDown() override {
+    std::printf("analytic backend accuracy (worst relative error per case):\n");
+    for (const auto& [name, worst] : table()) std::printf("  %-28s %.2e\n", name.c_str(), worst);
+  }
+
+ private:
+  static std::map<std::string, double>& table() {
+    static std::map<std::string, double> t;
+    return t;
+  }
+};
+const testing::Environment* const kAccuracyLog =
+    testing::AddGlobalTestEnvironment(new AccuracyLog);
 
 // x − sin x by its Taylor series: no cancellation for small x, exact coefficients.
 LD xMinusSin(LD x) {
@@ -68,6 +93,10 @@ TEST(AnalyticSphere, ClosedFormsFromShallowToFullySunk) {
     const ContactVolume cv = sphereHalfspace(R, translation({0.125, -0.25, R - d}),
                                              Isometry3d::Identity());
     EXPECT_NEAR(cv.volume / e.V, 1.0, kPromised);
+    AccuracyLog::record("sphere V", cv.volume / e.V - 1.0);
+    AccuracyLog::record("sphere centroid depth", cv.centroid.z() / -e.depthOfCentroid - 1.0);
+    AccuracyLog::record("sphere J_s", relativeDifference(
+        cv.J_s, Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal().toDenseMatrix()));
     EXPECT_NEAR(cv.centroid.z(), -e.depthOfCentroid, kPromised * e.depthOfCentroid);
     EXPECT_DOUBLE_EQ(cv.centroid.x(), 0.125);
     EXPECT_DOUBLE_EQ(cv.centroid.y(), -0.25);
@@ -132,6 +161,12 @@ TEST(AnalyticCylinder, SideLyingClosedForms) {
     const ContactVolume cv =
         cylinderHalfspace(R, L, sideLying(R - d), Isometry3d::Identity());
     EXPECT_NEAR(double(cv.volume / (L * A)), 1.0, kPromised);
+    AccuracyLog::record("side-lying cylinder V", double(cv.volume / (L * A)) - 1.0);
+    AccuracyLog::record("side-lying centroid depth", cv.centroid.z() / -double(depthC) - 1.0);
+    AccuracyLog::record("side-lying J_s",
+                        relativeDifference(cv.J_s, Vector3d(double(Syy), double(Sxx),
+                                                            double(Sxx + Syy)).asDiagonal()
+                                                       .toDenseMatrix()));
     EXPECT_NEAR(cv.centroid.z(), -double(depthC), kPromised * double(depthC));
     EXPECT_NEAR(cv.centroid.x(), 0.0, kPromised * L);
     const Matrix3d Js = Vector3d(double(Syy), double(Sxx), double(Sxx + Syy)).asDiagonal();
@@ -153,6 +188,8 @@ TEST(AnalyticCylinder, AlignedPunch) {
                                                Isometry3d::Identity());
     const double V = M_PI * R * R * d;
     EXPECT_NEAR(cv.volume / V, 1.0, kPromised);
+    AccuracyLog::record("aligned punch V", cv.volume / V - 1.0);
+    AccuracyLog::record("aligned punch J_s", cv.J_s(0, 0) / (M_PI * std::pow(R, 4) * d / 4) - 1.0);
     EXPECT_NEAR(cv.r_gyr * cv.r_gyr / (R * R / 2), 1.0, kPromised);
     EXPECT_NEAR(cv.J_s(0, 0) / (M_PI * std::pow(R, 4) * d / 4), 1.0, kPromised);
     EXPECT_NEAR(cv.centroid.z(), -d / 2, kPromised * d);
@@ -279,6 +316,12 @@ TEST_P(AnalyticCylinderTilted, MatchesIndependentIntegrationUnderARigidMotion) {
   // and both sides integrate that same pose; the backend promises 1e-9.
   EXPECT_NEAR(cv.volume / ref.V, 1.0, kPromised);
   const double size = std::cbrt(ref.V);
+  AccuracyLog::record("tilted cylinder V", cv.volume / ref.V - 1.0);
+  AccuracyLog::record("tilted cylinder centroid/V^1/3",
+                      (cv.centroid - X_WC * ref.centroid_C).norm() / size);
+  AccuracyLog::record("tilted cylinder J_v",
+                      relativeDifference(cv.J_v, R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() -
+                                                          ref.Sigma_C)) * R_WC.transpose()));
   EXPECT_LT((cv.centroid - X_WC * ref.centroid_C).norm(), kPromised * size);
   EXPECT_LT(relativeDifference(cv.J_v, R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() -
                                                 ref.Sigma_C)) * R_WC.transpose()),
@@ -298,6 +341,7 @@ TEST(AnalyticCylinder, TiltedPunchMatchesMODELClosedForm) {
     X_HC.translation() = -h0 * axis + (L / 2) * axis;  // face centre = centre − (L/2) axis
     const ContactVolume cv = cylinderHalfspace(R, L, X_HC, Isometry3d::Identity());
     EXPECT_NEAR(cv.volume / tiltedPunchVolume(R, t, h0), 1.0, kPromised);
+    AccuracyLog::record("tilted punch V (MODEL form)", cv.volume / tiltedPunchVolume(R, t, h0) - 1.0);
   }
 }
 
@@ -320,6 +364,7 @@ TEST(AnalyticBox, FaceDown) {
                                           Isometry3d::Identity());
     const double dUsed = 0.035 - (0.035 - d);  // the depth the pose represents
     EXPECT_NEAR(cv.volume / (0.03 * 0.05 * dUsed), 1.0, 1e-12);
+    AccuracyLog::record("box face-down V", cv.volume / (0.03 * 0.05 * dUsed) - 1.0);
     EXPECT_NEAR(cv.r_gyr * cv.r_gyr / ((0.03 * 0.03 + 0.05 * 0.05) / 12), 1.0, 1e-12);
     EXPECT_NEAR(cv.centroid.z(), -dUsed / 2, 1e-12 * dUsed);
   }
@@ -337,6 +382,8 @@ TEST(AnalyticBox, CornerDown) {
     const double dUsed = -(X_HB * Vector3d(-s / 2, -s / 2, -s / 2)).z();
     const ContactVolume cv = boxHalfspace(Vector3d::Constant(s), X_HB, Isometry3d::Identity());
     EXPECT_NEAR(cv.volume / (std::sqrt(3.0) / 2 * dUsed * dUsed * dUsed), 1.0, 1e-9);
+    AccuracyLog::record("box corner-down V",
+                        cv.volume / (std::sqrt(3.0) / 2 * dUsed * dUsed * dUsed) - 1.0);
     EXPECT_NEAR(cv.centroid.z(), -dUsed / 4, 1e-9 * dUsed);
   }
 }
