@@ -1,0 +1,63 @@
+#include "io/shape_json.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/error.hpp"
+#include "io/mesh_io.hpp"
+
+namespace vcontact::io {
+
+double requireNumber(const nlohmann::json& j, const std::string& key, const std::string& where) {
+  if (!j.contains(key)) throw InputError(where, "missing \"" + key + "\"");
+  const auto& v = j.at(key);
+  if (!v.is_number()) throw InputError(where, "\"" + key + "\" must be a number, got " + v.dump());
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw InputError(where, "\"" + key + "\" is not finite");
+  return x;
+}
+
+JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
+                         const std::string& baseDir) {
+  if (!j.is_object()) throw InputError(where, "a shape must be a JSON object, got " + j.dump());
+  JsonShape out;
+  if (j.contains("mesh")) {
+    if (!j.at("mesh").is_string()) throw InputError(where, "\"mesh\" must be a file name");
+    const double scale = j.contains("scale") ? requireNumber(j, "scale", where) : 1.0;
+    std::filesystem::path path = j.at("mesh").get<std::string>();
+    if (path.is_relative()) path = std::filesystem::path(baseDir) / path;
+    auto read = readMesh(path.string(), scale);
+    out.warnings = std::move(read.warnings);
+    out.shape = geometry::Mesh{
+        std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)), path.string()};
+    return out;
+  }
+  if (!j.contains("shape") || !j.at("shape").is_string()) {
+    throw InputError(where, "expected \"shape\" (sphere, cylinder, box, halfspace) or \"mesh\"");
+  }
+  const std::string kind = j.at("shape").get<std::string>();
+  if (kind == "sphere") {
+    out.shape = geometry::Sphere{requireNumber(j, "radius", where)};
+  } else if (kind == "cylinder") {
+    out.shape = geometry::Cylinder{requireNumber(j, "radius", where), requireNumber(j, "length", where)};
+  } else if (kind == "box") {
+    const auto& s = j.contains("size") ? j.at("size") : nlohmann::json();
+    if (!s.is_array() || s.size() != 3 || !s[0].is_number() || !s[1].is_number() ||
+        !s[2].is_number()) {
+      throw InputError(where, "a box needs \"size\": [x, y, z] in metres");
+    }
+    out.shape = geometry::Box{Eigen::Vector3d(s[0].get<double>(), s[1].get<double>(), s[2].get<double>())};
+  } else if (kind == "halfspace") {
+    out.shape = geometry::HalfSpace{};
+  } else {
+    throw InputError(where, "unknown shape \"" + kind +
+                                "\"; expected sphere, cylinder, box, halfspace, or a \"mesh\"");
+  }
+  geometry::validate(out.shape, where);
+  return out;
+}
+
+}  // namespace vcontact::io

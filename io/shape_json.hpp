@@ -1,0 +1,32 @@
+#pragma once
+// Shapes as JSON objects, shared by the dataset, scenario and other JSON readers:
+//   {"shape": "sphere", "radius": R}
+//   {"shape": "cylinder", "radius": R, "length": L}
+//   {"shape": "box", "size": [X, Y, Z]}
+//   {"shape": "halfspace"}
+//   {"mesh": "part.stl", "scale": 0.001}     (path relative to the JSON file's folder)
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "geometry/primitives.hpp"
+
+namespace vcontact::io {
+
+struct JsonShape {
+  geometry::Shape shape;
+  std::vector<std::string> warnings;  ///< mesh repairs
+};
+
+/// @param where   names the place in messages, e.g. "rig.json: payload"
+/// @param baseDir folder that relative mesh paths are resolved against
+/// @throws InputError naming `where` and what was expected
+JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
+                         const std::string& baseDir);
+
+/// A required finite number member; throws InputError naming `where` and the key.
+double requireNumber(const nlohmann::json& j, const std::string& key, const std::string& where);
+
+}  // namespace vcontact::io
