@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages vcontact needs (only those missing), then configures and
+# Installs the Debian packages vcontact needs (only those missing; chromium is for the
+# test that renders the HTML report headless), then configures and
 # builds in Release. Safe to run again: it installs nothing and rebuilds nothing that is
 # already up to date.
 #
@@ -15,6 +16,7 @@ PACKAGES=(
   libfcl-dev libccd-dev libembree-dev
   libceres-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium
 )
 
 missing=()
