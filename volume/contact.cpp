@@ -2,6 +2,7 @@
 
 #include "geometry/error.hpp"
 #include "volume/analytic.hpp"
+#include "volume/bvh_cache.hpp"
 #include "volume/halfspace_clip.hpp"
 
 namespace vcontact::volume {
@@ -9,10 +10,7 @@ namespace {
 
 bool isHalfspace(const geometry::Shape& s) { return std::holds_alternative<geometry::HalfSpace>(s); }
 
-const geometry::TriangleMesh* meshOf(const geometry::Shape& s) {
-  const auto* m = std::get_if<geometry::Mesh>(&s);
-  return m ? m->mesh.get() : nullptr;
-}
+const geometry::Mesh* meshOf(const geometry::Shape& s) { return std::get_if<geometry::Mesh>(&s); }
 
 [[noreturn]] void unsupported(Method method, const geometry::Shape& a, const geometry::Shape& b,
                               const std::string& hint) {
@@ -23,9 +21,11 @@ const geometry::TriangleMesh* meshOf(const geometry::Shape& s) {
 
 ContactVolume halfspaceClip(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
-  if (const auto* m = meshOf(a); m && isHalfspace(b)) return meshHalfspaceContact(*m, X_WA, X_WB);
+  if (const auto* m = meshOf(a); m && isHalfspace(b)) {
+    return meshHalfspaceContact(*bvhOf(m->mesh), X_WA, X_WB);
+  }
   if (const auto* m = meshOf(b); m && isHalfspace(a)) {
-    return swapped(meshHalfspaceContact(*m, X_WB, X_WA));
+    return swapped(meshHalfspaceContact(*bvhOf(m->mesh), X_WB, X_WA));
   }
   unsupported(Method::kHalfspace, a, b, "it clips a mesh by a half-space");
 }

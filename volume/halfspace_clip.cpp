@@ -1,12 +1,15 @@
 #include "volume/halfspace_clip.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace vcontact::volume {
 namespace {
 
 using Eigen::Vector3d;
+using geometry::BvhNode;
+using geometry::MeshBvh;
 
 /// Point where the edge from a (inside, z < 0) to b (outside, z ≥ 0) crosses z = 0.
 Vector3d crossing(const Vector3d& a, const Vector3d& b) {
@@ -17,12 +20,158 @@ Vector3d crossing(const Vector3d& a, const Vector3d& b) {
 }
 
 /// Adds the tetrahedron (o, a, b, c) and the shadow of the face (a, b, c) if it faces down.
-void addPiece(const Vector3d& o, const Vector3d& a, const Vector3d& b, const Vector3d& c,
-              ClippedMoments& out) {
-  out.moments += geometry::tetrahedronMoments(o, a, b, c);
+void addPiece(const Vector3d& a, const Vector3d& b, const Vector3d& c, ClippedMoments& out) {
+  out.moments += geometry::tetrahedronMoments(Vector3d::Zero(), a, b, c);
   const double nz2 = (b - a).cross(c - a).z();  // 2 × signed projected area
   if (nz2 < 0.0) out.area -= 0.5 * nz2;
 }
+
+/// Adds the part of the triangle v (corners relative to o, H axes) below z = 0 as fan pieces
+/// with apex o (MODEL.md §1: the region is mesh ∩ {z_H ≤ 0}).
+void clipTriangle(const Vector3d (&v)[3], ClippedMoments& out) {
+  const int inside = (v[0].z() < 0.0) + (v[1].z() < 0.0) + (v[2].z() < 0.0);
+  if (inside == 0) return;
+  if (inside == 3) {
+    addPiece(v[0], v[1], v[2], out);
+    return;
+  }
+  // Rotate so that the lone vertex (inside when inside == 1, outside when 2) comes first;
+  // the cyclic order, and with it the orientation, is kept.
+  const bool loneInside = inside == 1;
+  int k0 = 0;
+  while ((v[k0].z() < 0.0) != loneInside) ++k0;
+  const Vector3d& a = v[k0];
+  const Vector3d& b = v[(k0 + 1) % 3];
+  const Vector3d& c = v[(k0 + 2) % 3];
+  if (loneInside) {
+    addPiece(a, crossing(a, b), crossing(a, c), out);
+  } else {
+    const Vector3d pb = crossing(b, a), pc = crossing(c, a);
+    addPiece(pb, b, c, out);
+    addPiece(pb, c, pc, out);
+  }
+}
+
+// A box is treated as wholly on one side only when its z-range clears the plane by more than
+// the rounding of the range itself (a few ulps of the coordinates); closer boxes are opened
+// and their triangles clipped one by one exactly as the reference does.
+constexpr double kBoxRoundingUlps = 16.0;
+
+/// Traversal state of the accelerated clip.
+class BvhClip {
+ public:
+  BvhClip(const MeshBvh& bvh, const Eigen::Isometry3d& X_HM)
+      : bvh_(bvh), X_HM_(X_HM), R_HM_(X_HM.linear()) {}
+
+  ClippedMoments run() {
+    ClippedMoments out;
+    out.depth = -deepestZ(bvh_.root(), std::numeric_limits<double>::infinity());
+    if (!(out.depth > 0.0)) return out;
+    out.origin = Vector3d(deepest_.x(), deepest_.y(), 0.0);
+    o_H_ = out.origin;
+    visit(bvh_.root(), out);
+    // Wholly-below subtrees were summed about o in M axes; rotate them into H once.
+    const Vector3d m1_H = R_HM_ * belowInM_.m1;
+    out.moments.m0 += belowInM_.m0;
+    out.moments.m1 += m1_H;
+    out.moments.m2 += R_HM_ * belowInM_.m2 * R_HM_.transpose();
+    return out;
+  }
+
+ private:
+  struct ZRange {
+    double lo, hi;
+  };
+
+  ZRange zRange(const BvhNode& node) const {
+    const double cz = (X_HM_ * node.center).z();
+    const double ez = R_HM_.row(2).cwiseAbs().dot(node.halfExtent);
+    const double slack = kBoxRoundingUlps * std::numeric_limits<double>::epsilon() *
+                         (std::abs(cz) + ez + X_HM_.translation().cwiseAbs().sum());
+    return {cz - ez - slack, cz + ez + slack};
+  }
+
+  Vector3d corner_H(int f, int k) const { return X_HM_ * bvh_.mesh().corner(f, k); }
+
+  /// Branch and bound for the lowest vertex; returns the best z so far.
+  double deepestZ(const BvhNode& node, double best) {
+    if (zRange(node).lo >= best) return best;
+    if (node.isLeaf()) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+          const Vector3d p = corner_H(bvh_.order()[i], k);
+          if (p.z() < best) {
+            best = p.z();
+            deepest_ = p;
+          }
+        }
+      }
+      return best;
+    }
+    const BvhNode& l = bvh_.nodes()[node.left];
+    const BvhNode& r = bvh_.nodes()[node.right];
+    const bool leftFirst = zRange(l).lo <= zRange(r).lo;
+    best = deepestZ(leftFirst ? l : r, best);
+    return deepestZ(leftFirst ? r : l, best);
+  }
+
+  void visit(const BvhNode& node, ClippedMoments& out) {
+    const ZRange z = zRange(node);
+    if (z.lo >= 0.0) return;
+    if (z.hi < 0.0) {
+      addWholeNode(node, out);
+      return;
+    }
+    if (node.isLeaf()) {
+      clipLeaf(node, out);
+      return;
+    }
+    visit(bvh_.nodes()[node.left], out);
+    visit(bvh_.nodes()[node.right], out);
+  }
+
+  void clipLeaf(const BvhNode& node, ClippedMoments& out) const {
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const int f = bvh_.order()[i];
+      const Vector3d v[3] = {corner_H(f, 0) - o_H_, corner_H(f, 1) - o_H_, corner_H(f, 2) - o_H_};
+      clipTriangle(v, out);
+    }
+  }
+
+  /// Fan moments about o of a subtree wholly below the plane, in M axes:
+  /// δ_M = R_HMᵀ (X_HM r − o) (fan_integrals.hpp).
+  void addWholeNode(const BvhNode& node, ClippedMoments& out) {
+    const Vector3d delta_M = R_HM_.transpose() * (X_HM_ * node.center - o_H_);
+    belowInM_ += geometry::fanMoments(node.integrals, delta_M);
+    out.area += downwardArea(node);
+  }
+
+  /// Projected area onto z_H = 0 of the node's faces with n_z < 0: −(R_HM ∫n dA)_z when the
+  /// normal cone lies wholly below the horizontal, 0 when wholly above, else per child.
+  double downwardArea(const BvhNode& node) const {
+    const double axisZ = R_HM_.row(2).dot(node.normalAxis);
+    if (axisZ <= -node.normalSinHalfAngle) return -R_HM_.row(2).dot(node.integrals.F);
+    if (axisZ >= node.normalSinHalfAngle) return 0.0;
+    if (!node.isLeaf()) {
+      return downwardArea(bvh_.nodes()[node.left]) + downwardArea(bvh_.nodes()[node.right]);
+    }
+    double area = 0.0;
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const int f = bvh_.order()[i];
+      const Vector3d a = corner_H(f, 0);
+      const double nz2 = (corner_H(f, 1) - a).cross(corner_H(f, 2) - a).z();
+      if (nz2 < 0.0) area -= 0.5 * nz2;
+    }
+    return area;
+  }
+
+  const MeshBvh& bvh_;
+  const Eigen::Isometry3d X_HM_;
+  const Eigen::Matrix3d R_HM_;
+  Vector3d deepest_ = Vector3d::Zero();
+  Vector3d o_H_ = Vector3d::Zero();
+  geometry::Moments belowInM_;
+};
 
 }  // namespace
 
@@ -41,37 +190,16 @@ ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
   if (out.depth <= 0.0) return out;
   const Vector3d o(p_H(deepest, 0), p_H(deepest, 1), 0.0);
   out.origin = o;
-  const Vector3d zero = Vector3d::Zero();
-
   for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
     Vector3d v[3];
-    int inside = 0;
-    for (int k = 0; k < 3; ++k) {
-      v[k] = p_H.row(mesh.triangles(f, k)).transpose() - o;
-      inside += v[k].z() < 0.0;
-    }
-    if (inside == 0) continue;
-    if (inside == 3) {
-      addPiece(zero, v[0], v[1], v[2], out);
-      continue;
-    }
-    // Rotate so that the lone vertex (inside when inside == 1, outside when 2) comes first;
-    // the cyclic order, and with it the orientation, is kept.
-    const bool loneInside = inside == 1;
-    int k0 = 0;
-    while ((v[k0].z() < 0.0) != loneInside) ++k0;
-    const Vector3d& a = v[k0];
-    const Vector3d& b = v[(k0 + 1) % 3];
-    const Vector3d& c = v[(k0 + 2) % 3];
-    if (loneInside) {
-      addPiece(zero, a, crossing(a, b), crossing(a, c), out);
-    } else {
-      const Vector3d pb = crossing(b, a), pc = crossing(c, a);
-      addPiece(zero, pb, b, c, out);
-      addPiece(zero, pb, c, pc, out);
-    }
+    for (int k = 0; k < 3; ++k) v[k] = p_H.row(mesh.triangles(f, k)).transpose() - o;
+    clipTriangle(v, out);
   }
   return out;
+}
+
+ClippedMoments clipMeshByHalfspace(const MeshBvh& bvh, const Eigen::Isometry3d& X_HM) {
+  return BvhClip(bvh, X_HM).run();
 }
 
 ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,
@@ -91,6 +219,12 @@ ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
                                    const Eigen::Isometry3d& X_WM,
                                    const Eigen::Isometry3d& X_WH) {
   return contactFromClippedMoments(clipMeshByHalfspace(mesh, X_WH.inverse() * X_WM), X_WH,
+                                   Method::kHalfspace);
+}
+
+ContactVolume meshHalfspaceContact(const MeshBvh& bvh, const Eigen::Isometry3d& X_WM,
+                                   const Eigen::Isometry3d& X_WH) {
+  return contactFromClippedMoments(clipMeshByHalfspace(bvh, X_WH.inverse() * X_WM), X_WH,
                                    Method::kHalfspace);
 }
 

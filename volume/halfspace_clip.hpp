@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include "geometry/bvh.hpp"
 #include "geometry/moments.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "volume/contact_volume.hpp"
@@ -26,9 +27,23 @@ struct ClippedMoments {
 ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
                                    const Eigen::Isometry3d& X_HM);
 
+/// The same clip accelerated by the mesh's bounding-volume tree: a subtree wholly below the
+/// plane adds its fan moments about o in O(1) from the cached FanIntegrals (fan_integrals.hpp),
+/// a subtree wholly above is skipped, and only the leaves that straddle the plane are clipped
+/// triangle by triangle, as in the reference. Same o, so the same digits survive at shallow
+/// depth. The projected area uses each node's normal cone and descends only where the faces
+/// of a wholly-below subtree do not all face one way.
+/// @param X_HM  pose of the mesh frame M in the half-space frame H
+ClippedMoments clipMeshByHalfspace(const geometry::MeshBvh& bvh, const Eigen::Isometry3d& X_HM);
+
 /// ContactVolume of a mesh body (pose X_WM) against a half-space (pose X_WH); the mesh is B1.
+/// This overload runs the O(n) reference clip.
 ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
                                    const Eigen::Isometry3d& X_WM,
+                                   const Eigen::Isometry3d& X_WH);
+
+/// As above, by the accelerated clip.
+ContactVolume meshHalfspaceContact(const geometry::MeshBvh& bvh, const Eigen::Isometry3d& X_WM,
                                    const Eigen::Isometry3d& X_WH);
 
 /// Turns moments about o in H into a ContactVolume in W with n = +z_H (half-space is B2).

@@ -1,0 +1,4 @@
+// Volume backends timed on the same poses: volume/<case>/<method>.
+#include <benchmark/benchmark.h>
+
+BENCHMARK_MAIN();

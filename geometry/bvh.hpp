@@ -1,0 +1,55 @@
+#pragma once
+// A static bounding-volume hierarchy of axis-aligned boxes over the triangles of a mesh, in
+// the mesh's body frame M. Besides its box, every node caches what the exact volume queries
+// need to treat a whole subtree in O(1):
+//   - FanIntegrals of its triangles about the box centre (fan moments for any apex, see
+//     fan_integrals.hpp);
+//   - a cone bounding its face normals (axis, sin of the half-angle), so a query can tell
+//     when every face of the subtree faces one way relative to a plane.
+// Built top-down by median split of the triangle centroids along the widest axis.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/fan_integrals.hpp"
+#include "geometry/triangle_mesh.hpp"
+
+namespace vcontact::geometry {
+
+struct BvhNode {
+  Eigen::Vector3d center;       ///< box centre in M, the reference r of `integrals`, m
+  Eigen::Vector3d halfExtent;   ///< box half-sizes, m
+  FanIntegrals integrals;       ///< of the node's triangles about `center`
+  Eigen::Vector3d normalAxis;   ///< unit axis of the normal cone
+  double normalSinHalfAngle = 2.0;  ///< sin of the cone half-angle; > 1: wider than π/2
+  int first = 0;                ///< first index into MeshBvh::order()
+  int count = 0;                ///< number of triangles
+  int left = -1;                ///< child nodes, −1 for a leaf (right = left + 1 is not assumed)
+  int right = -1;
+
+  bool isLeaf() const { return left < 0; }
+};
+
+class MeshBvh {
+ public:
+  /// Builds the hierarchy; keeps a copy of the mesh. @pre the mesh has at least one triangle.
+  explicit MeshBvh(TriangleMesh mesh, int maxLeafSize = 4);
+
+  const TriangleMesh& mesh() const { return mesh_; }
+  const std::vector<BvhNode>& nodes() const { return nodes_; }
+  const BvhNode& root() const { return nodes_.front(); }
+  /// Triangle indices, permuted so that each node's triangles are contiguous.
+  const std::vector<int>& order() const { return order_; }
+
+ private:
+  int build(int first, int count, int maxLeafSize);
+  void fillNode(BvhNode& node) const;
+
+  TriangleMesh mesh_;
+  std::vector<int> order_;
+  std::vector<Eigen::Vector3d> centroids_;
+  std::vector<BvhNode> nodes_;
+};
+
+}  // namespace vcontact::geometry
