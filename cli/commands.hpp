@@ -8,6 +8,7 @@ namespace vcontact::cli {
 void addVolumeCommand(CLI::App& app);
 void addMeshInfoCommand(CLI::App& app);
 void addTessellateCommand(CLI::App& app);
+void addSimulateCommand(CLI::App& app);
 
 /// Prints warnings to standard error, one per line, prefixed "vcontact: warning: ".
 void printWarnings(const std::vector<std::string>& warnings);

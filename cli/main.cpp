@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   vcontact::cli::addVolumeCommand(app);
   vcontact::cli::addMeshInfoCommand(app);
   vcontact::cli::addTessellateCommand(app);
+  vcontact::cli::addSimulateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

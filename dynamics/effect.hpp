@@ -1,0 +1,166 @@
+#pragma once
+// One effect of the contact model (MODEL.md §3): named parameters with units and bounds,
+// optional internal states, and a contribution to the wrench at the centroid.
+//
+// Composition. Effects interact (stribeck changes μ_max, dwell replaces s in μ_max,
+// contensou sets C_v and C_ω, bristle replaces the Coulomb forms, damping modifies f_n and
+// rolling_resistance reads damping.a). They do so only through one shared ContactContext,
+// in two passes that Model::evaluate runs for every contact:
+//
+//   1. configure: every effect writes its own parameters into the context
+//      (kv, a, μ_C, v_s, μ_S, σ0, σ1, σ2, flags). Order does not matter: each field has one
+//      writer. Then the model derives the kinematics and the stick–slip state s, which need
+//      v_s (MODEL.md §2, §3), and sets the defaults μ_max = μ_C, s_μ = s, C_v = C_ω = 1.
+//   2. apply, in the fixed order of Stage: each effect may refine derived quantities that
+//      later stages read (f_n, s_μ, μ_max, C_v, C_ω, the bristle rates) and returns its own
+//      share of the wrench. The shares add up to the total wrench.
+//
+// Adding an effect is one new file in dynamics/effects/ plus one line in
+// dynamics/effects/registry.cpp; simulation, fitting and diagnosis then see it through Model.
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "dynamics/pair_state.hpp"
+#include "dynamics/wrench.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::dynamics {
+
+/// One named, bounded model parameter.
+struct ParameterSpec {
+  std::string name;           ///< e.g. "kv" (the model calls it "stiffness.kv")
+  std::string unit;           ///< SI unit, "–" for none
+  double default_value;       ///< used when a model file leaves it out
+  double lower;               ///< physical lower bound (inclusive)
+  double upper;               ///< physical upper bound (inclusive)
+  std::string description;    ///< one line
+};
+
+/// Velocity of the material point of B1 at p_c minus that of B2, and ω1 − ω2 (MODEL.md §2).
+struct RelativeMotion {
+  Eigen::Vector3d v_c_W = Eigen::Vector3d::Zero();  ///< m/s
+  Eigen::Vector3d w_W = Eigen::Vector3d::Zero();    ///< rad/s
+};
+
+/// Model settings that are not fitted parameters.
+struct ModelSettings {
+  double v_eps = 1e-5;  ///< m/s, regularisation speed of dir_ε and sgn_ε (MODEL.md §3)
+};
+
+/// The order in which effects apply (see the header comment). Each stage reads what the
+/// earlier stages left in the context.
+enum class Stage {
+  kNormalForce = 0,  ///< stiffness: f_n = kv V
+  kNormalDamping,    ///< damping: f_n ← kv V (1 + a δ̇), clamped ≥ 0
+  kStickState,       ///< dwell: s_μ ← s_dw
+  kFrictionLimit,    ///< stribeck: μ_max = μ_C + (μ_S − μ_C) s_μ
+  kFrictionSharing,  ///< contensou: C_v, C_ω
+  kFrictionState,    ///< bristle: ż, θ̇_n and the bristle friction force
+  kFriction,         ///< coulomb, spin, viscous, rolling_resistance: read the final context
+  kGeometryOnly,     ///< misalignment: acts on the pose before geometry, no wrench
+};
+
+enum class FrictionLaw { kCoulomb, kBristle };
+
+/// Everything one contact evaluation shares between effects. Plain data.
+struct ContactContext {
+  // ---- inputs ----
+  const volume::ContactVolume* cv = nullptr;
+  PairState state;         ///< with z projected onto the contact plane
+  ModelSettings settings;
+
+  // ---- kinematics at p_c (MODEL.md §2) ----
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();        ///< out of B2 into B1
+  double delta_dot = 0.0;                              ///< −v_c·n, m/s
+  Eigen::Vector3d v_t = Eigen::Vector3d::Zero();       ///< tangential slip, m/s
+  double omega_n = 0.0;                                ///< spin ω·n, rad/s
+  Eigen::Vector3d omega_t = Eigen::Vector3d::Zero();   ///< rolling, rad/s
+  double r_gyr = 0.0;                                  ///< m
+
+  // ---- pass 1: configured parameters ----
+  double kv = 0.0;      ///< N/m³
+  double a = 0.0;       ///< s/m
+  double mu_C = 0.0;    ///< –
+  double mu_S = 0.0;    ///< – (= μ_C without stribeck)
+  double v_s = 1e-3;    ///< m/s, stick–slip speed
+  double sigma0 = 0.0;  ///< 1/m
+  double sigma1 = 0.0;  ///< s/m
+  double sigma2 = 0.0;  ///< s/m
+  FrictionLaw law = FrictionLaw::kCoulomb;
+
+  // ---- derived, refined in stage order ----
+  double v_avg = 0.0;   ///< sqrt(|v_t|² + (r_gyr ω_n)²), m/s
+  double s = 1.0;       ///< exp(−v_avg²/v_s²)
+  double s_mu = 1.0;    ///< the stick measure in μ_max (s, or s_dw with dwell)
+  double mu_max = 0.0;  ///< –
+  double C_v = 1.0;     ///< Contensou factor on translation
+  double C_w = 1.0;     ///< Contensou factor on spin
+  double f_n = 0.0;     ///< normal force magnitude, N (≥ 0)
+  double theta_dot = 0.0;  ///< θ̇_n from the bristle stage, rad/s
+
+  PairStateRates rates;  ///< state rates, written by the effects that own the states
+};
+
+/// The regularised direction, sign and saturation of MODEL.md §3.
+Eigen::Vector3d dirEps(const Eigen::Vector3d& v, double v_eps);
+double sgnEps(double omega, double v_eps, double r_gyr);
+Eigen::Vector3d saturate(const Eigen::Vector3d& x, double max_norm);
+double saturate(double x, double max_abs);
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+
+  virtual std::string_view id() const = 0;
+  virtual const std::vector<ParameterSpec>& parameterSpecs() const = 0;
+  virtual Stage stage() const = 0;
+  /// Ids of the effects this one needs in the same model.
+  virtual std::vector<std::string_view> requiredEffects() const { return {}; }
+  virtual std::unique_ptr<Effect> clone() const = 0;
+
+  /// Pass 1: write this effect's parameters into the context.
+  virtual void configure(ContactContext& /*ctx*/) const {}
+  /// Pass 2: refine derived quantities, write own state rates, return own wrench share.
+  /// @pre ctx.cv->volume > 0
+  virtual Wrench apply(ContactContext& /*ctx*/) const { return {}; }
+  /// After an accepted integration step: discrete updates of this effect's states.
+  virtual void settle(const ContactContext& /*ctx*/, PairState& /*state*/) const {}
+  /// Before geometry: the payload pose actually used for the volume (misalignment).
+  virtual Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_W1,
+                                              const Eigen::Isometry3d& /*X_W2*/) const {
+    return X_W1;
+  }
+
+  std::span<const double> parameters() const { return values_; }
+  double parameter(std::size_t i) const { return values_[i]; }
+  /// @pre i < parameterSpecs().size(); bounds are checked by Model::setParameters
+  void setParameter(std::size_t i, double value) { values_[i] = value; }
+
+ protected:
+  /// Call from the derived constructor with the derived class's specs.
+  void initialiseParameters(const std::vector<ParameterSpec>& specs);
+
+ private:
+  std::vector<double> values_;
+};
+
+/// CRTP helper: id, specs, stage and clone from static members of the derived class.
+template <class Derived>
+class EffectBase : public Effect {
+ public:
+  EffectBase() { initialiseParameters(Derived::specs()); }
+  std::string_view id() const override { return Derived::kId; }
+  const std::vector<ParameterSpec>& parameterSpecs() const override { return Derived::specs(); }
+  Stage stage() const override { return Derived::kStage; }
+  std::unique_ptr<Effect> clone() const override {
+    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
+  }
+};
+
+}  // namespace vcontact::dynamics

@@ -1,0 +1,57 @@
+// bristle: LuGre-type bristle friction of Gonthier 2007 / Boos & McPhee 2012 (MODEL.md §3):
+//   ż   = s v_t + (1 − s) ((C_v μ_C / σ1) dir_ε(v_t) − (σ0/σ1) z)
+//   f_t = −|f_n| sat(σ0 z + σ1 ż, μ_max)          (σ2 term: the viscous effect)
+//   θ̇_n = s ω_n + (1 − s) ((C_ω μ_C / (σ1 r_gyr)) sgn_ε(ω_n) − (σ0/σ1) θ_n)
+// It owns the states z and θ_n, replaces the Coulomb form of coulomb, and leaves θ̇_n in the
+// context for the bristle form of spin.
+#include "dynamics/effects/registry.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+class Bristle final : public EffectBase<Bristle> {
+ public:
+  static constexpr std::string_view kId = "bristle";
+  static constexpr Stage kStage = Stage::kFrictionState;
+  static const std::vector<ParameterSpec>& specs() {
+    static const std::vector<ParameterSpec> s = {
+        {"sigma0", "1/m", 4500.0, 1e-6, 1e12, "bristle stiffness per unit normal force"},
+        {"sigma1", "s/m", 300.0, 1e-9, 1e12, "bristle damping per unit normal force"}};
+    return s;
+  }
+  std::vector<std::string_view> requiredEffects() const override { return {"coulomb"}; }
+
+  void configure(ContactContext& ctx) const override {
+    ctx.sigma0 = parameter(0);
+    ctx.sigma1 = parameter(1);
+    ctx.law = FrictionLaw::kBristle;
+  }
+
+  Wrench apply(ContactContext& ctx) const override {
+    const double s = ctx.s, s0 = ctx.sigma0, s1 = ctx.sigma1;
+    const Eigen::Vector3d& z = ctx.state.z_W;
+    const Eigen::Vector3d z_dot =
+        s * ctx.v_t +
+        (1.0 - s) * ((ctx.C_v * ctx.mu_C / s1) * dirEps(ctx.v_t, ctx.settings.v_eps) - (s0 / s1) * z);
+    ctx.rates.z_W = z_dot;
+    ctx.theta_dot = thetaRate(ctx);
+    ctx.rates.theta_n = ctx.theta_dot;
+    return {-ctx.f_n * saturate(Eigen::Vector3d(s0 * z + s1 * z_dot), ctx.mu_max),
+            Eigen::Vector3d::Zero()};
+  }
+
+ private:
+  static double thetaRate(const ContactContext& ctx) {
+    const double s = ctx.s;
+    const double pull = ctx.r_gyr > 0.0 ? (ctx.C_w * ctx.mu_C / (ctx.sigma1 * ctx.r_gyr)) *
+                                              sgnEps(ctx.omega_n, ctx.settings.v_eps, ctx.r_gyr)
+                                        : 0.0;
+    return s * ctx.omega_n + (1.0 - s) * (pull - (ctx.sigma0 / ctx.sigma1) * ctx.state.theta_n);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> makeBristle() { return std::make_unique<Bristle>(); }
+
+}  // namespace vcontact::dynamics

@@ -1,0 +1,38 @@
+// coulomb: f_t = −μ_max C_v |f_n| dir_ε(v_t) (MODEL.md §3). Also provides μ_C and the
+// stick–slip speed v_s that every friction effect uses. With bristle in the model the bristle
+// form replaces this one and the share is zero.
+#include "dynamics/effects/registry.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+class Coulomb final : public EffectBase<Coulomb> {
+ public:
+  static constexpr std::string_view kId = "coulomb";
+  static constexpr Stage kStage = Stage::kFriction;
+  static const std::vector<ParameterSpec>& specs() {
+    static const std::vector<ParameterSpec> s = {
+        {"mu", "-", 0.2, 0.0, 10.0, "Coulomb (kinetic) friction coefficient mu_C"},
+        {"v_s", "m/s", 1e-3, 1e-12, 1e3, "stick-slip speed in s = exp(-v_avg^2/v_s^2)"}};
+    return s;
+  }
+  std::vector<std::string_view> requiredEffects() const override { return {"stiffness"}; }
+
+  void configure(ContactContext& ctx) const override {
+    ctx.mu_C = parameter(0);
+    ctx.mu_S = parameter(0);
+    ctx.v_s = parameter(1);
+  }
+
+  Wrench apply(ContactContext& ctx) const override {
+    if (ctx.law == FrictionLaw::kBristle) return {};
+    return {-ctx.mu_max * ctx.C_v * ctx.f_n * dirEps(ctx.v_t, ctx.settings.v_eps),
+            Eigen::Vector3d::Zero()};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> makeCoulomb() { return std::make_unique<Coulomb>(); }
+
+}  // namespace vcontact::dynamics

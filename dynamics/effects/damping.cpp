@@ -1,0 +1,35 @@
+// damping: f_n = kv V (1 + a δ̇_c) n, clamped so that f_n·n ≥ 0 (MODEL.md §3, Hunt–Crossley
+// form of Gonthier). Its share is the change it makes to the stiffness force.
+#include <algorithm>
+
+#include "dynamics/effects/registry.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+class Damping final : public EffectBase<Damping> {
+ public:
+  static constexpr std::string_view kId = "damping";
+  static constexpr Stage kStage = Stage::kNormalDamping;
+  static const std::vector<ParameterSpec>& specs() {
+    static const std::vector<ParameterSpec> s = {
+        {"a", "s/m", 1.0, 0.0, 1e8, "damping factor (Hunt-Crossley)"}};
+    return s;
+  }
+  std::vector<std::string_view> requiredEffects() const override { return {"stiffness"}; }
+
+  void configure(ContactContext& ctx) const override { ctx.a = parameter(0); }
+
+  Wrench apply(ContactContext& ctx) const override {
+    const double f_n = std::max(0.0, ctx.kv * ctx.cv->volume * (1.0 + ctx.a * ctx.delta_dot));
+    const double change = f_n - ctx.f_n;
+    ctx.f_n = f_n;
+    return {change * ctx.n, Eigen::Vector3d::Zero()};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> makeDamping() { return std::make_unique<Damping>(); }
+
+}  // namespace vcontact::dynamics

@@ -1,0 +1,38 @@
+// spin: friction torque about the normal (MODEL.md §3).
+//   Coulomb form: τ_s = −μ_max C_ω r_gyr |f_n| sgn_ε(ω_n) n
+//   bristle form: τ_s = −r_gyr² |f_n| sat(σ0 θ_n + σ1 θ̇_n, μ_max / r_gyr) n
+// (the σ2 ω_n term of the bristle form belongs to the viscous effect).
+#include "dynamics/effects/registry.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+class Spin final : public EffectBase<Spin> {
+ public:
+  static constexpr std::string_view kId = "spin";
+  static constexpr Stage kStage = Stage::kFriction;
+  static const std::vector<ParameterSpec>& specs() {
+    static const std::vector<ParameterSpec> s;
+    return s;
+  }
+  std::vector<std::string_view> requiredEffects() const override { return {"coulomb"}; }
+
+  Wrench apply(ContactContext& ctx) const override {
+    const double r = ctx.r_gyr;
+    if (r <= 0.0) return {};
+    double torque = 0.0;  // N·m along n
+    if (ctx.law == FrictionLaw::kBristle) {
+      const double m = ctx.sigma0 * ctx.state.theta_n + ctx.sigma1 * ctx.theta_dot;
+      torque = -r * r * ctx.f_n * saturate(m, ctx.mu_max / r);
+    } else {
+      torque = -ctx.mu_max * ctx.C_w * r * ctx.f_n * sgnEps(ctx.omega_n, ctx.settings.v_eps, r);
+    }
+    return {Eigen::Vector3d::Zero(), torque * ctx.n};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> makeSpin() { return std::make_unique<Spin>(); }
+
+}  // namespace vcontact::dynamics

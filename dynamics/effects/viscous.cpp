@@ -1,0 +1,30 @@
+// viscous: −|f_n| σ2 v_t and −r_gyr² |f_n| σ2 ω_n n (MODEL.md §3).
+#include "dynamics/effects/registry.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+class Viscous final : public EffectBase<Viscous> {
+ public:
+  static constexpr std::string_view kId = "viscous";
+  static constexpr Stage kStage = Stage::kFriction;
+  static const std::vector<ParameterSpec>& specs() {
+    static const std::vector<ParameterSpec> s = {
+        {"sigma2", "s/m", 0.0, 0.0, 1e9, "viscous friction per unit normal force"}};
+    return s;
+  }
+  std::vector<std::string_view> requiredEffects() const override { return {"stiffness"}; }
+
+  void configure(ContactContext& ctx) const override { ctx.sigma2 = parameter(0); }
+
+  Wrench apply(ContactContext& ctx) const override {
+    const double c = ctx.f_n * ctx.sigma2;
+    return {-c * ctx.v_t, -ctx.r_gyr * ctx.r_gyr * c * ctx.omega_n * ctx.n};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> makeViscous() { return std::make_unique<Viscous>(); }
+
+}  // namespace vcontact::dynamics

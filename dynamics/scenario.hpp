@@ -1,0 +1,42 @@
+#pragma once
+// A simulation scenario in memory: bodies, contact pairs with their models, gravity and
+// integration settings. File formats live in io/scenario_file (dynamics/SCENARIO.md).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "dynamics/rigid_body.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::dynamics {
+
+struct ContactPair {
+  std::string name;                     ///< for output ("ball-plate")
+  std::size_t a = 0;                    ///< index of B1 (payload) in Scenario::bodies
+  std::size_t b = 0;                    ///< index of B2 (plate)
+  Model model;
+  std::optional<volume::Method> method; ///< default: volume::defaultMethod
+};
+
+struct SimulationSettings {
+  double duration = 1.0;          ///< s
+  double output_rate_hz = 1000.0; ///< Hz, output every 1/rate s (and at t = 0)
+  double abs_tol = 1e-9;          ///< absolute error per step, state units (m, m/s, rad, ...)
+  double rel_tol = 1e-6;          ///< relative error per step
+  double initial_step = 1e-6;     ///< s
+  double max_step = 1e-3;         ///< s, so that no contact is stepped over in free flight
+  double min_step = 1e-13;        ///< s; a step-size collapse below this stops the run
+  /// Stop when a penetration depth exceeds this fraction of the smaller body's size.
+  double max_penetration_fraction = 0.1;
+};
+
+struct Scenario {
+  std::vector<RigidBody> bodies;
+  std::vector<ContactPair> pairs;
+  Eigen::Vector3d gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< m/s²
+  SimulationSettings settings;
+};
+
+}  // namespace vcontact::dynamics

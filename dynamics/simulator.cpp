@@ -1,0 +1,281 @@
+#include "dynamics/simulator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <boost/numeric/odeint.hpp>
+
+#include "geometry/error.hpp"
+#include "volume/contact.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+constexpr int kBodyStates = 13;  // p_WBcm (3), q_WB (w, x, y, z), v_WBcm (3), w_WB (3)
+
+// Output times k / rate are reached by shortened steps; a step that ends within this
+// fraction of the output interval of it counts as landing on it (round-off of t + dt).
+constexpr double kOutputTimeSlack = 1e-9;
+
+std::string where(double t) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "t = " << t << " s";
+  return s.str();
+}
+
+Eigen::Quaterniond quaternionAt(const double* q) {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+}
+
+void checkBody(const RigidBody& b) {
+  if (b.motion != BodyMotion::kFree) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(b.I_BBcm_B);
+  if (!(b.mass > 0.0) || !std::isfinite(b.mass) || !(eig.eigenvalues().minCoeff() > 0.0)) {
+    throw InputError("body '" + b.name + "'",
+                     "a free body needs a positive mass and a positive-definite inertia");
+  }
+}
+
+}  // namespace
+
+Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
+  int n = 0;
+  for (const auto& b : scenario_.bodies) {
+    checkBody(b);
+    offset_.push_back(b.motion == BodyMotion::kFree ? n : -1);
+    if (b.motion == BodyMotion::kFree) n += kBodyStates;
+    size_.push_back(characteristicSize(b.shape));
+    I_inv_B_.push_back(b.motion == BodyMotion::kFree ? Eigen::Matrix3d(b.I_BBcm_B.inverse())
+                                                     : Eigen::Matrix3d::Zero());
+  }
+  for (const auto& p : scenario_.pairs) {
+    if (p.a >= scenario_.bodies.size() || p.b >= scenario_.bodies.size() || p.a == p.b) {
+      throw InputError("pair '" + p.name + "'", "needs two different bodies of the scenario");
+    }
+    pair_offset_.push_back(n);
+    n += PairState::kSize;
+  }
+  x0_.assign(static_cast<std::size_t>(n), 0.0);
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
+    if (offset_[i] < 0) continue;
+    const RigidBody& b = scenario_.bodies[i];
+    double* s = &x0_[static_cast<std::size_t>(offset_[i])];
+    const Eigen::Vector3d p = b.X_WB0 * b.p_BBcm;
+    const Eigen::Quaterniond q(b.X_WB0.linear());
+    const double init[kBodyStates] = {p.x(),        p.y(),        p.z(),        q.w(),
+                                      q.x(),        q.y(),        q.z(),        b.v_WBcm0.x(),
+                                      b.v_WBcm0.y(), b.v_WBcm0.z(), b.w_WB0.x(),  b.w_WB0.y(),
+                                      b.w_WB0.z()};
+    std::copy(init, init + kBodyStates, s);
+  }
+  last_pairs_.resize(scenario_.pairs.size());
+  kin_.resize(scenario_.bodies.size());
+  force_.resize(scenario_.bodies.size());
+  torque_.resize(scenario_.bodies.size());
+}
+
+BodyKinematics Simulator::kinematics(const State& x, std::size_t i, double t) const {
+  const RigidBody& body = scenario_.bodies[i];
+  if (offset_[i] < 0) return scheduledKinematics(body, t);
+  const double* s = &x[static_cast<std::size_t>(offset_[i])];
+  BodyKinematics k;
+  k.p_WBcm = Eigen::Vector3d(s[0], s[1], s[2]);
+  k.X_WB.linear() = quaternionAt(s + 3).toRotationMatrix();
+  k.X_WB.translation() = k.p_WBcm - k.X_WB.linear() * body.p_BBcm;
+  k.v_WBcm = Eigen::Vector3d(s[7], s[8], s[9]);
+  k.w_WB = Eigen::Vector3d(s[10], s[11], s[12]);
+  return k;
+}
+
+// ẋ for the bodies (Newton–Euler in W) and the pair states (the models' rates).
+void Simulator::rhs(const State& x, State& dxdt, double t) {
+  ++rhs_count_;
+  const std::size_t nb = scenario_.bodies.size();
+  auto& kin = kin_;
+  auto& force = force_;
+  auto& torque = torque_;  // about each Bcm
+  for (std::size_t i = 0; i < nb; ++i) {
+    kin[i] = kinematics(x, i, t);
+    force[i].setZero();
+    torque[i].setZero();
+  }
+
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const ContactPair& pair = scenario_.pairs[k];
+    const BodyKinematics& A = kin[pair.a];
+    const BodyKinematics& B = kin[pair.b];
+    const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
+    PairOutput& out = last_pairs_[k];
+    out.cv = volume::computeContact(scenario_.bodies[pair.a].shape, X_WA,
+                                    scenario_.bodies[pair.b].shape, B.X_WB, pair.method);
+    ++contact_count_;
+    out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
+    const Eigen::Vector3d& p_c = out.cv.centroid;
+    const RelativeMotion motion{A.pointVelocity(p_c) - B.pointVelocity(p_c), A.w_WB - B.w_WB};
+    pair.model.evaluate(out.cv, motion, out.state, out.result);
+    const Wrench& w = out.result.wrench;  // on A at p_c; B gets the opposite
+    force[pair.a] += w.f_W;
+    torque[pair.a] += w.tau_W + (p_c - A.p_WBcm).cross(w.f_W);
+    force[pair.b] -= w.f_W;
+    torque[pair.b] -= w.tau_W + (p_c - B.p_WBcm).cross(w.f_W);
+    out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])]);
+  }
+
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (offset_[i] < 0) continue;
+    const RigidBody& body = scenario_.bodies[i];
+    const double* s = &x[static_cast<std::size_t>(offset_[i])];
+    double* d = &dxdt[static_cast<std::size_t>(offset_[i])];
+    const Eigen::Vector3d& w = kin[i].w_WB;
+    // q̇ = ½ (0, ω_W) ⊗ q  (ω in the world frame)
+    const Eigen::Quaterniond q(s[3], s[4], s[5], s[6]);
+    const Eigen::Quaterniond q_dot = Eigen::Quaterniond(0.0, w.x(), w.y(), w.z()) * q;
+    // m v̇ = F + m g;  I_W ω̇ = τ − ω × I_W ω,  I_W = R I_B Rᵀ, I_W⁻¹ = R I_B⁻¹ Rᵀ
+    const Eigen::Matrix3d R = kin[i].X_WB.linear();
+    const Eigen::Vector3d w_B = R.transpose() * w;
+    const Eigen::Vector3d h_W = R * (body.I_BBcm_B * w_B);
+    const Eigen::Vector3d v_dot = force[i] / body.mass + scenario_.gravity_W;
+    const Eigen::Vector3d w_dot =
+        R * (I_inv_B_[i] * (R.transpose() * (torque[i] - w.cross(h_W))));
+    const double rates[kBodyStates] = {s[7],          s[8],          s[9],
+                                       0.5 * q_dot.w(), 0.5 * q_dot.x(), 0.5 * q_dot.y(),
+                                       0.5 * q_dot.z(), v_dot.x(),     v_dot.y(),
+                                       v_dot.z(),     w_dot.x(),     w_dot.y(),
+                                       w_dot.z()};
+    std::copy(rates, rates + kBodyStates, d);
+  }
+  last_x_ = x;
+}
+
+Snapshot Simulator::snapshot(const State& x, double t) {
+  if (x != last_x_) {
+    State dxdt(x.size());
+    rhs(x, dxdt, t);
+  }
+  Snapshot s;
+  s.t = t;
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) s.bodies.push_back(kinematics(x, i, t));
+  s.pairs = last_pairs_;
+  return s;
+}
+
+Snapshot Simulator::initialSnapshot() { return snapshot(x0_, 0.0); }
+
+// Discrete updates after an accepted step; true when the derivative must be re-evaluated.
+bool Simulator::settle(State& x, double t) {
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
+    if (offset_[i] < 0) continue;
+    double* q = &x[static_cast<std::size_t>(offset_[i]) + 3];
+    const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (int j = 0; j < 4; ++j) q[j] /= norm;
+  }
+  bool changed = false;
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const ContactPair& pair = scenario_.pairs[k];
+    const BodyKinematics A = kinematics(x, pair.a, t);
+    const BodyKinematics B = kinematics(x, pair.b, t);
+    const volume::ContactVolume& cv = last_pairs_[k].cv;
+    const RelativeMotion motion{A.pointVelocity(cv.centroid) - B.pointVelocity(cv.centroid),
+                                A.w_WB - B.w_WB};
+    double* s = &x[static_cast<std::size_t>(pair_offset_[k])];
+    PairState state = PairState::unpack(s);
+    changed = pair.model.settle(cv, motion, state) || changed;
+    state.pack(s);
+  }
+  return changed;
+}
+
+// Failures that stop the run: non-finite state, too deep a penetration.
+void Simulator::check(const State& x, double t) const {
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
+    if (offset_[i] < 0) continue;
+    for (int j = 0; j < kBodyStates; ++j) {
+      if (std::isfinite(x[static_cast<std::size_t>(offset_[i] + j)])) continue;
+      throw SimulationError(t, where(t) + ", body '" + scenario_.bodies[i].name +
+                                   "': state is not finite (position, attitude or velocity)");
+    }
+  }
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const ContactPair& pair = scenario_.pairs[k];
+    const double size = std::min(size_[pair.a], size_[pair.b]);
+    const double limit = scenario_.settings.max_penetration_fraction * size;
+    const double depth = last_pairs_[k].cv.depth;
+    if (!std::isfinite(depth) || depth > limit) {
+      std::ostringstream s;
+      s << where(t) << ", pair '" << pair.name << "': penetration depth " << depth
+        << " m exceeds " << scenario_.settings.max_penetration_fraction
+        << " of the smaller body's size (" << size << " m); the contact is too soft or the "
+        << "bodies passed through each other";
+      throw SimulationError(t, s.str());
+    }
+  }
+}
+
+void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
+                    const std::function<void(double)>& on_progress, SimulationSummary& summary) {
+  namespace odeint = boost::numeric::odeint;
+  const SimulationSettings& set = scenario_.settings;
+  const auto wall_start = std::chrono::steady_clock::now();
+  const long rhs_start = rhs_count_, contacts_start = contact_count_;
+  auto finish = [&](double t) {
+    summary.simulated_time = t;
+    summary.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    summary.rhs_evaluations = rhs_count_ - rhs_start;
+    summary.contact_evaluations = contact_count_ - contacts_start;
+  };
+
+  auto stepper =
+      odeint::make_controlled(set.abs_tol, set.rel_tol, odeint::runge_kutta_dopri5<State>());
+  auto system = [this](const State& x, State& dxdt, double t) { rhs(x, dxdt, t); };
+  State x = x0_;
+  State dxdt(x.size());
+  double t = 0.0;
+  rhs(x, dxdt, t);
+  settle(x, t);
+  rhs(x, dxdt, t);
+  on_output(snapshot(x, t));
+
+  const double interval = 1.0 / set.output_rate_hz;
+  long next_output = 1;
+  double dt = set.initial_step;
+  try {
+    while (t < set.duration) {
+      const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
+      const double dt_free = std::min(dt, set.max_step);
+      const bool capped = t_target - t < dt_free;
+      double dt_try = capped ? t_target - t : dt_free;
+      if (stepper.try_step(system, x, dxdt, t, dt_try) == odeint::fail) {
+        ++summary.rejected_steps;
+        dt = dt_try;
+        if (dt < set.min_step) {
+          std::ostringstream s;
+          s << where(t) << ": step size " << dt << " s fell below the minimum " << set.min_step
+            << " s (contact too stiff for the tolerances, or a discontinuity)";
+          throw SimulationError(t, s.str());
+        }
+        continue;
+      }
+      ++summary.steps;
+      dt = capped ? std::max(dt_try, dt_free) : dt_try;
+      if (x != last_x_) rhs(x, dxdt, t);
+      check(x, t);
+      if (settle(x, t)) rhs(x, dxdt, t);
+      if (t >= t_target - kOutputTimeSlack * interval) {
+        t = t_target;
+        on_output(snapshot(x, t));
+        ++next_output;
+      }
+      on_progress(t);
+    }
+  } catch (...) {
+    finish(t);
+    throw;
+  }
+  finish(t);
+}
+
+}  // namespace vcontact::dynamics

@@ -1,0 +1,20 @@
+#pragma once
+// A wrench (force and torque) acting on body B1 at the contact centroid p_c (MODEL.md §3).
+// B2 receives the opposite wrench at the same point.
+
+#include <Eigen/Core>
+
+namespace vcontact::dynamics {
+
+struct Wrench {
+  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();    ///< force on B1, N, world frame
+  Eigen::Vector3d tau_W = Eigen::Vector3d::Zero();  ///< torque on B1 about p_c, N·m, world frame
+
+  Wrench& operator+=(const Wrench& o) {
+    f_W += o.f_W;
+    tau_W += o.tau_W;
+    return *this;
+  }
+};
+
+}  // namespace vcontact::dynamics

@@ -1,0 +1,311 @@
+#include "io/scenario_file.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "geometry/error.hpp"
+#include "io/model_file.hpp"
+#include "io/shape_spec.hpp"
+
+namespace vcontact::io {
+namespace {
+
+constexpr const char* kFormat = "vcontact.scenario/1";
+
+// Reads one JSON object, knowing the file and the place in it for every message.
+class Reader {
+ public:
+  Reader(const nlohmann::json& j, std::string source, std::string place)
+      : j_(j), source_(std::move(source)), place_(std::move(place)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& expectation) const {
+    throw InputError(source_, at(key) + ": " + expectation);
+  }
+  std::string at(const std::string& key) const {
+    return place_.empty() ? key : (key.empty() ? place_ : place_ + "." + key);
+  }
+  bool has(const std::string& key) const { return j_.contains(key); }
+  const nlohmann::json& operator[](const std::string& key) const { return j_.at(key); }
+
+  void allowOnly(std::initializer_list<const char*> keys) const {
+    for (const auto& [key, value] : j_.items()) {
+      if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) !=
+          keys.end()) {
+        continue;
+      }
+      std::ostringstream s;
+      s << "unknown key; expected one of:";
+      for (const char* k : keys) s << ' ' << k;
+      fail(key, s.str());
+    }
+  }
+
+  double number(const std::string& key, double fallback, double lower, double upper) const {
+    if (!has(key)) return fallback;
+    const auto& v = j_[key];
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lower ||
+        v.get<double>() > upper) {
+      std::ostringstream s;
+      s << "expected a number in [" << lower << ", " << upper << "]";
+      fail(key, s.str());
+    }
+    return v.get<double>();
+  }
+  double positive(const std::string& key, double fallback) const {
+    const double v = number(key, fallback, 0.0, HUGE_VAL);
+    if (!(v > 0.0)) fail(key, "expected a positive number");
+    return v;
+  }
+  std::string text(const std::string& key) const {
+    if (!has(key) || !j_[key].is_string()) fail(key, "expected a string");
+    return j_[key].get<std::string>();
+  }
+  std::vector<double> numbers(const std::string& key) const {
+    const auto& v = j_[key];
+    std::vector<double> out;
+    if (v.is_array()) {
+      for (const auto& x : v) {
+        if (!x.is_number() || !std::isfinite(x.get<double>())) fail(key, "expected numbers");
+        out.push_back(x.get<double>());
+      }
+    }
+    return out;
+  }
+  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
+    if (!has(key)) return fallback;
+    const auto v = numbers(key);
+    if (v.size() != 3) fail(key, "expected an array of 3 numbers");
+    return {v[0], v[1], v[2]};
+  }
+  bool flag(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!j_[key].is_boolean()) fail(key, "expected true or false");
+    return j_[key].get<bool>();
+  }
+  Reader child(const std::string& key) const {
+    if (!has(key) || !j_[key].is_object()) fail(key, "expected an object");
+    return Reader(j_[key], source_, at(key));
+  }
+  const std::string& source() const { return source_; }
+
+ private:
+  const nlohmann::json& j_;
+  std::string source_;
+  std::string place_;
+};
+
+bool isPrimitive(const std::string& text) {
+  for (const char* prefix : {"sphere:", "cylinder:", "box:"}) {
+    if (text.rfind(prefix, 0) == 0) return true;
+  }
+  return text == "halfspace";
+}
+
+std::string resolve(const std::string& path, const std::string& base_dir) {
+  const std::filesystem::path p(path);
+  return p.is_absolute() ? path : (std::filesystem::path(base_dir) / p).string();
+}
+
+Eigen::Isometry3d readPose(const Reader& r, const std::string& key) {
+  if (!r.has(key)) return Eigen::Isometry3d::Identity();
+  const auto& v = r[key];
+  if (v.is_string()) return parsePose(v.get<std::string>(), r.source() + ": " + r.at(key));
+  const auto n = r.numbers(key);
+  if (n.size() != 3 && n.size() != 6 && n.size() != 7) {
+    r.fail(key, "expected \"x,y,z[,roll,pitch,yaw | ,qw,qx,qy,qz]\" or an array of 3, 6 or 7 "
+                "numbers");
+  }
+  std::ostringstream s;
+  s.precision(17);
+  for (std::size_t i = 0; i < n.size(); ++i) s << (i ? "," : "") << n[i];
+  return parsePose(s.str(), r.source() + ": " + r.at(key));
+}
+
+Eigen::Matrix3d readInertia(const Reader& r) {
+  const auto v = r.numbers("inertia");
+  if (v.size() == 3) return Eigen::Vector3d(v[0], v[1], v[2]).asDiagonal();
+  if (v.size() != 9) r.fail("inertia", "expected 3 (diagonal) or 9 numbers, kg m^2 about the COM");
+  Eigen::Matrix3d I;
+  I << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+  if (!I.isApprox(I.transpose())) r.fail("inertia", "expected a symmetric matrix");
+  return I;
+}
+
+dynamics::PrescribedMotion readPrescribed(const Reader& r) {
+  r.allowOnly({"velocity", "angular_velocity", "amplitude", "frequency"});
+  dynamics::PrescribedMotion m;
+  m.v_W = r.vector3("velocity", Eigen::Vector3d::Zero());
+  m.w_W = r.vector3("angular_velocity", Eigen::Vector3d::Zero());
+  m.amplitude_W = r.vector3("amplitude", Eigen::Vector3d::Zero());
+  m.frequency_hz = r.number("frequency", 0.0, 0.0, 1e9);
+  return m;
+}
+
+void readMass(const Reader& r, dynamics::RigidBody& body) {
+  if (r.has("density") == r.has("mass")) {
+    r.fail("", "a free body needs either \"density\" (kg/m^3) or \"mass\" and \"inertia\"");
+  }
+  if (r.has("density")) {
+    try {
+      dynamics::setMassFromDensity(body, r.positive("density", 0.0));
+    } catch (const InputError& e) {
+      r.fail("density", e.message());
+    }
+    return;
+  }
+  if (!r.has("inertia")) r.fail("inertia", "expected with \"mass\"");
+  body.mass = r.positive("mass", 0.0);
+  body.I_BBcm_B = readInertia(r);
+  body.p_BBcm = r.vector3("com", Eigen::Vector3d::Zero());
+}
+
+dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
+                             std::vector<std::string>& warnings) {
+  r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density",
+               "mass", "inertia", "com", "prescribed"});
+  dynamics::RigidBody body;
+  body.name = r.text("name");
+  std::string shape = r.text("shape");
+  if (!isPrimitive(shape)) shape = resolve(shape, base_dir);
+  ParsedShape parsed = parseShape(shape, r.source() + ": " + r.at("shape"));
+  body.shape = std::move(parsed.shape);
+  for (const auto& w : parsed.warnings) warnings.push_back(body.name + ": " + w);
+  body.X_WB0 = readPose(r, "pose");
+  const std::string motion = r.has("motion") ? r.text("motion") : "free";
+  if (motion == "fixed") {
+    body.motion = dynamics::BodyMotion::kFixed;
+  } else if (motion == "prescribed") {
+    body.motion = dynamics::BodyMotion::kPrescribed;
+    body.prescribed = readPrescribed(r.child("prescribed"));
+  } else if (motion == "free") {
+    body.motion = dynamics::BodyMotion::kFree;
+    readMass(r, body);
+    body.w_WB0 = r.vector3("angular_velocity", Eigen::Vector3d::Zero());
+    // "velocity" is that of the body frame origin; store that of the centre of mass.
+    const Eigen::Vector3d v_WBo = r.vector3("velocity", Eigen::Vector3d::Zero());
+    body.v_WBcm0 = v_WBo + body.w_WB0.cross(body.X_WB0.linear() * body.p_BBcm);
+  } else {
+    r.fail("motion", "expected \"free\", \"fixed\" or \"prescribed\"");
+  }
+  return body;
+}
+
+dynamics::Model readPairModel(const Reader& r, const std::map<std::string, dynamics::Model>& named,
+                              const std::string& base_dir) {
+  if (!r.has("model")) r.fail("model", "expected a model name, a model file or a model object");
+  const auto& m = r["model"];
+  if (m.is_object()) return modelFromJson(m, r.source(), r.at("model"));
+  const std::string name = r.text("model");
+  if (const auto it = named.find(name); it != named.end()) return it->second;
+  const std::string path = resolve(name, base_dir);
+  if (!std::filesystem::exists(path)) {
+    r.fail("model", "'" + name + "' is neither a name in \"models\" nor an existing model file");
+  }
+  return readModelFile(path);
+}
+
+std::size_t bodyIndex(const Reader& r, const std::string& key,
+                      const std::vector<dynamics::RigidBody>& bodies) {
+  const std::string name = r.text(key);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].name == name) return i;
+  }
+  r.fail(key, "no body named '" + name + "'");
+}
+
+dynamics::SimulationSettings readSettings(const Reader& r) {
+  dynamics::SimulationSettings s;
+  s.duration = r.positive("duration", s.duration);
+  s.output_rate_hz = r.positive("output_rate", s.output_rate_hz);
+  if (!r.has("tolerances")) return s;
+  const Reader t = r.child("tolerances");
+  t.allowOnly({"abs", "rel", "initial_step", "max_step", "min_step", "max_penetration_fraction"});
+  s.abs_tol = t.positive("abs", s.abs_tol);
+  s.rel_tol = t.positive("rel", s.rel_tol);
+  s.initial_step = t.positive("initial_step", s.initial_step);
+  s.max_step = t.positive("max_step", s.max_step);
+  s.min_step = t.positive("min_step", s.min_step);
+  s.max_penetration_fraction =
+      t.number("max_penetration_fraction", s.max_penetration_fraction, 1e-12, 1.0);
+  return s;
+}
+
+}  // namespace
+
+ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source,
+                              const std::string& base_dir) {
+  if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
+  const Reader r(j, source, "");
+  r.allowOnly({"format", "duration", "output_rate", "gravity", "tolerances", "bodies", "models",
+               "pairs", "outputs", "description"});
+  if (!r.has("format") || r["format"] != kFormat) {
+    r.fail("format", std::string("expected \"") + kFormat + "\"");
+  }
+  ScenarioFile file;
+  dynamics::Scenario& sc = file.scenario;
+  sc.settings = readSettings(r);
+  sc.gravity_W = r.vector3("gravity", sc.gravity_W);
+  if (!r.has("bodies") || !r["bodies"].is_array() || r["bodies"].empty()) {
+    r.fail("bodies", "expected a non-empty array of bodies");
+  }
+  for (std::size_t i = 0; i < r["bodies"].size(); ++i) {
+    const Reader b(r["bodies"][i], source, "bodies[" + std::to_string(i) + "]");
+    sc.bodies.push_back(readBody(b, base_dir, file.warnings));
+    for (std::size_t k = 0; k < i; ++k) {
+      if (sc.bodies[k].name == sc.bodies[i].name) b.fail("name", "repeats an earlier body's name");
+    }
+  }
+  std::map<std::string, dynamics::Model> models;
+  if (r.has("models")) {
+    const Reader m = r.child("models");
+    for (const auto& [name, value] : r["models"].items()) {
+      models[name] = value.is_object() ? modelFromJson(value, source, m.at(name))
+                                       : readModelFile(resolve(m.text(name), base_dir));
+    }
+  }
+  if (!r.has("pairs") || !r["pairs"].is_array()) r.fail("pairs", "expected an array of pairs");
+  for (std::size_t i = 0; i < r["pairs"].size(); ++i) {
+    const Reader p(r["pairs"][i], source, "pairs[" + std::to_string(i) + "]");
+    p.allowOnly({"name", "a", "b", "model", "method"});
+    dynamics::ContactPair pair;
+    pair.a = bodyIndex(p, "a", sc.bodies);
+    pair.b = bodyIndex(p, "b", sc.bodies);
+    if (pair.a == pair.b) p.fail("b", "a body cannot touch itself");
+    pair.name = p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
+    pair.model = readPairModel(p, models, base_dir);
+    if (p.has("method")) {
+      try {
+        pair.method = volume::parseMethod(p.text("method"));
+      } catch (const InputError& e) {
+        p.fail("method", e.message());
+      }
+    }
+    sc.pairs.push_back(std::move(pair));
+  }
+  if (r.has("outputs")) {
+    const Reader o = r.child("outputs");
+    o.allowOnly({"bodies", "pairs", "shares"});
+    file.outputs.bodies = o.flag("bodies", true);
+    file.outputs.pairs = o.flag("pairs", true);
+    file.outputs.shares = o.flag("shares", true);
+  }
+  return file;
+}
+
+ScenarioFile readScenarioFile(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path, "cannot open scenario file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(f);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path, std::string("not valid JSON: ") + e.what());
+  }
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return scenarioFromJson(j, path, dir.empty() ? "." : dir);
+}
+
+}  // namespace vcontact::io

@@ -1,0 +1,41 @@
+#pragma once
+// CSV output of a simulation: bodies.csv (one row per body per output time) and one
+// pair_<name>.csv per contact pair (volume, centroid, normal, wrench on the payload at the
+// centroid, friction states and, optionally, each effect's share of the wrench).
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dynamics/simulator.hpp"
+#include "io/scenario_file.hpp"
+
+namespace vcontact::io {
+
+class SimulationCsvWriter {
+ public:
+  /// Creates `dir` if needed and writes the headers. @throws InputError when a file cannot open
+  SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
+                      const OutputSelection& outputs);
+
+  /// Appends one row per body and per pair, flushed so a stopped run keeps its rows.
+  void write(const dynamics::Snapshot& snapshot);
+
+  /// The files written, for the summary.
+  const std::vector<std::string>& files() const { return files_; }
+
+ private:
+  std::ofstream open(const std::string& path);
+
+  const dynamics::Scenario& scenario_;
+  OutputSelection outputs_;
+  std::ofstream bodies_;
+  std::vector<std::ofstream> pairs_;
+  std::vector<std::string> files_;
+};
+
+/// A file-name-safe form of a pair name: letters, digits, '-', '_' kept, others '_'.
+std::string fileSafe(const std::string& name);
+
+}  // namespace vcontact::io
