@@ -3,6 +3,7 @@
 #include "geometry/error.hpp"
 #include "volume/analytic.hpp"
 #include "volume/bvh_cache.hpp"
+#include "volume/cgal_reference.hpp"
 #include "volume/halfspace_clip.hpp"
 
 namespace vcontact::volume {
@@ -30,6 +31,16 @@ ContactVolume halfspaceClip(const geometry::Shape& a, const Eigen::Isometry3d& X
   unsupported(Method::kHalfspace, a, b, "it clips a mesh by a half-space");
 }
 
+ContactVolume cgalReference(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                            const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+  const auto* ma = meshOf(a);
+  const auto* mb = meshOf(b);
+  if (ma && mb) return cgalMeshMeshContact(*ma->mesh, X_WA, *mb->mesh, X_WB);
+  if (ma && isHalfspace(b)) return cgalMeshHalfspaceContact(*ma->mesh, X_WA, X_WB);
+  if (mb && isHalfspace(a)) return swapped(cgalMeshHalfspaceContact(*mb->mesh, X_WB, X_WA));
+  unsupported(Method::kCgal, a, b, "it intersects two meshes, or a mesh and a half-space");
+}
+
 }  // namespace
 
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
@@ -46,6 +57,7 @@ ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& 
   switch (m) {
     case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
     case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);
+    case Method::kCgal: return cgalReference(a, X_WA, b, X_WB);
     default:
       unsupported(m, a, b, "this backend is not part of this build yet");
   }

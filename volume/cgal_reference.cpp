@@ -1,0 +1,134 @@
+#include "volume/cgal_reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include "geometry/moments.hpp"
+#include "geometry/tessellate.hpp"
+
+namespace vcontact::volume {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Eigen::Vector3d;
+
+/// The mesh placed in W (p_W = X_WM p_M, rounded to double as every backend does).
+Mesh toCgal(const geometry::TriangleMesh& m, const Eigen::Isometry3d& X_WM) {
+  Mesh out;
+  std::vector<Mesh::Vertex_index> v;
+  v.reserve(static_cast<std::size_t>(m.vertexCount()));
+  for (Eigen::Index i = 0; i < m.vertexCount(); ++i) {
+    const Vector3d p = X_WM * m.vertex(i);
+    v.push_back(out.add_vertex(Point(p.x(), p.y(), p.z())));
+  }
+  for (Eigen::Index f = 0; f < m.triangleCount(); ++f) {
+    out.add_face(v[m.triangles(f, 0)], v[m.triangles(f, 1)], v[m.triangles(f, 2)]);
+  }
+  return out;
+}
+
+Vector3d toEigen(const Point& p) {
+  return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+/// One face of the intersection polyhedron, in double, and whether it lies on ∂A.
+struct RegionFace {
+  Vector3d p[3];
+  bool onA;
+};
+
+std::vector<RegionFace> regionFaces(const Mesh& region, const Mesh& a) {
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> sideOfA(a);
+  std::vector<RegionFace> faces;
+  faces.reserve(region.number_of_faces());
+  for (const auto f : region.faces()) {
+    Point q[3];
+    int k = 0;
+    for (const auto v : CGAL::vertices_around_face(region.halfedge(f), region)) q[k++] = region.point(v);
+    // The exact centroid is on ∂A iff the face came from A (faces of B inside A are strictly
+    // inside, or on ∂A only where the two surfaces coincide, where either label is right).
+    const bool onA = sideOfA(CGAL::centroid(q[0], q[1], q[2])) == CGAL::ON_BOUNDARY;
+    faces.push_back({{toEigen(q[0]), toEigen(q[1]), toEigen(q[2])}, onA});
+  }
+  return faces;
+}
+
+/// MODEL.md §1 quantities of the region bounded by `faces`.
+ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
+  if (faces.empty()) return ContactVolume{.method = Method::kCgal};
+  // Fan about a vertex of the region, so that the terms are of the region's size.
+  const Vector3d o = faces.front().p[0];
+  geometry::Moments M;
+  Vector3d areaOnA = Vector3d::Zero();  // ∫_{∂B1∩B2} n_B1 dA
+  for (const RegionFace& f : faces) {
+    M += geometry::tetrahedronMoments(Vector3d::Zero(), f.p[0] - o, f.p[1] - o, f.p[2] - o);
+    if (f.onA) areaOnA += 0.5 * (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
+  }
+  if (!(M.m0 > 0.0) || areaOnA.norm() == 0.0) return ContactVolume{.method = Method::kCgal};
+  const Vector3d n = -areaOnA.normalized();
+  double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
+  for (const RegionFace& f : faces) {
+    area2 += std::abs(n.dot((f.p[1] - f.p[0]).cross(f.p[2] - f.p[0])));
+    for (const Vector3d& p : f.p) {
+      lo = std::min(lo, n.dot(p - o));
+      hi = std::max(hi, n.dot(p - o));
+    }
+  }
+  const Vector3d c_o = M.m1 / M.m0;
+  return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
+                               0.25 * area2, hi - lo, Method::kCgal);
+}
+
+ContactVolume intersect(Mesh a, Mesh b) {
+  const Mesh aOriginal = a;
+  Mesh region;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  if (!PMP::corefine_and_compute_intersection(a, b, region)) {
+    throw std::runtime_error("cgal reference: corefinement failed (self-intersecting input?)");
+  }
+  return contactFromFaces(regionFaces(region, aOriginal));
+}
+
+}  // namespace
+
+ContactVolume cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::Isometry3d& X_WA,
+                                  const geometry::TriangleMesh& b, const Eigen::Isometry3d& X_WB) {
+  return intersect(toCgal(a, X_WA), toCgal(b, X_WB));
+}
+
+ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
+                                       const Eigen::Isometry3d& X_WM,
+                                       const Eigen::Isometry3d& X_WH) {
+  // Work in H: the box spans the mesh's footprint with a margin and reaches below its lowest
+  // point; its top face is z_H = 0 exactly.
+  const Eigen::Isometry3d X_HM = X_WH.inverse() * X_WM;
+  geometry::TriangleMesh m_H = mesh;
+  for (Eigen::Index i = 0; i < m_H.vertexCount(); ++i) {
+    m_H.vertices.row(i) = (X_HM * mesh.vertex(i)).transpose();
+  }
+  const geometry::Aabb box = geometry::bounds(m_H);
+  if (!(box.min.z() < 0.0)) return ContactVolume{.method = Method::kCgal};
+  const Vector3d size = box.size() + Vector3d::Constant(box.size().maxCoeff());
+  const Vector3d center(0.5 * (box.min.x() + box.max.x()), 0.5 * (box.min.y() + box.max.y()),
+                        -0.5 * size.z());
+  Eigen::Isometry3d X_HBox = Eigen::Isometry3d::Identity();
+  X_HBox.translation() = center;
+  ContactVolume cv = intersect(toCgal(m_H, Eigen::Isometry3d::Identity()),
+                               toCgal(geometry::tessellateBox(size), X_HBox));
+  if (!cv.inContact()) return cv;
+  // Back to W; the normal is the half-space's by definition (MODEL.md §1).
+  const Eigen::Matrix3d R = X_WH.linear();
+  const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
+  return assembleContactVolume(cv.volume, X_WH * cv.centroid, R * Sigma_H * R.transpose(),
+                               R.col(2), cv.area, cv.depth, Method::kCgal);
+}
+
+}  // namespace vcontact::volume

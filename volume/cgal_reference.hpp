@@ -1,0 +1,29 @@
+#pragma once
+// The exact reference for two meshes: CGAL corefinement (exact constructions) of the two
+// closed meshes, then the moments of the intersection polyhedron by the divergence theorem.
+// Slow (milliseconds); it is the oracle the fast methods are tested and timed against.
+
+#include <Eigen/Geometry>
+
+#include "geometry/triangle_mesh.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::volume {
+
+/// ContactVolume of mesh A (B1, pose X_WA) and mesh B (B2, pose X_WB):
+///   V, p_c, Σ from the fan of the intersection's faces about a point of the region;
+///   n ∝ ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA = −2 ∫_{∂B1∩B2} n_B1 dA (MODEL.md §1; the
+///   region's boundary is closed, so the two parts' area vectors cancel);
+///   area = ½ Σ_faces |n_f·n| A_f, the projection of the region onto the plate, exact when
+///   every column along n crosses the region once; depth = extent of the region along n.
+/// @pre both meshes closed, outward-oriented and free of self-intersections
+ContactVolume cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::Isometry3d& X_WA,
+                                  const geometry::TriangleMesh& b, const Eigen::Isometry3d& X_WB);
+
+/// The same for a mesh (B1) against a half-space (B2, pose X_WH), the half-space modelled as
+/// a box whose top face is the plane and which encloses the mesh's part below it; n = +z_H.
+ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
+                                       const Eigen::Isometry3d& X_WM,
+                                       const Eigen::Isometry3d& X_WH);
+
+}  // namespace vcontact::volume
