@@ -68,15 +68,15 @@ void MeshBvh::fillNode(BvhNode& node) const {
   }
   node.center = 0.5 * (lo + hi);
   node.halfExtent = 0.5 * (hi - lo);
-  node.normalAxis = normalSum.norm() > 0.0 ? Eigen::Vector3d(normalSum.normalized())
-                                           : Eigen::Vector3d::UnitZ();
+  node.normalAxis =
+      normalSum.norm() > 0.0 ? Eigen::Vector3d(normalSum.normalized()) : Eigen::Vector3d::UnitZ();
   double minCos = 1.0;
   for (int i = node.first; i < node.first + node.count; ++i) {
     const int f = order_[i];
     minCos = std::min(minCos, node.normalAxis.dot(unitNormal(mesh_, f)));
-    node.integrals += triangleFanIntegrals(mesh_.corner(f, 0) - node.center,
-                                           mesh_.corner(f, 1) - node.center,
-                                           mesh_.corner(f, 2) - node.center);
+    node.integrals +=
+        triangleFanIntegrals(mesh_.corner(f, 0) - node.center, mesh_.corner(f, 1) - node.center,
+                             mesh_.corner(f, 2) - node.center);
   }
   // Beyond a half-angle of π/2 the cone test is never conclusive; > 1 says so.
   node.normalSinHalfAngle = minCos > 0.0 ? std::sqrt(1.0 - minCos * minCos) : 2.0;

@@ -8,9 +8,8 @@
 //     when every face of the subtree faces one way relative to a plane.
 // Built top-down by median split of the triangle centroids along the widest axis.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "geometry/fan_integrals.hpp"
 #include "geometry/triangle_mesh.hpp"
@@ -18,14 +17,14 @@
 namespace vcontact::geometry {
 
 struct BvhNode {
-  Eigen::Vector3d center;       ///< box centre in M, the reference r of `integrals`, m
-  Eigen::Vector3d halfExtent;   ///< box half-sizes, m
-  FanIntegrals integrals;       ///< of the node's triangles about `center`
-  Eigen::Vector3d normalAxis;   ///< unit axis of the normal cone
+  Eigen::Vector3d center;           ///< box centre in M, the reference r of `integrals`, m
+  Eigen::Vector3d halfExtent;       ///< box half-sizes, m
+  FanIntegrals integrals;           ///< of the node's triangles about `center`
+  Eigen::Vector3d normalAxis;       ///< unit axis of the normal cone
   double normalSinHalfAngle = 2.0;  ///< sin of the cone half-angle; > 1: wider than π/2
-  int first = 0;                ///< first index into MeshBvh::order()
-  int count = 0;                ///< number of triangles
-  int left = -1;                ///< child nodes, −1 for a leaf (right = left + 1 is not assumed)
+  int first = 0;                    ///< first index into MeshBvh::order()
+  int count = 0;                    ///< number of triangles
+  int left = -1;  ///< child nodes, −1 for a leaf (right = left + 1 is not assumed)
   int right = -1;
 
   bool isLeaf() const { return left < 0; }

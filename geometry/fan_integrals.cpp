@@ -18,8 +18,9 @@ FanIntegrals triangleFanIntegrals(const Eigen::Vector3d& a_r, const Eigen::Vecto
   const Eigen::Vector3d areaVector = 0.5 * (b_r - a_r).cross(c_r - a_r);  // A_T n
   const Eigen::Vector3d s = a_r + b_r + c_r;
   // ∫_T y yᵀ dA = A_T/12 (Σ_k v_k v_kᵀ + s sᵀ); times n_k uses the area vector directly.
-  const Eigen::Matrix3d yy = (a_r * a_r.transpose() + b_r * b_r.transpose() +
-                              c_r * c_r.transpose() + s * s.transpose()) / 12.0;
+  const Eigen::Matrix3d yy =
+      (a_r * a_r.transpose() + b_r * b_r.transpose() + c_r * c_r.transpose() + s * s.transpose()) /
+      12.0;
   FanIntegrals T;
   T.E = 3.0 * cone.m0;
   T.F = areaVector;

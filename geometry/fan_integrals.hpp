@@ -21,22 +21,21 @@
 // Per triangle, E, C and A are 3, 4 and 5 times the moments of the tetrahedron (r, a, b, c)
 // about r; F = N/2 (N = (b − a) × (c − a)); D = A_T ȳ nᵀ; B_k = n_k ∫_T y yᵀ dA.
 
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 #include "geometry/moments.hpp"
 
 namespace vcontact::geometry {
 
 struct FanIntegrals {
-  double E = 0.0;                                 ///< ∫ y·n dA, m³
-  Eigen::Vector3d F = Eigen::Vector3d::Zero();    ///< ∫ n dA, m²
-  Eigen::Vector3d C = Eigen::Vector3d::Zero();    ///< ∫ y (y·n) dA, m⁴
-  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();    ///< ∫ y nᵀ dA, m³
+  double E = 0.0;                               ///< ∫ y·n dA, m³
+  Eigen::Vector3d F = Eigen::Vector3d::Zero();  ///< ∫ n dA, m²
+  Eigen::Vector3d C = Eigen::Vector3d::Zero();  ///< ∫ y (y·n) dA, m⁴
+  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();  ///< ∫ y nᵀ dA, m³
   std::array<Eigen::Matrix3d, 3> B{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
                                    Eigen::Matrix3d::Zero()};  ///< ∫ y yᵀ n_k dA, m⁴
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();    ///< ∫ y yᵀ (y·n) dA, m⁵
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();                ///< ∫ y yᵀ (y·n) dA, m⁵
 
   FanIntegrals& operator+=(const FanIntegrals& o);
 };

@@ -1,13 +1,13 @@
 #include "volume/cgal_reference.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <vector>
-
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
 
 #include "geometry/moments.hpp"
 #include "geometry/tessellate.hpp"
@@ -52,7 +52,8 @@ std::vector<RegionFace> regionFaces(const Mesh& region, const Mesh& a) {
   for (const auto f : region.faces()) {
     Point q[3];
     int k = 0;
-    for (const auto v : CGAL::vertices_around_face(region.halfedge(f), region)) q[k++] = region.point(v);
+    for (const auto v : CGAL::vertices_around_face(region.halfedge(f), region))
+      q[k++] = region.point(v);
     // The exact centroid is on ∂A iff the face came from A (faces of B inside A are strictly
     // inside, or on ∂A only where the two surfaces coincide, where either label is right).
     const bool onA = sideOfA(CGAL::centroid(q[0], q[1], q[2])) == CGAL::ON_BOUNDARY;
@@ -83,8 +84,8 @@ ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
     }
   }
   const Vector3d c_o = M.m1 / M.m0;
-  return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
-                               0.25 * area2, hi - lo, Method::kCgal);
+  return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n, 0.25 * area2,
+                               hi - lo, Method::kCgal);
 }
 
 ContactVolume intersect(Mesh a, Mesh b) {
@@ -127,8 +128,8 @@ ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
   // Back to W; the normal is the half-space's by definition (MODEL.md §1).
   const Eigen::Matrix3d R = X_WH.linear();
   const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
-  return assembleContactVolume(cv.volume, X_WH * cv.centroid, R * Sigma_H * R.transpose(),
-                               R.col(2), cv.area, cv.depth, Method::kCgal);
+  return assembleContactVolume(cv.volume, X_WH * cv.centroid, R * Sigma_H * R.transpose(), R.col(2),
+                               cv.area, cv.depth, Method::kCgal);
 }
 
 }  // namespace vcontact::volume

@@ -4,6 +4,7 @@
 #include "volume/analytic.hpp"
 #include "volume/bvh_cache.hpp"
 #include "volume/cgal_reference.hpp"
+#include "volume/columns.hpp"
 #include "volume/halfspace_clip.hpp"
 
 namespace vcontact::volume {
@@ -41,11 +42,35 @@ ContactVolume cgalReference(const geometry::Shape& a, const Eigen::Isometry3d& X
   unsupported(Method::kCgal, a, b, "it intersects two meshes, or a mesh and a half-space");
 }
 
+/// A mesh (with its cached tree) or a half-space as a column-method body; null otherwise.
+std::optional<ColumnBody> columnBody(const geometry::Shape& s, const Eigen::Isometry3d& X_WS,
+                                     std::shared_ptr<const geometry::MeshBvh>& keepAlive) {
+  if (isHalfspace(s)) return ColumnBody{nullptr, X_WS};
+  const auto* m = meshOf(s);
+  if (!m) return std::nullopt;
+  keepAlive = bvhOf(m->mesh);
+  return ColumnBody{keepAlive.get(), X_WS};
+}
+
 }  // namespace
+
+ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                             ColumnField* field) {
+  std::shared_ptr<const geometry::MeshBvh> bvhA, bvhB;
+  const auto ca = columnBody(a, X_WA, bvhA);
+  const auto cb = columnBody(b, X_WB, bvhB);
+  if (!ca || !cb || (!bvhA && !bvhB)) {
+    unsupported(Method::kColumns, a, b,
+                "it integrates columns through two meshes, or a mesh and a half-space");
+  }
+  return columnsContact(*ca, *cb, ColumnOptions{}, field);
+}
 
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
   if (analyticSupports(a, b)) return Method::kAnalytic;
   if ((meshOf(a) && isHalfspace(b)) || (meshOf(b) && isHalfspace(a))) return Method::kHalfspace;
+  if (meshOf(a) && meshOf(b)) return Method::kColumns;
   throw InputError("", "no volume method in this build handles " + geometry::describe(a) +
                            " against " + geometry::describe(b));
 }
@@ -58,6 +83,7 @@ ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& 
     case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
     case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);
     case Method::kCgal: return cgalReference(a, X_WA, b, X_WB);
+    case Method::kColumns: return columnsContact(a, X_WA, b, X_WB, nullptr);
     default:
       unsupported(m, a, b, "this backend is not part of this build yet");
   }

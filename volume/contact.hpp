@@ -7,12 +7,13 @@
 #include <Eigen/Geometry>
 
 #include "geometry/primitives.hpp"
+#include "volume/columns.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::volume {
 
 /// The method used when none is asked for: analytic for a primitive against a half-space,
-/// the exact half-space clip for a mesh against a half-space.
+/// the exact half-space clip for a mesh against a half-space, columns for two meshes.
 /// @throws InputError when no backend in this build handles the pair
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 
@@ -21,5 +22,13 @@ Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
                              std::optional<Method> method = std::nullopt);
+
+/// The column method with its δ map (MODEL.md §1): A and B each a mesh or a half-space, at
+/// least one a mesh.
+/// @param[out] field  the δ map of the finest grid
+/// @throws InputError when the pair is not handled, naming both shapes
+ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                             ColumnField* field);
 
 }  // namespace vcontact::volume

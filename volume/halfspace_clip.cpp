@@ -210,14 +210,13 @@ ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,
   const Eigen::Matrix3d Sigma_H = M.m2 - M.m0 * c_o * c_o.transpose();
   const Eigen::Matrix3d R_WH = X_WH.linear();
   ContactVolume cv = assembleContactVolume(M.m0, X_WH * clipped.origin + R_WH * c_o,
-                                           R_WH * Sigma_H * R_WH.transpose(),
-                                           R_WH.col(2), clipped.area, clipped.depth, method);
+                                           R_WH * Sigma_H * R_WH.transpose(), R_WH.col(2),
+                                           clipped.area, clipped.depth, method);
   return cv;
 }
 
 ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
-                                   const Eigen::Isometry3d& X_WM,
-                                   const Eigen::Isometry3d& X_WH) {
+                                   const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH) {
   return contactFromClippedMoments(clipMeshByHalfspace(mesh, X_WH.inverse() * X_WM), X_WH,
                                    Method::kHalfspace);
 }

@@ -13,7 +13,7 @@ namespace vcontact::volume {
 
 /// Moments of (mesh ∩ {z_H ≤ 0}) about a point o on the plane, in the half-space frame H.
 struct ClippedMoments {
-  geometry::Moments moments;                   ///< about o, H axes
+  geometry::Moments moments;                         ///< about o, H axes
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< o, in H, with o.z = 0
   double area = 0.0;   ///< projected area of the downward-facing clipped faces onto z = 0, m²
   double depth = 0.0;  ///< −min z_H over the vertices, m (≤ 0: apart)
@@ -39,8 +39,7 @@ ClippedMoments clipMeshByHalfspace(const geometry::MeshBvh& bvh, const Eigen::Is
 /// ContactVolume of a mesh body (pose X_WM) against a half-space (pose X_WH); the mesh is B1.
 /// This overload runs the O(n) reference clip.
 ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
-                                   const Eigen::Isometry3d& X_WM,
-                                   const Eigen::Isometry3d& X_WH);
+                                   const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH);
 
 /// As above, by the accelerated clip.
 ContactVolume meshHalfspaceContact(const geometry::MeshBvh& bvh, const Eigen::Isometry3d& X_WM,

@@ -3,10 +3,10 @@
 
 #include "volume/cgal_reference.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "geometry/bvh.hpp"
 #include "support/test_support.hpp"
@@ -82,8 +82,8 @@ TEST(CgalReference, OverlappingBoxesClosedForm) {
   const Isometry3d X_WB = test::randomPose(8);
   const Isometry3d X_WA =
       X_WB * test::translation(offset + Vector3d(0, 0, 0.5 * b.z() + 0.5 * a.z() - d));
-  const ContactVolume cv = cgalMeshMeshContact(geometry::tessellateBox(a), X_WA,
-                                               geometry::tessellateBox(b), X_WB);
+  const ContactVolume cv =
+      cgalMeshMeshContact(geometry::tessellateBox(a), X_WA, geometry::tessellateBox(b), X_WB);
   const double V = a.x() * a.y() * d;
   const Matrix3d R = X_WB.linear();
   const Matrix3d Sigma_B = V / 12.0 * Vector3d(a.x() * a.x(), a.y() * a.y(), d * d).asDiagonal();
@@ -113,8 +113,8 @@ TEST(CgalReference, SwappingBodiesFlipsOnlyTheNormal) {
 TEST(CgalReference, NoContactGivesZeroWithoutNaN) {
   const TriangleMesh box = geometry::tessellateBox(Vector3d(0.01, 0.01, 0.01));
   for (double gap : {0.001, 0.0}) {
-    const ContactVolume cv = cgalMeshMeshContact(
-        box, test::translation({0.002, 0.001, 0.01 + gap}), box, Isometry3d::Identity());
+    const ContactVolume cv = cgalMeshMeshContact(box, test::translation({0.002, 0.001, 0.01 + gap}),
+                                                 box, Isometry3d::Identity());
     EXPECT_EQ(cv.volume, 0.0);
     EXPECT_TRUE(cv.centroid.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
   }

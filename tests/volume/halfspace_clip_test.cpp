@@ -3,11 +3,11 @@
 
 #include "volume/halfspace_clip.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "geometry/bvh.hpp"
 #include "geometry/fan_integrals.hpp"
@@ -53,8 +53,8 @@ TEST(FanIntegrals, OpenPatchAnyApex) {
   for (int f = first; f < first + count; ++f) {
     S += geometry::triangleFanIntegrals(m.corner(f, 0) - r, m.corner(f, 1) - r, m.corner(f, 2) - r);
   }
-  for (const Vector3d& o : {Vector3d(0.0, 0.0, 0.0), Vector3d(0.05, 0.02, -0.03),
-                            Vector3d(-0.011, 0.037, 0.004)}) {
+  for (const Vector3d& o :
+       {Vector3d(0.0, 0.0, 0.0), Vector3d(0.05, 0.02, -0.03), Vector3d(-0.011, 0.037, 0.004)}) {
     SCOPED_TRACE(o.transpose());
     expectMomentsNear(geometry::fanMoments(S, r - o), directFan(m, first, count, o), 1e-12);
   }
@@ -110,9 +110,9 @@ TEST(BvhClip, AgreesWithReferenceClip) {
     const MeshBvh bvh(c.mesh);
     for (unsigned seed = 1; seed <= 6; ++seed) {
       // Odd seeds: random; even seeds: within 1e-4 rad of face down, a wide shallow contact.
-      const Matrix3d R_HM =
-          seed % 2 ? test::randomPose(seed).linear()
-                   : Matrix3d(Eigen::AngleAxisd(1e-4 * seed, Vector3d(0.6, 0.8, 0.0)));
+      const Matrix3d R_HM = seed % 2
+                                ? test::randomPose(seed).linear()
+                                : Matrix3d(Eigen::AngleAxisd(1e-4 * seed, Vector3d(0.6, 0.8, 0.0)));
       for (double relDepth : {1e-9, 1e-6, 1e-3, 0.05, 0.3, 0.6}) {
         SCOPED_TRACE(c.name + " seed " + std::to_string(seed) + " d/size " +
                      std::to_string(relDepth));

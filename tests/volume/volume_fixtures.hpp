@@ -1,12 +1,11 @@
 #pragma once
 // Meshes and poses shared by the volume tests: the named bodies of the cross-method tables.
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <map>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "geometry/tessellate.hpp"
 #include "geometry/triangle_mesh.hpp"

@@ -1,0 +1,393 @@
+#include "volume/columns.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace vcontact::volume {
+namespace {
+
+using Eigen::Isometry3d;
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using geometry::BvhNode;
+using geometry::MeshBvh;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Node boxes are inflated by this fraction of their size (plus an absolute floor from the
+// coordinates) before a line is tested against them, so that rounding in the slab test never
+// drops a triangle that the exact edge-function test would count.
+constexpr double kBoxInflation = 1e-9;
+
+/// A crossing of a body's boundary along a line: +1 entering, −1 leaving, at parameter t.
+struct Crossing {
+  double t;
+  int delta;
+  bool operator<(const Crossing& o) const { return t < o.t; }
+};
+
+/// A line p(t) = s + t u in W, |u| = 1.
+struct Line {
+  Vector3d s, u;
+};
+
+struct WorldBox {
+  Vector3d lo = Vector3d::Constant(-kInf), hi = Vector3d::Constant(kInf);
+  bool empty() const { return (lo.array() > hi.array()).any(); }
+  WorldBox intersected(const WorldBox& o) const { return {lo.cwiseMax(o.lo), hi.cwiseMin(o.hi)}; }
+};
+
+WorldBox worldBox(const BvhNode& node, const Isometry3d& X_WB) {
+  const Vector3d c = X_WB * node.center;
+  const Vector3d h = X_WB.linear().cwiseAbs() * node.halfExtent;
+  return {c - h, c + h};
+}
+
+/// Twice the signed area of (0, a, b) in the plane; exact antisymmetry cross2(b, a) =
+/// −cross2(a, b) is what makes the shared-edge test consistent between neighbours.
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Side of the origin relative to the edge a→b, with ties (origin on the edge's line) given
+/// to exactly one of the two triangles sharing the edge (they traverse it in opposite
+/// directions): the "top-left" rule of rasterisers.
+bool positiveSide(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const double e = cross2(a, b);
+  if (e != 0.0) return e > 0.0;
+  const Eigen::Vector2d d = b - a;
+  return d.x() > 0.0 || (d.x() == 0.0 && d.y() > 0.0);
+}
+
+/// Crossings of a line with a mesh, found through its tree in the mesh frame M.
+class MeshLineQuery {
+ public:
+  MeshLineQuery(const MeshBvh& bvh, const Isometry3d& X_WM, const Line& line_W)
+      : bvh_(bvh), s_(X_WM.inverse() * line_W.s), u_(X_WM.linear().transpose() * line_W.u) {
+    e1_ = u_.unitOrthogonal();
+    e2_ = u_.cross(e1_);
+  }
+
+  void collect(std::vector<Crossing>& out) const { visit(bvh_.root(), out); }
+
+ private:
+  bool lineHitsBox(const BvhNode& node) const {
+    double tlo = -kInf, thi = kInf;
+    for (int k = 0; k < 3; ++k) {
+      const double h =
+          node.halfExtent[k] * (1.0 + kBoxInflation) + kBoxInflation * std::abs(node.center[k]);
+      const double lo = node.center[k] - h - s_[k], hi = node.center[k] + h - s_[k];
+      if (u_[k] == 0.0) {
+        if (lo > 0.0 || hi < 0.0) return false;
+        continue;
+      }
+      const double t0 = lo / u_[k], t1 = hi / u_[k];
+      tlo = std::max(tlo, std::min(t0, t1));
+      thi = std::min(thi, std::max(t0, t1));
+    }
+    return tlo <= thi;
+  }
+
+  void visit(const BvhNode& node, std::vector<Crossing>& out) const {
+    if (!lineHitsBox(node)) return;
+    if (node.isLeaf()) {
+      for (int i = node.first; i < node.first + node.count; ++i)
+        crossTriangle(bvh_.order()[i], out);
+      return;
+    }
+    visit(bvh_.nodes()[node.left], out);
+    visit(bvh_.nodes()[node.right], out);
+  }
+
+  /// Watertight line–triangle test: project the corners onto the plane ⟂ u through s (every
+  /// vertex is projected the same way wherever it appears), then edge functions of the origin.
+  void crossTriangle(int f, std::vector<Crossing>& out) const {
+    Eigen::Vector2d q[3];
+    double z[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vector3d p = bvh_.mesh().corner(f, k) - s_;
+      q[k] = {p.dot(e1_), p.dot(e2_)};
+      z[k] = p.dot(u_);
+    }
+    const bool side0 = positiveSide(q[1], q[2]);
+    if (positiveSide(q[2], q[0]) != side0 || positiveSide(q[0], q[1]) != side0) return;
+    const double w0 = cross2(q[1], q[2]), w1 = cross2(q[2], q[0]), w2 = cross2(q[0], q[1]);
+    const double sum = w0 + w1 + w2;  // 2 × projected area; sign: n·u
+    if (sum == 0.0) return;           // edge-on: its neighbours carry the crossing
+    // (e1, e2, u) is right-handed, so sum > 0 ⇔ n·u > 0 ⇔ the line leaves the solid.
+    out.push_back({(w0 * z[0] + w1 * z[1] + w2 * z[2]) / sum, sum > 0.0 ? -1 : +1});
+  }
+
+  const MeshBvh& bvh_;
+  Vector3d s_, u_, e1_, e2_;
+};
+
+/// Crossings of the line with the body, sorted by t.
+std::vector<Crossing> crossings(const ColumnBody& body, const Line& line) {
+  std::vector<Crossing> out;
+  if (body.bvh) {
+    MeshLineQuery(*body.bvh, body.X_WB, line).collect(out);
+  } else {  // half-space z_B ≤ 0: z_B(t) = a + b t
+    const Vector3d z_W = body.X_WB.linear().col(2);
+    const double a = z_W.dot(line.s - body.X_WB.translation()), b = z_W.dot(line.u);
+    // Inside where a + b t < 0: from −∞ when b > 0 (or b = 0 and a ≤ 0), up to t = −a/b.
+    if (b > 0.0 || (b == 0.0 && a <= 0.0)) out.push_back({-kInf, +1});
+    if (b != 0.0) out.push_back({-a / b, b < 0.0 ? +1 : -1});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// What one line contributes, in the line's own parameter t.
+struct LineIntegrals {
+  double L = 0.0, T1 = 0.0, T2 = 0.0;   ///< ∫dt, ∫t dt, ∫t² dt over A ∩ B
+  double tFirst = kInf, tLast = -kInf;  ///< where the line enters and finally leaves A ∩ B
+  double surfaceA = 0.0;                ///< Σ sign(n_A·u) over crossings of ∂A inside B
+  double surfaceB = 0.0;                ///< the same for ∂B inside A
+};
+
+/// Sweeps the merged crossings keeping both winding numbers (inside: winding > 0).
+LineIntegrals overlap(const std::vector<Crossing>& a, const std::vector<Crossing>& b) {
+  LineIntegrals r;
+  int wa = 0, wb = 0;
+  std::size_t i = 0, j = 0;
+  double tPrev = -kInf;
+  while (i < a.size() || j < b.size()) {
+    const bool fromA = j == b.size() || (i < a.size() && a[i].t <= b[j].t);
+    const Crossing& c = fromA ? a[i++] : b[j++];
+    if (wa > 0 && wb > 0) {
+      r.tFirst = std::min(r.tFirst, tPrev);
+      r.tLast = c.t;
+      r.L += c.t - tPrev;
+      r.T1 += (c.t * c.t - tPrev * tPrev) / 2.0;
+      r.T2 += (c.t * c.t * c.t - tPrev * tPrev * tPrev) / 3.0;
+    }
+    if (fromA && wb > 0) r.surfaceA -= c.delta;
+    if (!fromA && wa > 0) r.surfaceB -= c.delta;
+    (fromA ? wa : wb) += c.delta;
+    tPrev = c.t;
+  }
+  return r;
+}
+
+/// A square-celled N × N grid of lines along u over the projection of `box` onto the plane
+/// ⟂ u through the box centre o.
+struct Grid {
+  Vector3d o, u, e1, e2;
+  double r1, r2;  ///< half-widths along e1, e2
+  int n;
+
+  Grid(const WorldBox& box, const Vector3d& dir, int resolution) : u(dir), n(resolution) {
+    o = 0.5 * (box.lo + box.hi);
+    const Vector3d h = 0.5 * (box.hi - box.lo);
+    e1 = u.unitOrthogonal();
+    e2 = u.cross(e1);
+    r1 = e1.cwiseAbs().dot(h);
+    r2 = e2.cwiseAbs().dot(h);
+  }
+  double cellArea() const { return 4.0 * r1 * r2 / (double(n) * n); }
+  /// In-plate offset from o of line (i, j), at the cell centre.
+  Vector3d offset(int i, int j) const {
+    return (-r1 + (i + 0.5) * 2.0 * r1 / n) * e1 + (-r2 + (j + 0.5) * 2.0 * r2 / n) * e2;
+  }
+  Line line(int i, int j) const { return {o + offset(i, j), u}; }
+};
+
+/// Sums over a grid: moments about o (W axes), the surface sums, and δ per line.
+struct GridSums {
+  geometry::Moments M;
+  double surfaceA = 0.0, surfaceB = 0.0;
+  double maxDepth = 0.0;
+  int wetLines = 0;
+  WorldBox wet{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};  ///< of the wet segments
+
+  void add(const LineIntegrals& li, const Vector3d& x, const Vector3d& u, double dS) {
+    surfaceA += li.surfaceA * dS;
+    surfaceB += li.surfaceB * dS;
+    if (li.L <= 0.0) return;
+    // p − o = x + t u: ∫1 = L, ∫(x + t u) = L x + T1 u, ∫(x + t u)(x + t u)ᵀ = L x xᵀ +
+    // T1 (x uᵀ + u xᵀ) + T2 u uᵀ (exact along the line; midpoint rule across, MODEL.md §1).
+    M.m0 += li.L * dS;
+    M.m1 += (li.L * x + li.T1 * u) * dS;
+    M.m2 += (li.L * x * x.transpose() + li.T1 * (x * u.transpose() + u * x.transpose()) +
+             li.T2 * u * u.transpose()) *
+            dS;
+    maxDepth = std::max(maxDepth, li.L);
+    ++wetLines;
+    for (double t : {li.tFirst, li.tLast}) {
+      wet.lo = wet.lo.cwiseMin(x + t * u);
+      wet.hi = wet.hi.cwiseMax(x + t * u);
+    }
+  }
+  GridSums& operator+=(const GridSums& o) {
+    M += o.M;
+    surfaceA += o.surfaceA;
+    surfaceB += o.surfaceB;
+    maxDepth = std::max(maxDepth, o.maxDepth);
+    wetLines += o.wetLines;
+    wet = {wet.lo.cwiseMin(o.wet.lo), wet.hi.cwiseMax(o.wet.hi)};
+    return *this;
+  }
+};
+
+GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
+                   std::vector<double>* depth) {
+  if (depth) depth->assign(static_cast<std::size_t>(g.n) * g.n, 0.0);
+  return tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, g.n), GridSums{},
+      [&](const tbb::blocked_range<int>& rows, GridSums sums) {
+        for (int i = rows.begin(); i < rows.end(); ++i) {
+          for (int j = 0; j < g.n; ++j) {
+            const Line l = g.line(i, j);
+            const LineIntegrals li = overlap(crossings(a, l), crossings(b, l));
+            sums.add(li, g.offset(i, j), g.u, g.cellArea());
+            if (depth) (*depth)[static_cast<std::size_t>(i) * g.n + j] = li.L;
+          }
+        }
+        return sums;
+      },
+      [](GridSums x, const GridSums& y) { return x += y; });
+}
+
+/// Union of the world boxes of the leaves of `body` that meet `box` and (for a half-space
+/// other) reach below its plane, clipped to `box`: a tight bound of the region.
+WorldBox tighten(const ColumnBody& body, const WorldBox& box, const ColumnBody& other) {
+  if (!body.bvh) return box;
+  WorldBox out{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};
+  auto meets = [&](const WorldBox& wb) {
+    if (wb.intersected(box).empty()) return false;
+    if (other.bvh) return true;
+    const Vector3d z_W = other.X_WB.linear().col(2);
+    const Vector3d c = 0.5 * (wb.lo + wb.hi), h = 0.5 * (wb.hi - wb.lo);
+    return z_W.dot(c - other.X_WB.translation()) - z_W.cwiseAbs().dot(h) < 0.0;
+  };
+  auto visit = [&](auto&& self, const BvhNode& node) -> void {
+    const WorldBox wb = worldBox(node, body.X_WB);
+    if (!meets(wb)) return;
+    if (node.isLeaf()) {
+      const WorldBox clipped = wb.intersected(box);
+      out = {out.lo.cwiseMin(clipped.lo), out.hi.cwiseMax(clipped.hi)};
+      return;
+    }
+    self(self, body.bvh->nodes()[node.left]);
+    self(self, body.bvh->nodes()[node.right]);
+  };
+  visit(visit, body.bvh->root());
+  return out;
+}
+
+WorldBox overlapBox(const ColumnBody& a, const ColumnBody& b) {
+  WorldBox box;
+  for (int pass = 0; pass < 2 && !box.empty(); ++pass) {
+    box = tighten(a, box, b);
+    if (!box.empty()) box = tighten(b, box, a);
+  }
+  return box;
+}
+
+/// Result of the three axis passes: the normal and a tighter box.
+struct AxisPasses {
+  Vector3d areaDifference = Vector3d::Zero();  ///< ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA
+  WorldBox region{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};
+  bool found = false;
+};
+
+/// One pass along each world axis. A line along e_k crossing ∂B1 inside B2 with normal n_B1
+/// adds sign(n_B1·e_k) dS to (∫_{∂B1∩B2} n_B1 dA)_k, and likewise for ∂B2, so component k
+/// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by a cell
+/// all round, bound the region as sampled; the three passes' bounds are intersected.
+AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
+                      int resolution) {
+  AxisPasses out;
+  out.region = box;
+  for (int k = 0; k < 3; ++k) {
+    const Grid g(box, Vector3d::Unit(k), resolution);
+    const GridSums s = integrate(a, b, g, nullptr);
+    out.areaDifference[k] = s.surfaceB - s.surfaceA;
+    if (s.wetLines == 0) return AxisPasses{};
+    // Two cells of margin on every axis: a thin rim between sampled lines, or a line just
+    // missed, lies within a cell of a wet one for any region the grid resolves.
+    const Vector3d margin = Vector3d::Constant(2.0 * (box.hi - box.lo).maxCoeff() / resolution);
+    out.region = out.region.intersected({g.o + s.wet.lo - margin, g.o + s.wet.hi + margin});
+  }
+  out.found = !out.region.empty();
+  return out;
+}
+
+// The normal passes run this many times finer than the first volume grid: the normal's error
+// comes from the rim cells of three passes, and it tilts every column of the final grid.
+constexpr int kNormalPassFactor = 4;
+
+/// The contact normal and the box to integrate over: axis passes on the overlap box, refined
+/// until they see the region, then repeated on the region's box so that a small region is
+/// resolved. For a half-space the normal is its own (out of B2 into B1).
+std::pair<Vector3d, WorldBox> normalAndBox(const ColumnBody& a, const ColumnBody& b, WorldBox box,
+                                           const ColumnOptions& options) {
+  for (int res = options.initialResolution; res <= options.maxResolution; res *= 2) {
+    const AxisPasses coarse = axisPasses(a, b, box, res);
+    if (!coarse.found) continue;
+    const AxisPasses fine =
+        axisPasses(a, b, coarse.region, kNormalPassFactor * options.initialResolution);
+    const AxisPasses& use = fine.found ? fine : coarse;
+    if (!b.bvh) return {b.X_WB.linear().col(2), use.region};
+    if (!a.bvh) return {-a.X_WB.linear().col(2), use.region};
+    if (use.areaDifference.isZero()) break;
+    return {use.areaDifference.normalized(), use.region};
+  }
+  return {Vector3d::Zero(), box};
+}
+
+}  // namespace
+
+ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const ColumnOptions& options,
+                             ColumnField* field) {
+  if (!a.bvh && !b.bvh) throw std::invalid_argument("columnsContact: two half-spaces");
+  const ContactVolume none{.method = Method::kColumns};
+  const WorldBox overlap = overlapBox(a, b);
+  if (overlap.empty()) return none;
+  const auto [n, box] = normalAndBox(a, b, overlap, options);
+  if (n.isZero()) return none;
+  // Refine until two successive level-to-level differences are within the tolerance; the
+  // larger of them is the reported estimate (one difference alone can vanish by chance).
+  std::vector<double> depth;
+  int res = options.initialResolution;
+  GridSums fine = integrate(a, b, Grid(box, n, res), nullptr);
+  double previousChange = kInf, error = kInf;
+  while (res < options.maxResolution) {
+    res *= 2;
+    const GridSums next = integrate(a, b, Grid(box, n, res), field ? &depth : nullptr);
+    const double change = std::abs(next.M.m0 - fine.M.m0) / next.M.m0;
+    error = std::max(change, previousChange);
+    previousChange = change;
+    fine = next;
+    if (error <= options.relativeTolerance) break;
+  }
+  if (!(fine.M.m0 > 0.0)) return none;
+  const Grid g(box, n, res);
+  if (field) {
+    *field = {};
+    for (int i = 0; i < res; ++i) {
+      for (int j = 0; j < res; ++j) {
+        const double d = depth[static_cast<std::size_t>(i) * res + j];
+        if (d > 0.0) {
+          field->points_W.push_back(g.o + g.offset(i, j));
+          field->depth.push_back(d);
+        }
+      }
+    }
+  }
+  const Vector3d c_o = fine.M.m1 / fine.M.m0;
+  ContactVolume cv =
+      assembleContactVolume(fine.M.m0, g.o + c_o, fine.M.m2 - fine.M.m0 * c_o * c_o.transpose(), n,
+                            fine.wetLines * g.cellArea(), fine.maxDepth, Method::kColumns);
+  cv.relative_error = error;
+  cv.J_s_approximated = false;
+  return cv;
+}
+
+}  // namespace vcontact::volume
