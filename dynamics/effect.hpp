@@ -87,7 +87,7 @@ struct ContactContext {
   double kv = 0.0;      ///< N/m³
   double a = 0.0;       ///< s/m
   double mu_C = 0.0;    ///< –
-  double mu_S = 0.0;    ///< – (= μ_C without stribeck)
+  double mu_S = 0.0;    ///< – (read only by stribeck, which writes it)
   double v_s = 1e-3;    ///< m/s, stick–slip speed
   double sigma0 = 0.0;  ///< 1/m
   double sigma1 = 0.0;  ///< s/m

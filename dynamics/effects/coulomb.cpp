@@ -20,7 +20,6 @@ class Coulomb final : public EffectBase<Coulomb> {
 
   void configure(ContactContext& ctx) const override {
     ctx.mu_C = parameter(0);
-    ctx.mu_S = parameter(0);
     ctx.v_s = parameter(1);
   }
 
