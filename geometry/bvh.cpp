@@ -78,6 +78,17 @@ void MeshBvh::fillNode(BvhNode& node) const {
         triangleFanIntegrals(mesh_.corner(f, 0) - node.center, mesh_.corner(f, 1) - node.center,
                              mesh_.corner(f, 2) - node.center);
   }
+  node.axialLo = INFINITY;
+  node.axialHi = -INFINITY;
+  for (int i = node.first; i < node.first + node.count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d r = mesh_.corner(order_[i], k) - node.center;
+      const double s = r.dot(node.normalAxis);
+      node.axialLo = std::min(node.axialLo, s);
+      node.axialHi = std::max(node.axialHi, s);
+      node.radialExtent = std::max(node.radialExtent, (r - s * node.normalAxis).norm());
+    }
+  }
   // Beyond a half-angle of π/2 the cone test is never conclusive; > 1 says so.
   node.normalSinHalfAngle = minCos > 0.0 ? std::sqrt(1.0 - minCos * minCos) : 2.0;
 }

@@ -22,8 +22,12 @@ struct BvhNode {
   FanIntegrals integrals;           ///< of the node's triangles about `center`
   Eigen::Vector3d normalAxis;       ///< unit axis of the normal cone
   double normalSinHalfAngle = 2.0;  ///< sin of the cone half-angle; > 1: wider than π/2
-  int first = 0;                    ///< first index into MeshBvh::order()
-  int count = 0;                    ///< number of triangles
+  /// A slab bound aligned with normalAxis, tight for a nearly flat patch in any orientation
+  /// (where the axis-aligned box is not): every vertex p has s = (p − center)·normalAxis in
+  /// [axialLo, axialHi] and lies within radialExtent of the axis line through center.
+  double axialLo = 0.0, axialHi = 0.0, radialExtent = 0.0;
+  int first = 0;  ///< first index into MeshBvh::order()
+  int count = 0;  ///< number of triangles
   int left = -1;  ///< child nodes, −1 for a leaf (right = left + 1 is not assumed)
   int right = -1;
 

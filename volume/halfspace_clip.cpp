@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace vcontact::volume {
 namespace {
@@ -61,15 +62,22 @@ constexpr double kBoxRoundingUlps = 16.0;
 class BvhClip {
  public:
   BvhClip(const MeshBvh& bvh, const Eigen::Isometry3d& X_HM)
-      : bvh_(bvh), X_HM_(X_HM), R_HM_(X_HM.linear()) {}
+      : bvh_(bvh), X_HM_(X_HM), R_HM_(X_HM.linear()), z_M_(R_HM_.row(2).transpose()) {}
 
   ClippedMoments run() {
     ClippedMoments out;
-    out.depth = -deepestZ(bvh_.root(), std::numeric_limits<double>::infinity());
-    if (!(out.depth > 0.0)) return out;
+    collect(bvh_.root());
+    // The lowest vertex lies in a collected node (it is below the plane when there is
+    // contact); search only those, the lowest-reaching first.
+    double best = std::numeric_limits<double>::infinity();
+    for (const BvhNode* node : below_) best = deepestZ(*node, best);
+    for (const BvhNode* node : straddling_) best = deepestZ(*node, best);
+    if (!(best < 0.0)) return out;
+    out.depth = -best;
     out.origin = Vector3d(deepest_.x(), deepest_.y(), 0.0);
     o_H_ = out.origin;
-    visit(bvh_.root(), out);
+    for (const BvhNode* node : below_) addWholeNode(*node, out);
+    for (const BvhNode* node : straddling_) clipLeaf(*node, out);
     // Wholly-below subtrees were summed about o in M axes; rotate them into H once.
     const Vector3d m1_H = R_HM_ * belowInM_.m1;
     out.moments.m0 += belowInM_.m0;
@@ -78,17 +86,23 @@ class BvhClip {
     return out;
   }
 
- private:
   struct ZRange {
     double lo, hi;
   };
 
+  /// Bounds of z_H over the node's vertices: the tighter of its box and its normal slab.
+  /// With z_M = the plane normal in M, split into a part along the slab axis a and the rest:
+  /// (p − c)·z_M = (z_M·a) s + (p − c)·z_⊥ with s ∈ [axialLo, axialHi], |…| ≤ |z_⊥| ρ.
   ZRange zRange(const BvhNode& node) const {
     const double cz = (X_HM_ * node.center).z();
-    const double ez = R_HM_.row(2).cwiseAbs().dot(node.halfExtent);
+    const double boxExtent = z_M_.cwiseAbs().dot(node.halfExtent);
+    const double za = z_M_.dot(node.normalAxis);
+    const double perp = std::sqrt(std::max(0.0, 1.0 - za * za)) * node.radialExtent;
+    const double slabLo = std::min(za * node.axialLo, za * node.axialHi) - perp;
+    const double slabHi = std::max(za * node.axialLo, za * node.axialHi) + perp;
     const double slack = kBoxRoundingUlps * std::numeric_limits<double>::epsilon() *
-                         (std::abs(cz) + ez + X_HM_.translation().cwiseAbs().sum());
-    return {cz - ez - slack, cz + ez + slack};
+                         (std::abs(cz) + boxExtent + X_HM_.translation().cwiseAbs().sum());
+    return {cz + std::max(-boxExtent, slabLo) - slack, cz + std::min(boxExtent, slabHi) + slack};
   }
 
   Vector3d corner_H(int f, int k) const { return X_HM_ * bvh_.mesh().corner(f, k); }
@@ -115,19 +129,19 @@ class BvhClip {
     return deepestZ(leftFirst ? r : l, best);
   }
 
-  void visit(const BvhNode& node, ClippedMoments& out) {
+  /// Sorts the tree into subtrees wholly below the plane and leaves that straddle it;
+  /// subtrees wholly above are dropped.
+  void collect(const BvhNode& node) {
     const ZRange z = zRange(node);
     if (z.lo >= 0.0) return;
     if (z.hi < 0.0) {
-      addWholeNode(node, out);
-      return;
+      below_.push_back(&node);
+    } else if (node.isLeaf()) {
+      straddling_.push_back(&node);
+    } else {
+      collect(bvh_.nodes()[node.left]);
+      collect(bvh_.nodes()[node.right]);
     }
-    if (node.isLeaf()) {
-      clipLeaf(node, out);
-      return;
-    }
-    visit(bvh_.nodes()[node.left], out);
-    visit(bvh_.nodes()[node.right], out);
   }
 
   void clipLeaf(const BvhNode& node, ClippedMoments& out) const {
@@ -168,9 +182,11 @@ class BvhClip {
   const MeshBvh& bvh_;
   const Eigen::Isometry3d X_HM_;
   const Eigen::Matrix3d R_HM_;
+  const Vector3d z_M_;  ///< the plane's normal z_H in M
   Vector3d deepest_ = Vector3d::Zero();
   Vector3d o_H_ = Vector3d::Zero();
   geometry::Moments belowInM_;
+  std::vector<const BvhNode*> below_, straddling_;
 };
 
 }  // namespace
