@@ -1,0 +1,69 @@
+// The FCL broad phase against brute-force box overlap, before and after bodies move.
+// (Kept with the volume tests: tests/geometry/ belongs to the geometry-core suite.)
+
+#include "geometry/broad_phase.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "geometry/tessellate.hpp"
+
+namespace vcontact::geometry {
+namespace {
+
+using Eigen::Vector3d;
+
+bool overlap(const Aabb& a, const Aabb& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+std::vector<std::pair<int, int>> bruteForce(const std::vector<Aabb>& boxes) {
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < int(boxes.size()); ++i) {
+    for (int j = i + 1; j < int(boxes.size()); ++j) {
+      if (overlap(boxes[i], boxes[j])) pairs.emplace_back(i, j);
+    }
+  }
+  return pairs;
+}
+
+Aabb randomBox(std::mt19937& rng) {
+  std::uniform_real_distribution<double> pos(0.0, 1.0), size(0.01, 0.2);
+  const Vector3d lo(pos(rng), pos(rng), pos(rng));
+  return {lo, lo + Vector3d(size(rng), size(rng), size(rng))};
+}
+
+TEST(BroadPhase, MatchesBruteForceBeforeAndAfterMotion) {
+  std::mt19937 rng(7);
+  std::vector<Aabb> boxes;
+  BroadPhase bp;
+  for (int i = 0; i < 60; ++i) {
+    boxes.push_back(randomBox(rng));
+    EXPECT_EQ(bp.add(boxes.back()), i);
+  }
+  const auto before = bruteForce(boxes);
+  ASSERT_FALSE(before.empty());  // the case must exercise some overlaps
+  EXPECT_EQ(bp.overlappingPairs(), before);
+  for (int i = 0; i < 60; i += 3) {
+    boxes[i] = randomBox(rng);
+    bp.update(i, boxes[i]);
+  }
+  EXPECT_EQ(bp.overlappingPairs(), bruteForce(boxes));
+}
+
+TEST(BroadPhase, MeshBoundsFollowThePose) {
+  const TriangleMesh box = tessellateBox(Vector3d(0.2, 0.1, 0.05));
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
+  X.translation() = Vector3d(1.0, 2.0, 3.0);
+  const Aabb b = worldBounds(box, X);
+  // Rotated a quarter turn about z, the 0.2 × 0.1 footprint becomes 0.1 × 0.2.
+  EXPECT_LE((b.min - Vector3d(0.95, 1.9, 2.975)).norm(), 1e-15);
+  EXPECT_LE((b.max - Vector3d(1.05, 2.1, 3.025)).norm(), 1e-15);
+}
+
+}  // namespace
+}  // namespace vcontact::geometry
