@@ -20,20 +20,44 @@ Vector3d crossing(const Vector3d& a, const Vector3d& b) {
   return p;
 }
 
-/// Adds the tetrahedron (o, a, b, c) and the shadow of the face (a, b, c) if it faces down.
-void addPiece(const Vector3d& a, const Vector3d& b, const Vector3d& c, ClippedMoments& out) {
-  out.moments += geometry::tetrahedronMoments(Vector3d::Zero(), a, b, c);
-  const double nz2 = (b - a).cross(c - a).z();  // 2 × signed projected area
-  if (nz2 < 0.0) out.area -= 0.5 * nz2;
-}
+/// Running sums over the fan pieces (o, a, b, c), corners relative to o: with
+/// D = a·(b × c) and s = a + b + c, the moments about o are m0 = ΣD/6, m1 = Σ D s/24 and
+/// m2 = Σ D (a aᵀ + b bᵀ + c cᵀ + s sᵀ)/120 (as tetrahedronMoments, kept as plain sums
+/// because this is the inner loop of the clip).
+struct FanSum {
+  double D = 0.0;
+  Vector3d Ds = Vector3d::Zero();
+  Eigen::Matrix3d DQ = Eigen::Matrix3d::Zero();
+  double area = 0.0;  ///< projected area of the downward-facing pieces
+
+  /// Adds the tetrahedron (o, a, b, c) and the shadow of the face (a, b, c) if it faces down.
+  void add(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+    const Vector3d bc = b.cross(c);
+    const double d = a.dot(bc);
+    const Vector3d sum = a + b + c;
+    D += d;
+    Ds += d * sum;
+    DQ.noalias() +=
+        d * (a * a.transpose() + b * b.transpose() + c * c.transpose() + sum * sum.transpose());
+    const double nz2 = (b - a).cross(c - a).z();  // 2 × signed projected area
+    if (nz2 < 0.0) area -= 0.5 * nz2;
+  }
+
+  void addTo(ClippedMoments& out) const {
+    out.moments.m0 += D / 6.0;
+    out.moments.m1 += Ds / 24.0;
+    out.moments.m2 += DQ / 120.0;
+    out.area += area;
+  }
+};
 
 /// Adds the part of the triangle v (corners relative to o, H axes) below z = 0 as fan pieces
 /// with apex o (MODEL.md §1: the region is mesh ∩ {z_H ≤ 0}).
-void clipTriangle(const Vector3d (&v)[3], ClippedMoments& out) {
+void clipTriangle(const Vector3d (&v)[3], FanSum& out) {
   const int inside = (v[0].z() < 0.0) + (v[1].z() < 0.0) + (v[2].z() < 0.0);
   if (inside == 0) return;
   if (inside == 3) {
-    addPiece(v[0], v[1], v[2], out);
+    out.add(v[0], v[1], v[2]);
     return;
   }
   // Rotate so that the lone vertex (inside when inside == 1, outside when 2) comes first;
@@ -45,11 +69,11 @@ void clipTriangle(const Vector3d (&v)[3], ClippedMoments& out) {
   const Vector3d& b = v[(k0 + 1) % 3];
   const Vector3d& c = v[(k0 + 2) % 3];
   if (loneInside) {
-    addPiece(a, crossing(a, b), crossing(a, c), out);
+    out.add(a, crossing(a, b), crossing(a, c));
   } else {
     const Vector3d pb = crossing(b, a), pc = crossing(c, a);
-    addPiece(pb, b, c, out);
-    addPiece(pb, c, pc, out);
+    out.add(pb, b, c);
+    out.add(pb, c, pc);
   }
 }
 
@@ -77,7 +101,9 @@ class BvhClip {
     out.origin = Vector3d(deepest_.x(), deepest_.y(), 0.0);
     o_H_ = out.origin;
     for (const BvhNode* node : below_) addWholeNode(*node, out);
-    for (const BvhNode* node : straddling_) clipLeaf(*node, out);
+    FanSum clipped;
+    for (const BvhNode* node : straddling_) clipLeaf(*node, clipped);
+    clipped.addTo(out);
     // Wholly-below subtrees were summed about o in M axes; rotate them into H once.
     const Vector3d m1_H = R_HM_ * belowInM_.m1;
     out.moments.m0 += belowInM_.m0;
@@ -144,7 +170,7 @@ class BvhClip {
     }
   }
 
-  void clipLeaf(const BvhNode& node, ClippedMoments& out) const {
+  void clipLeaf(const BvhNode& node, FanSum& out) const {
     for (int i = node.first; i < node.first + node.count; ++i) {
       const int f = bvh_.order()[i];
       const Vector3d v[3] = {corner_H(f, 0) - o_H_, corner_H(f, 1) - o_H_, corner_H(f, 2) - o_H_};
@@ -206,11 +232,13 @@ ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
   if (out.depth <= 0.0) return out;
   const Vector3d o(p_H(deepest, 0), p_H(deepest, 1), 0.0);
   out.origin = o;
+  FanSum sum;
   for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
     Vector3d v[3];
     for (int k = 0; k < 3; ++k) v[k] = p_H.row(mesh.triangles(f, k)).transpose() - o;
-    clipTriangle(v, out);
+    clipTriangle(v, sum);
   }
+  sum.addTo(out);
   return out;
 }
 
