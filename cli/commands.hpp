@@ -9,6 +9,8 @@ void addVolumeCommand(CLI::App& app);
 void addMeshInfoCommand(CLI::App& app);
 void addTessellateCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
+/// compare, fit, diagnose and synth (validation/, issue #5).
+void addValidationCommands(CLI::App& app);
 
 /// Prints warnings to standard error, one per line, prefixed "vcontact: warning: ".
 void printWarnings(const std::vector<std::string>& warnings);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   vcontact::cli::addMeshInfoCommand(app);
   vcontact::cli::addTessellateCommand(app);
   vcontact::cli::addSimulateCommand(app);
+  vcontact::cli::addValidationCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,202 @@
+#include "io/report_html.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "io/svg_chart.hpp"
+
+namespace vcontact::io {
+namespace {
+
+using validation::FitResult;
+
+// Points drawn per series: a 6000-sample record is decimated by a stride so that the page
+// stays small; 1500 points exceed the pixel width of a chart.
+constexpr std::size_t kMaxPointsPerSeries = 1500;
+
+std::string num(double v, int digits = 4) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+std::size_t strideOf(std::size_t n) { return std::max<std::size_t>(1, n / kMaxPointsPerSeries + 1); }
+
+Series series(const std::string& label, const std::vector<double>& x, const Eigen::VectorXd& y,
+              bool markers = false) {
+  Series s;
+  s.label = label;
+  s.markers = markers;
+  const std::size_t stride = strideOf(x.size());
+  for (std::size_t i = 0; i < x.size(); i += stride) {
+    s.x.push_back(x[i]);
+    s.y.push_back(y[static_cast<Eigen::Index>(i)]);
+  }
+  return s;
+}
+
+std::string unitOf(const std::string& output) { return output[0] == 'f' ? "N" : "N·m"; }
+
+void measuredVsModel(std::ostringstream& h, const ReportInput& in, const std::vector<double>& t) {
+  h << "<h2>Measured and model</h2>\n";
+  const FitResult& first = *in.stages.front().fit;
+  const FitResult& last = *in.stages.back().fit;
+  for (std::size_t k = 0; k < first.comparison.outputs.size(); ++k) {
+    const auto& o = first.comparison.outputs[k];
+    std::vector<Series> s = {series("measured", t, o.measured, true),
+                             series("model: " + in.stages.front().label, t, o.predicted)};
+    if (in.stages.size() > 1) {
+      s.push_back(series("model: " + in.stages.back().label, t,
+                         last.comparison.outputs[k].predicted));
+    }
+    h << lineChart({o.output + ": measured and model", "t [s]", o.output + " [" + unitOf(o.output) + "]"}, s)
+      << '\n';
+  }
+}
+
+void residuals(std::ostringstream& h, const ReportInput& in, const std::vector<double>& t) {
+  h << "<h2>Residuals of " << escapeXml(in.stages.front().label)
+    << " (shaded: where it fails)</h2>\n";
+  for (const auto& o : in.stages.front().fit->comparison.outputs) {
+    std::vector<Window> windows;
+    for (const auto& w : in.where) {
+      if (w.output == o.output) windows.push_back({w.t0, w.t1, "chi " + num(w.chi, 3)});
+    }
+    h << lineChart({o.output + ": residual (measured − model)", "t [s]",
+                    "residual [" + unitOf(o.output) + "]"},
+                   {series("residual", t, o.residual)}, windows)
+      << '\n';
+  }
+  if (in.where.empty()) {
+    h << "<p>No window where the moving chi exceeds 3.</p>\n";
+    return;
+  }
+  h << "<table><tr><th>output</th><th>t0 [s]</th><th>t1 [s]</th><th>chi</th><th>regime</th></tr>\n";
+  for (const auto& w : in.where) {
+    h << "<tr><td>" << w.output << "</td><td>" << num(w.t0) << "</td><td>" << num(w.t1)
+      << "</td><td>" << num(w.chi, 3) << "</td><td>" << escapeXml(w.regime) << "</td></tr>\n";
+  }
+  h << "</table>\n";
+}
+
+void residualsAgainstRegime(std::ostringstream& h, const ReportInput& in) {
+  h << "<h2>Normalised residuals against the regime variables</h2>\n";
+  const FitResult& f = *in.stages.front().fit;
+  struct Var {
+    const char* label;
+    double (*get)(const validation::RegimeSample&);
+  };
+  const Var vars[] = {
+      {"sliding speed |v_t| [m/s]", [](const validation::RegimeSample& r) { return r.speed; }},
+      {"spin ratio r_gyr|ω_n|/|v_t|", [](const validation::RegimeSample& r) { return r.spin_ratio; }},
+      {"time at rest [s]", [](const validation::RegimeSample& r) { return r.time_at_rest; }},
+      {"penetration rate [m/s]", [](const validation::RegimeSample& r) { return r.penetration_rate; }},
+      {"normal load f_n [N]", [](const validation::RegimeSample& r) { return r.load; }}};
+  for (const auto& v : vars) {
+    std::vector<double> x;
+    for (const auto& r : f.prediction.regime) x.push_back(v.get(r));
+    std::vector<Series> s;
+    for (const auto& o : f.comparison.outputs) s.push_back(series(o.output, x, o.residual / o.sigma, true));
+    h << lineChart({std::string("residual/σ against ") + v.label, v.label, "residual / σ", 360, 260}, s)
+      << '\n';
+  }
+}
+
+void candidateTable(std::ostringstream& h, const ReportInput& in) {
+  if (!in.ranking) return;
+  h << "<h2>Candidate effects (ranked by ΔBIC; verdict needs ΔBIC &lt; −"
+    << num(validation::kBicMargin) << ")</h2>\n<table><tr><th>effect</th><th>adds</th>"
+    << "<th>chi</th><th>ΔBIC</th><th>fitted parameters</th><th>note</th></tr>\n";
+  for (const auto& c : *in.ranking) {
+    std::ostringstream added, params;
+    for (const auto& a : c.added) added << a << ' ';
+    h << "<tr><td>" << c.effect << "</td><td>" << added.str() << "</td>";
+    if (!c.error.empty()) {
+      h << "<td></td><td></td><td></td><td>" << escapeXml(c.error) << "</td></tr>\n";
+      continue;
+    }
+    for (const auto& p : c.fit.parameters) {
+      if (!p.fixed) params << p.name << " = " << num(p.value) << "<br>";
+    }
+    h << "<td>" << num(c.fit.comparison.chi) << "</td><td>" << num(c.deltaBic, 6) << "</td><td>"
+      << params.str() << "</td><td>"
+      << (c.redundantWith.empty() ? "" : "adds nothing beyond " + c.redundantWith) << "</td></tr>\n";
+  }
+  h << "</table>\n";
+}
+
+void parameterTable(std::ostringstream& h, const ReportInput& in) {
+  const FitResult& f = *in.stages.back().fit;
+  h << "<h2>Parameters of " << escapeXml(in.stages.back().label)
+    << "</h2>\n<table><tr><th>parameter</th><th>value</th><th>std error</th><th>unit</th>"
+    << "<th>status</th></tr>\n";
+  for (const auto& p : f.parameters) {
+    const std::string err = p.fixed ? "" : (std::isfinite(p.stdError) ? num(p.stdError, 3) : "∞");
+    const std::string status = p.fixed ? "fixed" : (p.identifiable ? "fitted" : "not identifiable");
+    h << "<tr><td>" << p.name << "</td><td>" << num(p.value, 6) << "</td><td>" << err << "</td><td>"
+      << escapeXml(p.unit) << "</td><td>" << status << "</td></tr>\n";
+  }
+  h << "</table>\n";
+  if (f.warnings.empty()) return;
+  h << "<ul class=\"warnings\">";
+  for (const auto& w : f.warnings) h << "<li>" << escapeXml(w) << "</li>";
+  h << "</ul>\n";
+}
+
+void chiBars(std::ostringstream& h, const ReportInput& in) {
+  std::vector<std::string> labels;
+  std::vector<double> chi;
+  for (const auto& s : in.stages) {
+    labels.push_back(s.label);
+    chi.push_back(s.fit->comparison.chi);
+  }
+  h << "<h2>chi of each model stage</h2>\n"
+    << barChart({"chi = sqrt(mean (residual/σ)²) as effects are added", "model", "chi"}, labels,
+                chi, 1.0, "noise level (chi = 1)")
+    << '\n';
+}
+
+const char* kStyle =
+    "body{font-family:sans-serif;max-width:1100px;margin:1em auto;color:#222}"
+    "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;"
+    "font-size:13px;vertical-align:top}svg.chart{margin:4px}.warnings{color:#a40}";
+
+// Counts the charts with a non-empty bounding box once the page has rendered.
+const char* kCheckScript =
+    "<script>window.addEventListener('load',function(){"
+    "var c=document.querySelectorAll('svg.chart'),k=0;"
+    "for(var i=0;i<c.length;i++){var b=c[i].getBBox();if(b.width>0&&b.height>0)k++;}"
+    "document.body.setAttribute('data-charts-rendered',k+'/'+c.length);"
+    "document.title=document.title+' ['+k+'/'+c.length+' charts]';});</script>";
+
+}  // namespace
+
+std::string reportHtml(const ReportInput& in) {
+  const auto& d = *in.dataset;
+  std::vector<double> t;
+  for (const auto& s : d.samples) t.push_back(s.t);
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vcontact " << in.command
+    << ": " << escapeXml(d.name) << "</title><style>" << kStyle << "</style></head><body>\n"
+    << "<h1>vcontact " << in.command << ": " << escapeXml(d.name) << "</h1>\n<p>"
+    << escapeXml(d.notes) << "</p>\n<p>" << d.size() << " samples; σ per output: ";
+  for (const auto& [o, n] : in.noise) {
+    h << o << " = " << num(n.sigma, 3) << ' ' << unitOf(o)
+      << (n.estimated ? " (estimated from the data)" : " (sidecar)") << "; ";
+  }
+  h << "</p>\n<p>chi: ";
+  for (const auto& s : in.stages) h << escapeXml(s.label) << " = " << num(s.fit->comparison.chi) << "; ";
+  h << "</p>\n";
+  chiBars(h, in);
+  measuredVsModel(h, in, t);
+  residuals(h, in, t);
+  residualsAgainstRegime(h, in);
+  candidateTable(h, in);
+  parameterTable(h, in);
+  h << kCheckScript << "\n</body></html>\n";
+  return h.str();
+}
+
+}  // namespace vcontact::io

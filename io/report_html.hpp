@@ -1,0 +1,34 @@
+#pragma once
+// DIR/report.html: one self-contained page (inline SVG and CSS, no network) that shows the
+// measured against the model for each output, the residuals with the failing windows, the
+// residuals against the regime variables, the candidate table, the fitted parameters with
+// their uncertainties and the chi of each model stage (issue #5, item 6).
+//
+// An inline script checks on load that every <svg class="chart"> has a non-empty bounding
+// box and writes "rendered/total" into <body data-charts-rendered> and the title, so that a
+// headless browser's DOM dump proves the charts rendered.
+
+#include <string>
+#include <vector>
+
+#include "validation/diagnose.hpp"
+
+namespace vcontact::io {
+
+struct ReportStage {
+  std::string label;                         ///< e.g. "stiffness + coulomb", "+ contensou"
+  const validation::FitResult* fit;          ///< prediction, comparison, parameters
+};
+
+struct ReportInput {
+  std::string command;                       ///< "compare", "fit" or "diagnose"
+  const validation::Dataset* dataset = nullptr;
+  validation::NoiseLevels noise;
+  std::vector<ReportStage> stages;           ///< first: the user's model; last: the final one
+  std::vector<validation::FailureWindow> where;            ///< of the first stage
+  const std::vector<validation::Candidate>* ranking = nullptr;  ///< of the first stage
+};
+
+std::string reportHtml(const ReportInput& input);
+
+}  // namespace vcontact::io

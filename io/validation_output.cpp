@@ -1,0 +1,201 @@
+#include "io/validation_output.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "geometry/error.hpp"
+#include "io/model_file.hpp"
+
+namespace vcontact::io {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using validation::Comparison;
+using validation::FitResult;
+
+// JSON has no infinity or NaN: those become null ("not identifiable", "fixed").
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json rmsJson(const Comparison& c) {
+  json rms = json::object();
+  for (const auto& o : c.outputs) rms[o.output] = o.rms;
+  return rms;
+}
+
+json parametersJson(const FitResult& fit) {
+  json params = json::object();
+  for (const auto& p : fit.parameters) {
+    if (p.fixed) continue;
+    params[p.name] = p.value;
+  }
+  return params;
+}
+
+json shapeJson(const geometry::Shape& shape, const std::string& which) {
+  return std::visit(
+      [&](const auto& s) -> json {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, geometry::Sphere>) {
+          return {{"shape", "sphere"}, {"radius", s.radius}};
+        } else if constexpr (std::is_same_v<T, geometry::Cylinder>) {
+          return {{"shape", "cylinder"}, {"radius", s.radius}, {"length", s.length}};
+        } else if constexpr (std::is_same_v<T, geometry::Box>) {
+          return {{"shape", "box"}, {"size", {s.size.x(), s.size.y(), s.size.z()}}};
+        } else if constexpr (std::is_same_v<T, geometry::HalfSpace>) {
+          return {{"shape", "halfspace"}};
+        } else {
+          throw InputError(which, "a mesh shape cannot be written into a synthetic dataset");
+        }
+      },
+      shape);
+}
+
+json stageSummary(const validation::DiagnosisStage& s) {
+  return {{"effects", s.effects},
+          {"chi", s.baseline.comparison.chi},
+          {"bic", s.baseline.bic},
+          {"rms", rmsJson(s.baseline.comparison)},
+          {"params", parametersJson(s.baseline)},
+          {"verdict", s.verdict}};
+}
+
+json rankingJson(const validation::DiagnosisStage& s) {
+  json ranking = json::array();
+  for (const auto& c : s.ranking) {
+    json r = {{"effect", c.effect}, {"added", c.added}};
+    if (!c.error.empty()) {
+      r["error"] = c.error;
+    } else {
+      r["chi"] = c.fit.comparison.chi;
+      r["delta_bic"] = c.deltaBic;
+      r["params"] = parametersJson(c.fit);
+      if (!c.redundantWith.empty()) r["redundant_with"] = c.redundantWith;
+      if (!c.fit.warnings.empty()) r["warnings"] = c.fit.warnings;
+    }
+    ranking.push_back(std::move(r));
+  }
+  return ranking;
+}
+
+json whereJson(const validation::DiagnosisStage& s) {
+  json where = json::array();
+  for (const auto& w : s.where) {
+    where.push_back({{"output", w.output}, {"t0", w.t0}, {"t1", w.t1}, {"chi", w.chi},
+                     {"regime", w.regime}});
+  }
+  return where;
+}
+
+}  // namespace
+
+void writeResidualsCsv(const validation::Dataset& d, const Comparison& c, const std::string& path) {
+  std::ofstream out(path);
+  out.precision(std::numeric_limits<double>::max_digits10);
+  out << "t";
+  for (const auto& o : c.outputs) {
+    out << ',' << o.output << "_measured," << o.output << "_model," << o.output << "_residual,"
+        << o.output << "_normalised";
+  }
+  out << '\n';
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    out << d.samples[i].t;
+    for (const auto& o : c.outputs) {
+      out << ',' << o.measured[k] << ',' << o.predicted[k] << ',' << o.residual[k] << ','
+          << o.residual[k] / o.sigma;
+    }
+    out << '\n';
+  }
+}
+
+json comparisonJson(const Comparison& c, const validation::NoiseLevels& noise) {
+  json sigma = json::object();
+  for (const auto& [o, n] : noise) {
+    sigma[o] = {{"value", n.sigma},
+                {"source", n.estimated ? "estimated: 1.4826 MAD of second differences / sqrt(6)"
+                                       : "sidecar noise"}};
+  }
+  return {{"chi", c.chi}, {"chi2", c.chi2}, {"residuals", c.count}, {"rms", rmsJson(c)},
+          {"sigma", sigma}};
+}
+
+json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validation::Loss loss) {
+  json params = json::array();
+  for (const auto& p : fit.parameters) {
+    params.push_back({{"name", p.name}, {"unit", p.unit}, {"initial", p.initial},
+                      {"value", p.value}, {"std_error", number(p.stdError)},
+                      {"fixed", p.fixed}, {"identifiable", p.identifiable}});
+  }
+  json corr = json::array();
+  for (Eigen::Index i = 0; i < fit.correlation.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < fit.correlation.cols(); ++j) row.push_back(number(fit.correlation(i, j)));
+    corr.push_back(std::move(row));
+  }
+  return {{"comparison", comparisonJson(fit.comparison, noise)},
+          {"bic", fit.bic},
+          {"free_parameters", fit.freeCount},
+          {"loss", validation::lossName(loss)},
+          {"converged", fit.converged},
+          {"iterations", fit.iterations},
+          {"solver", fit.solverReport},
+          {"parameters", params},
+          {"correlation", {{"names", fit.freeNames}, {"matrix", corr}}},
+          {"warnings", fit.warnings},
+          {"model", modelToJson(fit.model)}};
+}
+
+json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels& noise) {
+  const auto& first = d.stages.front();
+  json j = {{"verdict", first.verdict},
+            {"margin", validation::kBicMargin},
+            {"baseline", stageSummary(first)},
+            {"ranking", rankingJson(first)},
+            {"where", whereJson(first)},
+            {"sigma", comparisonJson(first.baseline.comparison, noise)["sigma"]}};
+  if (d.stages.size() > 1) {
+    json stages = json::array();
+    for (const auto& s : d.stages) {
+      json st = stageSummary(s);
+      st["ranking"] = rankingJson(s);
+      st["where"] = whereJson(s);
+      stages.push_back(std::move(st));
+    }
+    j["stages"] = std::move(stages);
+    j["final"] = {{"effects", d.final().model.effectIds()}, {"chi", d.final().comparison.chi},
+                  {"model", modelToJson(d.final().model)}};
+  }
+  return j;
+}
+
+void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) {
+  const fs::path sidecar(sidecarPath);
+  const fs::path csv = fs::path(sidecar).replace_extension(".csv");
+  json j = {{"format", "vcontact.dataset/1"}, {"name", d.name}, {"data", csv.filename().string()},
+            {"mode", "kinematic"}, {"payload", shapeJson(d.payload, "payload")},
+            {"plate", shapeJson(d.plate, "plate")}, {"outputs", d.outputs},
+            {"notes", d.notes}};
+  if (!d.noise.empty()) j["noise"] = d.noise;
+  std::vector<std::string> names = {"t", "x", "y", "z", "qw", "qx", "qy", "qz",
+                                    "vx", "vy", "vz", "wx", "wy", "wz"};
+  for (const auto& o : d.outputs) names.push_back(o);
+  for (const auto& n : names) {
+    if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
+  }
+  writeJson(j, sidecar.string());
+  std::ofstream out(csv);
+  out.precision(std::numeric_limits<double>::max_digits10);
+  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
+  out << '\n';
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(d.size()); ++i) {
+    for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << d.columns.at(names[c])[i];
+    out << '\n';
+  }
+}
+
+void writeJson(const json& j, const std::string& path) { std::ofstream(path) << j.dump(2) << '\n'; }
+
+}  // namespace vcontact::io

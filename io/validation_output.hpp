@@ -1,0 +1,38 @@
+#pragma once
+// What `vcontact compare | fit | diagnose | synth` write: residual CSVs, fit.json,
+// diagnosis.json, fitted model files and synthetic datasets (DATASET.md format).
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "validation/diagnose.hpp"
+#include "validation/fit.hpp"
+#include "validation/residuals.hpp"
+
+namespace vcontact::io {
+
+/// residuals.csv: t, then per output measured, predicted, residual, residual/σ.
+void writeResidualsCsv(const validation::Dataset& dataset,
+                       const validation::Comparison& comparison, const std::string& path);
+
+/// {"chi", "rms": {output: …}, "sigma": {output: {"value", "source"}}, "samples", "residuals"}
+nlohmann::json comparisonJson(const validation::Comparison& comparison,
+                              const validation::NoiseLevels& noise);
+
+/// fit.json: comparison, BIC, parameters with standard errors, correlations, warnings.
+nlohmann::json fitJson(const validation::FitResult& fit, const validation::NoiseLevels& noise,
+                       validation::Loss loss);
+
+/// diagnosis.json (issue #5): verdict, baseline, ranking, where, and the stages of --iterate.
+nlohmann::json diagnosisJson(const validation::Diagnosis& diagnosis,
+                             const validation::NoiseLevels& noise);
+
+/// Writes NAME.json and NAME.csv (all columns, 17 significant digits).
+/// @throws InputError when the payload or plate is a mesh (only primitives are written)
+void writeDataset(const validation::Dataset& dataset, const std::string& sidecarPath);
+
+/// Writes `j` with two-space indentation and a final newline.
+void writeJson(const nlohmann::json& j, const std::string& path);
+
+}  // namespace vcontact::io

@@ -1,0 +1,46 @@
+// diagnose names the effect hidden from the model, and adding it explains the data (issue #5).
+
+#include <gtest/gtest.h>
+
+#include "validation/diagnose.hpp"
+#include "validation/effect_cases.hpp"
+
+namespace vcontact::validation {
+namespace {
+
+// The acceptance bounds of issue #5.
+constexpr double kChiAfterAdding = 1.2;
+constexpr double kStdErrors = 3.0;
+
+class HiddenEffect : public ::testing::TestWithParam<test::EffectCase> {};
+
+TEST_P(HiddenEffect, DiagnoseNamesItAndTheRefitExplainsTheData) {
+  const test::EffectCase& c = GetParam();
+  const dynamics::Model truth = test::trueModel(c.truth);
+  const Dataset d = test::syntheticDataset(c.profile, c.samples, truth, 7);
+  const Diagnosis result = diagnose(d, noiseLevels(d), test::startModel(c.truth, c.effect));
+  const DiagnosisStage& s = result.stages.front();
+  ASSERT_FALSE(s.ranking.empty());
+  for (const auto& cand : s.ranking) {
+    std::cout << "  " << cand.effect << " chi " << cand.fit.comparison.chi << " dBIC "
+              << cand.deltaBic << ' ' << cand.error << '\n';
+  }
+  std::cout << c.effect << ": baseline chi " << s.baseline.comparison.chi << ", verdict "
+            << s.verdict << '\n';
+  ASSERT_EQ(s.verdict, c.effect);
+  const FitResult& added = s.ranking.front().fit;
+  EXPECT_LE(added.comparison.chi, kChiAfterAdding);
+  for (const auto& p : added.parameters) {
+    std::cout << "  " << p.name << " = " << p.value << " ± " << p.stdError << " (true "
+              << test::trueParameters().at(p.name) << ")\n";
+    if (p.fixed || !p.identifiable) continue;
+    EXPECT_LE(std::abs(p.value - test::trueParameters().at(p.name)), kStdErrors * p.stdError)
+        << p.name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryEffect, HiddenEffect, ::testing::ValuesIn(test::effectCases()),
+                         [](const auto& info) { return info.param.effect; });
+
+}  // namespace
+}  // namespace vcontact::validation

@@ -1,0 +1,264 @@
+#include "validation/diagnose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include <tbb/parallel_for.h>
+
+#include "dynamics/effects/registry.hpp"
+
+namespace vcontact::validation {
+namespace {
+
+using dynamics::Model;
+
+// A sample fails when the chi of the window around it exceeds 3: for a model that explains
+// the data the window's mean (r/σ)² is 1 ± sqrt(2/m), so 9 is far out for any m ≥ 5.
+constexpr double kWindowChi = 3.0;
+// Window of the moving chi: long enough to average the noise, short enough to resolve an
+// impact or a restart; 1 % of the record, at least 5 samples.
+constexpr std::size_t kMinWindowSamples = 5;
+constexpr double kWindowFraction = 0.01;
+// Windows reported, worst (largest excess χ²) first.
+constexpr std::size_t kMaxWindows = 8;
+
+// Every effect `id` needs that `model` lacks, `id` first (MODEL.md §3 requirements).
+void closure(const Model& model, const std::string& id, std::vector<std::string>& out) {
+  if (model.has(id) || std::find(out.begin(), out.end(), id) != out.end()) return;
+  out.push_back(id);
+  for (auto req : dynamics::createEffect(id)->requiredEffects()) closure(model, std::string(req), out);
+}
+
+std::vector<Candidate> candidatesFor(const Model& model) {
+  std::vector<Candidate> candidates;
+  for (const auto& id : dynamics::registeredEffectIds()) {
+    if (model.has(id)) continue;
+    Candidate c;
+    c.effect = id;
+    closure(model, id, c.added);
+    candidates.push_back(std::move(c));
+  }
+  return candidates;
+}
+
+// The candidate's model: the baseline's fitted values, the new effects at their defaults.
+// Relations between parameters (μ_S ≥ μ_C) are not enforced at the start: the fit moves
+// them, and fit() reports a relation the fitted values break.
+Model candidateModel(const Model& baseline, const Candidate& c) {
+  Model m = baseline;
+  for (const auto& id : c.added) m.add(dynamics::createEffect(id));
+  m.setFixed(baseline.fixed());
+  return m;
+}
+
+void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model& baseline,
+                   const FitOptions& options, std::vector<Candidate>& candidates) {
+  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+    Candidate& c = candidates[i];
+    try {
+      Replayer replayer(dataset);
+      c.fit = fit(replayer, noise, candidateModel(baseline, c), options);
+    } catch (const std::exception& e) {
+      c.error = e.what();
+    }
+  });
+}
+
+bool properSubset(const std::vector<std::string>& a, const std::vector<std::string>& b) {
+  if (a.size() >= b.size()) return false;
+  return std::all_of(a.begin(), a.end(),
+                     [&](const auto& x) { return std::find(b.begin(), b.end(), x) != b.end(); });
+}
+
+void rank(std::vector<Candidate>& candidates, double baselineBic, double margin) {
+  for (auto& c : candidates) c.deltaBic = c.error.empty() ? c.fit.bic - baselineBic : 0.0;
+  for (auto& c : candidates) {
+    for (const auto& other : candidates) {
+      if (!c.error.empty() || !other.error.empty() || !properSubset(other.added, c.added)) continue;
+      if (c.fit.comparison.chi2 > other.fit.comparison.chi2 - margin) c.redundantWith = other.effect;
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.error.empty() != b.error.empty()) return a.error.empty();
+    if (a.redundantWith.empty() != b.redundantWith.empty()) return a.redundantWith.empty();
+    return a.deltaBic < b.deltaBic;
+  });
+}
+
+// ---- where ------------------------------------------------------------------------------
+
+struct RegimeVariable {
+  const char* name;
+  const char* unit;
+  const char* high;  // what a window far above the record's median means physically
+  const char* low;
+  std::function<double(const RegimeSample&)> get;
+};
+
+const std::vector<RegimeVariable>& regimeVariables() {
+  static const std::vector<RegimeVariable> v = {
+      {"sliding speed |v_t|", "m/s", "fast sliding", "sticking or slow sliding",
+       [](const RegimeSample& r) { return r.speed; }},
+      {"spin ratio r_gyr|ω_n|/|v_t|", "", "spin-dominated sliding", "translation-dominated sliding",
+       [](const RegimeSample& r) { return r.spin_ratio; }},
+      {"time at rest", "s", "restart after a long stop", "moving",
+       [](const RegimeSample& r) { return r.time_at_rest; }},
+      {"penetration rate δ̇_c", "m/s", "fast approach (impact)", "separating",
+       [](const RegimeSample& r) { return r.penetration_rate; }},
+      {"normal load f_n", "N", "high load", "light load or no contact",
+       [](const RegimeSample& r) { return r.load; }},
+  };
+  return v;
+}
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+std::string format3(double v) {
+  std::ostringstream s;
+  s.precision(3);
+  s << v;
+  return s.str();
+}
+
+// The regime variable in which the window [a, b] is most unlike the whole record.
+std::string describeRegime(const std::vector<RegimeSample>& regime, std::size_t a, std::size_t b) {
+  double best = 0.0;
+  std::string text = "throughout the record (no regime variable singles the window out)";
+  for (const auto& var : regimeVariables()) {
+    std::vector<double> in;
+    for (std::size_t i = a; i <= b; ++i) in.push_back(var.get(regime[i]));
+    const double m = quantile(in, 0.5);
+    double below = 0.0, equal = 0.0;
+    for (const auto& r : regime) {
+      const double x = var.get(r);
+      below += x < m;
+      equal += x == m;
+    }
+    const double q = (below + 0.5 * equal) / static_cast<double>(regime.size());  // mid-rank
+    if (std::abs(q - 0.5) <= best) continue;
+    best = std::abs(q - 0.5);
+    std::ostringstream s;
+    const bool high = q > 0.5;
+    s << var.name << (high ? " > " : " < ") << format3(quantile(in, high ? 0.1 : 0.9));
+    if (*var.unit) s << ' ' << var.unit;
+    s << " (" << (high ? var.high : var.low) << ")";
+    text = s.str();
+  }
+  return text;
+}
+
+void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
+               std::vector<std::pair<double, FailureWindow>>& out) {
+  const auto n = static_cast<std::size_t>(r.residual.size());
+  const std::size_t half = std::max(kMinWindowSamples,
+                                    static_cast<std::size_t>(kWindowFraction * static_cast<double>(n))) / 2;
+  const Eigen::VectorXd e2 = (r.residual / r.sigma).array().square();
+  std::vector<double> cum(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) cum[i + 1] = cum[i] + e2[static_cast<Eigen::Index>(i)];
+  auto meanOver = [&](std::size_t a, std::size_t b) {  // inclusive
+    return (cum[b + 1] - cum[a]) / static_cast<double>(b - a + 1);
+  };
+  std::vector<bool> failing(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = i >= half ? i - half : 0, b = std::min(n - 1, i + half);
+    failing[i] = meanOver(a, b) > kWindowChi * kWindowChi;
+  }
+  for (std::size_t i = 0; i < n;) {
+    if (!failing[i]) { ++i; continue; }
+    std::size_t j = i;
+    while (j + 1 < n && failing[j + 1]) ++j;
+    FailureWindow w{r.output, d.samples[i].t, d.samples[j].t, std::sqrt(meanOver(i, j)),
+                    describeRegime(p.regime, i, j)};
+    const double excess = cum[j + 1] - cum[i] - static_cast<double>(j - i + 1);
+    out.emplace_back(excess, std::move(w));
+    i = j + 1;
+  }
+}
+
+DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
+                             const DiagnoseOptions& options) {
+  DiagnosisStage stage;
+  stage.effects = start.effectIds();
+  Replayer replayer(dataset);
+  stage.baseline = fit(replayer, noise, start, options.fit);
+  stage.where = failureWindows(dataset, stage.baseline.comparison, stage.baseline.prediction);
+  stage.ranking = candidatesFor(stage.baseline.model);
+  fitCandidates(dataset, noise, stage.baseline.model, options.fit, stage.ranking);
+  rank(stage.ranking, stage.baseline.bic, options.margin);
+  const bool found = !stage.ranking.empty() && stage.ranking.front().error.empty() &&
+                     stage.ranking.front().redundantWith.empty() &&
+                     stage.ranking.front().deltaBic < -options.margin;
+  stage.verdict = found ? stage.ranking.front().effect : "none";
+  return stage;
+}
+
+// `model` without effect `id`, or nothing when another effect of it requires `id`.
+std::optional<Model> without(const Model& model, const std::string& id) {
+  Model m;
+  m.settings = model.settings;
+  for (std::size_t i = 0; i < model.effectCount(); ++i) {
+    const auto& e = model.effect(i);
+    if (e.id() == id) continue;
+    const auto req = e.requiredEffects();
+    if (std::find(req.begin(), req.end(), id) != req.end()) return std::nullopt;
+    m.add(e.clone());
+  }
+  std::vector<std::string> fixed;
+  const auto names = m.parameterNames();
+  for (const auto& f : model.fixed()) {
+    if (std::find(names.begin(), names.end(), f) != names.end()) fixed.push_back(f);
+  }
+  m.setFixed(fixed);
+  return m;
+}
+
+// Backward elimination over the effects the iteration added (see the header).
+void prune(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOptions& options,
+           Diagnosis& d) {
+  std::vector<std::string> added;
+  for (std::size_t i = 0; i + 1 < d.stages.size(); ++i) added.push_back(d.stages[i].verdict);
+  if (added.size() < 2) return;
+  for (const auto& id : added) {
+    const FitResult& current = d.final();
+    const auto reduced = without(current.model, id);
+    if (!reduced) continue;
+    Replayer replayer(dataset);
+    const FitResult refit = fit(replayer, noise, *reduced, options.fit);
+    if (refit.bic >= current.bic + options.margin) continue;
+    DiagnosisStage stage = diagnoseStage(dataset, noise, *reduced, options);
+    stage.removed = id;
+    d.stages.push_back(std::move(stage));
+  }
+}
+
+}  // namespace
+
+std::vector<FailureWindow> failureWindows(const Dataset& dataset, const Comparison& comparison,
+                                          const Prediction& prediction) {
+  std::vector<std::pair<double, FailureWindow>> all;
+  for (const auto& r : comparison.outputs) windowsOf(dataset, r, prediction, all);
+  std::stable_sort(all.begin(), all.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<FailureWindow> out;
+  for (std::size_t i = 0; i < std::min(all.size(), kMaxWindows); ++i) out.push_back(all[i].second);
+  return out;
+}
+
+Diagnosis diagnose(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
+                   const DiagnoseOptions& options) {
+  Diagnosis d;
+  d.stages.push_back(diagnoseStage(dataset, noise, start, options));
+  while (options.iterate && d.stages.back().verdict != "none") {
+    const Candidate& best = d.stages.back().ranking.front();
+    d.stages.push_back(diagnoseStage(dataset, noise, best.fit.model, options));
+  }
+  if (options.iterate) prune(dataset, noise, options, d);
+  return d;
+}
+
+}  // namespace vcontact::validation

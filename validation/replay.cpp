@@ -1,0 +1,202 @@
+#include "validation/replay.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <variant>
+
+#include "volume/contact.hpp"
+
+namespace vcontact::validation {
+namespace {
+
+using dynamics::Model;
+using dynamics::PairState;
+
+// Relative size of the state perturbation that measures ∂ẋ/∂x. The rates are affine in the
+// states (see the header), so the difference quotient is exact up to round-off; 1e-3 keeps
+// the difference far above it.
+constexpr double kStatePerturbation = 1e-3;
+// Floor of the perturbation for a state at zero: far below any bristle deflection (m) or
+// angle (rad) a rig resolves, far above round-off.
+constexpr double kStatePerturbationFloor = 1e-12;
+
+// φ(a) = (e^a − 1)/a, with φ(0) = 1.
+double phi(double a) { return std::abs(a) < 1e-12 ? 1.0 + 0.5 * a : std::expm1(a) / a; }
+
+// Geometry key: ids and parameters of the effects that act before the geometry.
+std::vector<double> geometryKey(const Model& model) {
+  std::vector<double> key;
+  for (std::size_t i = 0; i < model.effectCount(); ++i) {
+    const auto& e = model.effect(i);
+    if (e.stage() != dynamics::Stage::kGeometryOnly) continue;
+    key.push_back(static_cast<double>(std::hash<std::string_view>{}(e.id())));
+    for (double p : e.parameters()) key.push_back(p);
+  }
+  return key;
+}
+
+// The contact of a body with the half-space z ≤ 0 depends only on the plane in body
+// coordinates: its normal b = R_PBᵀ e_z and the origin height z. Poses that differ by a
+// rotation about e_z and an in-plane translation (sliding, spinning) share one volume,
+// computed once at a canonical pose and carried over by the in-plane rigid motion
+// T = X_PB' X_c⁻¹. Symmetric payloads reduce b further: a sphere ignores its orientation, a
+// cylinder its rotation S = Rz(φ) about its own axis (X_PB' = X_PB S turns b into
+// (|b_xy|, 0, b_z)). The key is rounded to kKeyResolution so that poses equal up to
+// round-off share the entry; the canonical pose is built from the rounded key.
+class HalfspaceVolumes {
+ public:
+  volume::ContactVolume at(const geometry::Shape& payload, const Eigen::Isometry3d& X_PB) {
+    const Eigen::Isometry3d X = symmetryReduced(payload, X_PB);
+    const Eigen::Vector3d b = X.linear().transpose().col(2);
+    const std::array<double, 4> key = {rounded(b.x()), rounded(b.y()), rounded(b.z()),
+                                       X.translation().z()};
+    Eigen::Isometry3d X_c = Eigen::Isometry3d::Identity();
+    X_c.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(key[0], key[1], key[2]),
+                                                      Eigen::Vector3d::UnitZ())
+                       .toRotationMatrix();
+    X_c.translation().z() = key[3];
+    auto it = cache_.find(key);
+    if (it == cache_.end()) {
+      const geometry::Shape halfspace = geometry::HalfSpace{};
+      it = cache_.emplace(key, volume::computeContact(payload, X_c, halfspace,
+                                                      Eigen::Isometry3d::Identity())).first;
+    }
+    return moved(it->second, X * X_c.inverse());
+  }
+
+ private:
+  // Plane-normal resolution of the key: a tilt of 1e-15 rad moves a 10 mm part by 1e-17 m,
+  // far below any penetration a rig measures.
+  static constexpr double kKeyResolution = 1e-15;
+  static double rounded(double x) { return std::round(x / kKeyResolution) * kKeyResolution; }
+
+  static Eigen::Isometry3d symmetryReduced(const geometry::Shape& payload, Eigen::Isometry3d X) {
+    if (std::holds_alternative<geometry::Sphere>(payload)) {
+      X.linear().setIdentity();
+    } else if (std::holds_alternative<geometry::Cylinder>(payload)) {
+      const Eigen::Vector3d b = X.linear().transpose().col(2);
+      X.linear() = X.linear() * Eigen::AngleAxisd(std::atan2(b.y(), b.x()), Eigen::Vector3d::UnitZ());
+    }
+    return X;
+  }
+
+ private:
+  static volume::ContactVolume moved(volume::ContactVolume cv, const Eigen::Isometry3d& T) {
+    if (!cv.inContact()) return cv;
+    const Eigen::Matrix3d R = T.linear();
+    cv.centroid = T * cv.centroid;
+    cv.normal = R * cv.normal;
+    cv.J_v = R * cv.J_v * R.transpose();
+    cv.J_s = R * cv.J_s * R.transpose();
+    return cv;
+  }
+
+  std::map<std::array<double, 4>, volume::ContactVolume> cache_;
+};
+
+SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& model,
+                              HalfspaceVolumes& halfspace) {
+  const Eigen::Isometry3d X_PP = Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d X_PB = model.adjustPayloadPose(s.X_PB, X_PP);
+  SampleGeometry g;
+  g.cv = std::holds_alternative<geometry::HalfSpace>(d.plate)
+             ? halfspace.at(d.payload, X_PB)
+             : volume::computeContact(d.payload, X_PB, d.plate, X_PP);
+  if (!g.cv.inContact()) return g;
+  g.p_BoC_P = g.cv.centroid - X_PB.translation();
+  // v_c = v_PBo + w_PB × p_BoC (MODEL.md §2; the plate does not move).
+  g.motion.v_c_W = s.v_PB + s.w_PB.cross(g.p_BoC_P);
+  g.motion.w_W = s.w_PB;
+  return g;
+}
+
+RegimeSample regimeOf(const SampleGeometry& g, double load, double v_eps) {
+  RegimeSample r;
+  r.load = load;
+  if (!g.cv.inContact()) return r;
+  const Eigen::Vector3d& n = g.cv.normal;
+  const Eigen::Vector3d v = g.motion.v_c_W;
+  const Eigen::Vector3d v_t = v - v.dot(n) * n;
+  r.speed = v_t.norm();
+  r.spin_ratio = g.cv.r_gyr * std::abs(g.motion.w_W.dot(n)) / std::max(r.speed, v_eps);
+  r.penetration_rate = -v.dot(n);
+  return r;
+}
+
+// One exponential Euler step of the pair state over dt (see the header).
+void advance(const Model& model, const SampleGeometry& g, const dynamics::ContactResult& at,
+             double dt, PairState& state) {
+  double x[PairState::kSize], rate[PairState::kSize];
+  state.pack(x);
+  at.rates.pack(rate);
+  if (std::all_of(rate, rate + PairState::kSize, [](double r) { return r == 0.0; })) return;
+  double h[PairState::kSize], xp[PairState::kSize];
+  for (int j = 0; j < PairState::kSize; ++j) {
+    h[j] = kStatePerturbation * std::max(std::abs(x[j]), kStatePerturbationFloor);
+    xp[j] = x[j] - h[j];
+  }
+  double ratep[PairState::kSize];
+  model.evaluate(g.cv, g.motion, PairState::unpack(xp)).rates.pack(ratep);
+  for (int j = 0; j < PairState::kSize; ++j) {
+    const double d = std::min(0.0, (rate[j] - ratep[j]) / h[j]);  // decay rate, 1/s
+    x[j] += rate[j] * phi(d * dt) * dt;
+  }
+  state = PairState::unpack(x);
+}
+
+}  // namespace
+
+int wrenchIndex(const std::string& output) {
+  const auto it = std::find(kWrenchColumns.begin(), kWrenchColumns.end(), output);
+  return static_cast<int>(it - kWrenchColumns.begin());
+}
+
+Eigen::VectorXd Prediction::column(const std::string& output) const {
+  return wrench.col(wrenchIndex(output));
+}
+
+Replayer::Replayer(const Dataset& dataset) : dataset_(dataset) {}
+
+const std::vector<SampleGeometry>& Replayer::geometryFor(const Model& model) {
+  std::vector<double> key = geometryKey(model);
+  if (cached_ && key == cachedKey_) return geometry_;
+  geometry_.clear();
+  geometry_.reserve(dataset_.size());
+  HalfspaceVolumes halfspace;
+  for (const auto& s : dataset_.samples) {
+    geometry_.push_back(sampleGeometry(dataset_, s, model, halfspace));
+  }
+  cachedKey_ = std::move(key);
+  cached_ = true;
+  return geometry_;
+}
+
+Prediction Replayer::run(const Model& model) {
+  const auto& geometry = geometryFor(model);
+  const auto& samples = dataset_.samples;
+  const std::size_t n = samples.size();
+  Prediction p;
+  p.wrench.setZero(static_cast<Eigen::Index>(n), 6);
+  p.regime.resize(n);
+  PairState state;
+  double restSince = samples.front().t;
+  for (std::size_t i = 0; i < n; ++i) {
+    const SampleGeometry& g = geometry[i];
+    model.settle(g.cv, g.motion, state);  // projection, dwell jump, reset out of contact
+    const dynamics::ContactResult r = model.evaluate(g.cv, g.motion, state);
+    const Eigen::Vector3d tau_Bo = r.wrench.tau_W + g.p_BoC_P.cross(r.wrench.f_W);
+    p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Bo.transpose();
+    p.regime[i] = regimeOf(g, r.f_n, model.settings.v_eps);
+    const double spin = g.cv.r_gyr * std::abs(g.motion.w_W.dot(g.cv.normal));
+    if (std::hypot(p.regime[i].speed, spin) >= kRestSpeed || !g.cv.inContact()) {
+      restSince = samples[i].t;
+    }
+    p.regime[i].time_at_rest = samples[i].t - restSince;
+    if (i + 1 < n) advance(model, g, r, samples[i + 1].t - samples[i].t, state);
+  }
+  return p;
+}
+
+}  // namespace vcontact::validation

@@ -1,0 +1,87 @@
+#pragma once
+// Kinematic replay of a rig record through a contact model (DATASET.md "mode": kinematic).
+//
+// Frames: P is the plate frame (the plate is B2, placed at the identity, so P is the world
+// frame W of MODEL.md), B the payload frame (B1). For every sample the replay
+//   1. places the payload at X_PB (after the model's geometry-only effects, misalignment),
+//   2. computes the ContactVolume with the plate (analytic where the pair allows),
+//   3. forms the relative motion at the centroid, v_c = v_PB + w_PB × (p_c − p_PBo) (MODEL.md §2),
+//   4. evaluates the model with the friction states integrated along the record,
+//   5. moves the wrench from p_c to the payload origin Bo: τ_Bo = τ_c + (p_c − p_PBo) × f.
+//
+// Friction states (bristle z, θ_n, dwell s_dw) are integrated from sample i to i+1 with the
+// exponential Euler method on the kinematics of sample i:
+//   x_{i+1} = x_i + ẋ_i φ(d Δt) Δt,   φ(a) = (e^a − 1)/a,   d = ∂ẋ/∂x (diagonal).
+// MODEL.md's state equations are affine and uncoupled per component for frozen kinematics
+// (ż = b − (1 − s)(σ0/σ1) z, θ̇ likewise, ṡ_dw = (s − s_dw)/τ_dw), so this step is their exact
+// solution over the interval, stable for any σ0/σ1 and τ_dw however stiff; d is measured
+// through Model::evaluate (one extra evaluation), so the replay needs no effect internals.
+// After each step Model::settle applies the discrete updates (projection, dwell jump, reset
+// when contact is lost). The first sample starts from the zero state.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynamics/model.hpp"
+#include "validation/dataset.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::validation {
+
+/// Geometry and relative motion of one sample, for one payload pose adjustment.
+struct SampleGeometry {
+  volume::ContactVolume cv;
+  dynamics::RelativeMotion motion;
+  Eigen::Vector3d p_BoC_P = Eigen::Vector3d::Zero();  ///< payload origin → centroid, m
+};
+
+/// The physical regime of one sample: what `where` windows are described by.
+struct RegimeSample {
+  double speed = 0.0;             ///< sliding speed |v_t|, m/s
+  double spin_ratio = 0.0;        ///< r_gyr |ω_n| / max(|v_t|, v_ε), –
+  double time_at_rest = 0.0;      ///< time since v_avg fell below kRestSpeed, s
+  double penetration_rate = 0.0;  ///< δ̇_c, m/s
+  double load = 0.0;              ///< f_n, N
+};
+
+/// Below this sliding-plus-spin speed a sample counts as "at rest": a tenth of the smallest
+/// stick–slip speed v_s a rig resolves (1e-4 m/s against the default v_s = 1e-3 m/s).
+inline constexpr double kRestSpeed = 1e-4;  // m/s
+
+struct Prediction {
+  /// n × 6, columns in kWrenchColumns order: force on the payload by the plate (N) and torque
+  /// about the payload origin (N·m), both in P.
+  Eigen::MatrixXd wrench;
+  std::vector<RegimeSample> regime;
+  /// The predicted column named `output` ("fx" … "tz").
+  Eigen::VectorXd column(const std::string& output) const;
+};
+
+/// Index of a wrench column name in kWrenchColumns. @pre it is one of them
+int wrenchIndex(const std::string& output);
+
+/// Replays one dataset through many models (a fit evaluates thousands): the geometry of every
+/// sample is computed once per value of the model's geometry-only parameters and cached.
+/// Not thread-safe; use one Replayer per thread.
+class Replayer {
+ public:
+  /// @pre dataset outlives the replayer
+  explicit Replayer(const Dataset& dataset);
+
+  /// @throws InputError when no volume method handles the payload/plate pair
+  Prediction run(const dynamics::Model& model);
+
+  const Dataset& dataset() const { return dataset_; }
+
+ private:
+  const std::vector<SampleGeometry>& geometryFor(const dynamics::Model& model);
+
+  const Dataset& dataset_;
+  std::vector<double> cachedKey_;
+  bool cached_ = false;
+  std::vector<SampleGeometry> geometry_;
+};
+
+}  // namespace vcontact::validation
