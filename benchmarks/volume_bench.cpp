@@ -3,6 +3,7 @@
 //
 // Cases: a UV sphere of radius 10 mm at 1k, 10k and 100k triangles,
 //   *_shallow: against a half-space, lowest vertex 0.1 mm (d/R = 0.01) under the plane;
+//   *_deep: the same at 3 mm (d/R = 0.3), where whole subtrees lie below the plane;
 //   sphere_pair_*: two such spheres, centres 19.8 mm apart (0.2 mm overlap along the line).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
 // the half-space modelled as a box), columns (column integration to 1e-3).
@@ -71,11 +72,12 @@ void run(benchmark::State& state, const Query& q, const MeshBvh& m) {
   report(state, cv, m);
 }
 
-void registerHalfspace(const std::string& size, int triangles) {
-  const std::string name = "volume/sphere_" + size + "_shallow/";
-  auto setup = [triangles] {
+void registerHalfspace(const std::string& size, int triangles, const std::string& depthName,
+                       double relDepth) {
+  const std::string name = "volume/sphere_" + size + "_" + depthName + "/";
+  auto setup = [triangles, relDepth] {
     const MeshBvh& m = sphere(triangles);
-    return std::pair<const MeshBvh*, Isometry3d>(&m, poseAtDepth(m, 0.01 * kRadius));
+    return std::pair<const MeshBvh*, Isometry3d>(&m, poseAtDepth(m, relDepth * kRadius));
   };
   const Isometry3d H = Isometry3d::Identity();
   benchmark::RegisterBenchmark((name + "halfspace").c_str(), [=](benchmark::State& s) {
@@ -132,7 +134,8 @@ void registerPair(const std::string& size, int triangles, bool withCgal) {
 
 int main(int argc, char** argv) {
   for (const auto& [size, triangles] : {std::pair{"1k", 1000}, {"10k", 10000}, {"100k", 100000}}) {
-    registerHalfspace(size, triangles);
+    registerHalfspace(size, triangles, "shallow", 0.01);
+    registerHalfspace(size, triangles, "deep", 0.3);
     registerPair(size, triangles, triangles <= 10000);
   }
   benchmark::Initialize(&argc, argv);

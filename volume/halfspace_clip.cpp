@@ -135,7 +135,12 @@ class BvhClip {
 
   /// Branch and bound for the lowest vertex; returns the best z so far.
   double deepestZ(const BvhNode& node, double best) {
-    if (zRange(node).lo >= best) return best;
+    return deepestZ(node, zRange(node).lo, best);
+  }
+
+  /// The same with the node's lower bound `lo` already known (each bound computed once).
+  double deepestZ(const BvhNode& node, double lo, double best) {
+    if (lo >= best) return best;
     if (node.isLeaf()) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -150,9 +155,9 @@ class BvhClip {
     }
     const BvhNode& l = bvh_.nodes()[node.left];
     const BvhNode& r = bvh_.nodes()[node.right];
-    const bool leftFirst = zRange(l).lo <= zRange(r).lo;
-    best = deepestZ(leftFirst ? l : r, best);
-    return deepestZ(leftFirst ? r : l, best);
+    const double loL = zRange(l).lo, loR = zRange(r).lo;
+    if (loL <= loR) return deepestZ(r, loR, deepestZ(l, loL, best));
+    return deepestZ(l, loL, deepestZ(r, loR, best));
   }
 
   /// Sorts the tree into subtrees wholly below the plane and leaves that straddle it;
