@@ -1,5 +1,7 @@
 // diagnose names the effect hidden from the model, and adding it explains the data (issue #5).
 
+#include <set>
+
 #include <gtest/gtest.h>
 
 #include "validation/diagnose.hpp"
@@ -37,6 +39,35 @@ TEST_P(HiddenEffect, DiagnoseNamesItAndTheRefitExplainsTheData) {
     EXPECT_LE(std::abs(p.value - test::trueParameters().at(p.name)), kStdErrors * p.stdError)
         << p.name;
   }
+}
+
+// A model that holds every effect of the data is not "improved", over several noise seeds.
+TEST(Diagnose, NullCasesGiveNone) {
+  const std::vector<std::string> effects = {"stiffness", "coulomb", "viscous"};
+  const dynamics::Model truth = test::trueModel(effects);
+  for (unsigned seed : {11u, 12u, 13u}) {
+    const Dataset d = test::syntheticDataset("drive", 300, truth, seed);
+    const Diagnosis result = diagnose(d, noiseLevels(d), test::startModel(effects, ""));
+    const DiagnosisStage& s = result.stages.front();
+    EXPECT_EQ(s.verdict, "none") << "seed " << seed << ": best " << s.ranking.front().effect
+                                 << " delta BIC " << s.ranking.front().deltaBic;
+    EXPECT_LE(s.baseline.comparison.chi, kChiAfterAdding);
+  }
+}
+
+// Two effects hidden at once: --iterate finds both, in some order, and ends explained.
+TEST(Diagnose, IterateFindsTwoHiddenEffects) {
+  const std::vector<std::string> effects = {"stiffness", "coulomb", "spin", "contensou"};
+  const Dataset d = test::syntheticDataset("slide-spin", 300, test::trueModel(effects), 5);
+  DiagnoseOptions options;
+  options.iterate = true;
+  const Diagnosis result =
+      diagnose(d, noiseLevels(d), test::startModel({"stiffness", "coulomb"}, ""), options);
+  const auto final = result.final().model.effectIds();
+  EXPECT_EQ(std::set<std::string>(final.begin(), final.end()),
+            std::set<std::string>(effects.begin(), effects.end()));
+  EXPECT_LE(result.final().comparison.chi, kChiAfterAdding);
+  EXPECT_EQ(result.stages.back().verdict, "none");
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryEffect, HiddenEffect, ::testing::ValuesIn(test::effectCases()),
