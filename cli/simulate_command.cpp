@@ -74,6 +74,7 @@ void runSimulate(const SimulateOptions& o) {
     sim.run([&](const dynamics::Snapshot& s) { writer.write(s); },
             [&](double t) { progress(t); }, summary);
   } catch (const dynamics::SimulationError& e) {
+    writer.flush();
     progress.done();
     writeSummary(o.out, summary, e.what());
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()

@@ -32,7 +32,8 @@ void checkValue(const std::string& name, const ParameterSpec& spec, double value
 
 }  // namespace
 
-Model::Model(const Model& other) : settings(other.settings), fixed_(other.fixed_) {
+Model::Model(const Model& other)
+    : settings(other.settings), fixed_(other.fixed_), adjusts_pose_(other.adjusts_pose_) {
   for (const auto& e : other.effects_) effects_.push_back(e->clone());
 }
 
@@ -59,6 +60,7 @@ void Model::add(std::unique_ptr<Effect> effect) {
   const auto after = std::upper_bound(
       effects_.begin(), effects_.end(), effect->stage(),
       [](Stage s, const std::unique_ptr<Effect>& e) { return s < e->stage(); });
+  adjusts_pose_ = adjusts_pose_ || effect->stage() == Stage::kGeometryOnly;
   effects_.insert(after, std::move(effect));
 }
 
@@ -160,6 +162,7 @@ void Model::setFixed(std::vector<std::string> names) {
 Eigen::Isometry3d Model::adjustPayloadPose(const Eigen::Isometry3d& X_W1,
                                            const Eigen::Isometry3d& X_W2) const {
   Eigen::Isometry3d X = X_W1;
+  if (!adjusts_pose_) return X;
   for (const auto& e : effects_) X = e->adjustPayloadPose(X, X_W2);
   return X;
 }

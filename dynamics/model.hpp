@@ -94,6 +94,7 @@ class Model {
 
   std::vector<std::unique_ptr<Effect>> effects_;
   std::vector<std::string> fixed_;
+  bool adjusts_pose_ = false;  ///< some effect acts on the payload pose (Stage::kGeometryOnly)
 };
 
 }  // namespace vcontact::dynamics

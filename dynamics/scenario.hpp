@@ -28,7 +28,7 @@ struct SimulationSettings {
   double initial_step = 1e-6;     ///< s
   double max_step = 1e-3;         ///< s, so that no contact is stepped over in free flight
   double min_step = 1e-13;        ///< s; a step-size collapse below this stops the run
-  /// Stop when a penetration depth exceeds this fraction of the smaller body's size.
+  /// Stop when a pair's mean penetration V/A exceeds this fraction of the smaller body's size.
   double max_penetration_fraction = 0.1;
 };
 

@@ -30,6 +30,14 @@ Eigen::Quaterniond quaternionAt(const double* q) {
   return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
 }
 
+// The penetration the run is stopped on: the mean depth V/A over the contact area. The
+// deepest point (cv.depth) is not used: where several separate regions touch, the methods
+// report the extent of all of them along n, which is no penetration.
+double meanPenetration(const volume::ContactVolume& cv) {
+  if (!cv.inContact()) return 0.0;
+  return cv.area > 0.0 ? cv.volume / cv.area : cv.depth;
+}
+
 void checkBody(const RigidBody& b) {
   if (b.motion != BodyMotion::kFree) return;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(b.I_BBcm_B);
@@ -202,10 +210,10 @@ void Simulator::check(const State& x, double t) const {
     const ContactPair& pair = scenario_.pairs[k];
     const double size = std::min(size_[pair.a], size_[pair.b]);
     const double limit = scenario_.settings.max_penetration_fraction * size;
-    const double depth = last_pairs_[k].cv.depth;
+    const double depth = meanPenetration(last_pairs_[k].cv);
     if (!std::isfinite(depth) || depth > limit) {
       std::ostringstream s;
-      s << where(t) << ", pair '" << pair.name << "': penetration depth " << depth
+      s << where(t) << ", pair '" << pair.name << "': mean penetration V/A " << depth
         << " m exceeds " << scenario_.settings.max_penetration_fraction
         << " of the smaller body's size (" << size << " m); the contact is too soft or the "
         << "bodies passed through each other";

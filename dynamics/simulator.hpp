@@ -7,7 +7,7 @@
 // (Model::settle: z projected onto the contact plane, reset on loss of contact, dwell jumps).
 // Steps are shortened to land on output times, so outputs are exact states, not
 // interpolations. The run stops with a SimulationError naming time, pair or body and the
-// quantity on: a non-finite state, a penetration deeper than a set fraction of a body, or a
+// quantity on: a non-finite state, a mean penetration V/A beyond a set fraction of a body, or a
 // step size below the minimum.
 
 #include <functional>

@@ -19,8 +19,10 @@ class SimulationCsvWriter {
   SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                       const OutputSelection& outputs);
 
-  /// Appends one row per body and per pair, flushed so a stopped run keeps its rows.
+  /// Appends one row per body and per pair (buffered; flushed by flush() and on destruction,
+  /// so a run that stops with an error keeps its rows).
   void write(const dynamics::Snapshot& snapshot);
+  void flush();
 
   /// The files written, for the summary.
   const std::vector<std::string>& files() const { return files_; }
