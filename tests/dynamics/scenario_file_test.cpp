@@ -1,0 +1,108 @@
+// Scenario files (dynamics/SCENARIO.md): the bundled scenarios read; bad input names the file,
+// the place and what was expected; a failing run stops with time, pair and quantity and keeps
+// the output up to the stop.
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "dynamics/simulator.hpp"
+#include "geometry/error.hpp"
+#include "io/scenario_file.hpp"
+
+namespace vcontact::io {
+namespace {
+
+const std::string kScenarios = std::string(VCONTACT_ASSETS_DIR) + "/scenarios";
+
+nlohmann::json ballOnPlate() {
+  return nlohmann::json::parse(R"({
+    "format": "vcontact.scenario/1", "duration": 0.01, "output_rate": 1000,
+    "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
+               {"name": "ball", "shape": "sphere:0.01", "density": 7900, "pose": "0,0,0.0105"}],
+    "pairs": [{"a": "ball", "b": "plate",
+               "model": {"format": "vcontact.model/1", "effects": {"stiffness": {"kv": 1e12}}}}]})");
+}
+
+std::string errorOf(const nlohmann::json& j) {
+  try {
+    scenarioFromJson(j, "s.json", kScenarios);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScenarioFile, BundledScenariosRead) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name.find(".model.") != std::string::npos) continue;
+    const ScenarioFile f = readScenarioFile(entry.path().string());
+    EXPECT_FALSE(f.scenario.pairs.empty()) << name;
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+}
+
+TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
+  struct Case {
+    const char* pointer;
+    nlohmann::json value;
+    const char* fragment;
+  };
+  const std::vector<Case> cases = {
+      {"/format", "vcontact.scenario/0", "s.json: format: expected \"vcontact.scenario/1\""},
+      {"/duration", -1.0, "s.json: duration: expected a number in"},
+      {"/bodies/1/shape", "sphere:-1", "bodies[1].shape"},
+      {"/bodies/1/density", "heavy", "bodies[1].density: expected a number"},
+      {"/bodies/1/motion", "floating", "bodies[1].motion: expected \"free\", \"fixed\" or"},
+      {"/bodies/1/colour", "red", "bodies[1].colour: unknown key"},
+      {"/pairs/0/b", "table", "pairs[0].b: no body named 'table'"},
+      {"/pairs/0/method", "magic", "pairs[0].method"},
+      {"/pairs/0/model/effects/glue", nlohmann::json::object(),
+       "pairs[0].model.effects.glue: unknown effect"},
+      {"/pairs/0/model/effects/stiffness/kv", -5.0,
+       "pairs[0].model.effects.stiffness.kv: stiffness.kv = -5 is outside"},
+      {"/tolerances", nlohmann::json{{"rel", 0.0}}, "tolerances.rel: expected a positive number"},
+  };
+  for (const auto& c : cases) {
+    nlohmann::json j = ballOnPlate();
+    j[nlohmann::json::json_pointer(c.pointer)] = c.value;
+    const std::string message = errorOf(j);
+    EXPECT_NE(message.find(c.fragment), std::string::npos)
+        << c.pointer << ": got \"" << message << "\"";
+  }
+  nlohmann::json mass_only = ballOnPlate();
+  mass_only["bodies"][1].erase("density");
+  EXPECT_NE(errorOf(mass_only).find("bodies[1]: a free body needs either \"density\""),
+            std::string::npos);
+}
+
+// A contact far too soft for the ball: it sinks past 10 % of its size and the run stops with
+// the time, the pair and the quantity, after delivering every output before the stop.
+TEST(ScenarioFile, FailingRunStopsWithTimePairAndQuantity) {
+  nlohmann::json j = ballOnPlate();
+  j["pairs"][0]["model"]["effects"]["stiffness"]["kv"] = 1e3;
+  j["duration"] = 1.0;
+  const ScenarioFile f = scenarioFromJson(j, "s.json", kScenarios);
+  dynamics::Simulator sim(f.scenario);
+  std::vector<double> times;
+  dynamics::SimulationSummary summary;
+  try {
+    sim.run([&](const dynamics::Snapshot& s) { times.push_back(s.t); }, [](double) {}, summary);
+    FAIL() << "the run should have stopped";
+  } catch (const dynamics::SimulationError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("pair 'ball-plate': mean penetration V/A"), std::string::npos)
+        << message;
+    EXPECT_EQ(message.rfind("t = ", 0), 0u) << message;
+    ASSERT_FALSE(times.empty());
+    EXPECT_LE(times.back(), e.time());
+    EXPECT_GT(times.size(), 10u);  // it fell ~0.5 mm before touching: outputs were written
+    EXPECT_EQ(summary.simulated_time, e.time());
+  }
+}
+
+}  // namespace
+}  // namespace vcontact::io
