@@ -132,7 +132,10 @@ void runDiagnose(const ValidationOptions& o) {
                          &diag.stages.front().ranking};
   for (std::size_t i = 0; i < diag.stages.size(); ++i) {
     const auto& s = diag.stages[i];
-    report.stages.push_back({i == 0 ? label(s.effects) : "+ " + diag.stages[i - 1].verdict, &s.baseline});
+    const std::string stageLabel = i == 0                ? label(s.effects)
+                                   : !s.removed.empty() ? "- " + s.removed
+                                                        : "+ " + diag.stages[i - 1].verdict;
+    report.stages.push_back({stageLabel, &s.baseline});
     printComparison(label(s.effects), s.baseline.comparison);
     std::cout << "  verdict: " << s.verdict;
     if (!s.ranking.empty() && s.ranking.front().error.empty()) {

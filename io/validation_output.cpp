@@ -59,7 +59,8 @@ json stageSummary(const validation::DiagnosisStage& s) {
           {"bic", s.baseline.bic},
           {"rms", rmsJson(s.baseline.comparison)},
           {"params", parametersJson(s.baseline)},
-          {"verdict", s.verdict}};
+          {"verdict", s.verdict},
+          {"removed", s.removed.empty() ? json(nullptr) : json(s.removed)}};
 }
 
 json rankingJson(const validation::DiagnosisStage& s) {

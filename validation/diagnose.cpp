@@ -172,6 +172,10 @@ void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
     if (!failing[i]) { ++i; continue; }
     std::size_t j = i;
     while (j + 1 < n && failing[j + 1]) ++j;
+    if (j + 1 - i < kMinWindowSamples) {  // a lone outlier, not a regime
+      i = j + 1;
+      continue;
+    }
     FailureWindow w{r.output, d.samples[i].t, d.samples[j].t, std::sqrt(meanOver(i, j)),
                     describeRegime(p.regime, i, j)};
     const double excess = cum[j + 1] - cum[i] - static_cast<double>(j - i + 1);
