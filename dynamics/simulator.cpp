@@ -250,14 +250,17 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   const double interval = 1.0 / set.output_rate_hz;
   long next_output = 1;
   double dt = set.initial_step;
+  bool just_rejected = false;
   try {
     while (t < set.duration) {
       const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
       const double dt_free = std::min(dt, set.max_step);
       const bool capped = t_target - t < dt_free;
       double dt_try = capped ? t_target - t : dt_free;
+      const double dt_used = dt_try;
       if (stepper.try_step(system, x, dxdt, t, dt_try) == odeint::fail) {
         ++summary.rejected_steps;
+        just_rejected = true;
         dt = dt_try;
         if (dt < set.min_step) {
           std::ostringstream s;
@@ -269,6 +272,10 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
       }
       ++summary.steps;
       dt = capped ? std::max(dt_try, dt_free) : dt_try;
+      // Hairer, Nørsett & Wanner I, §II.4: no growth right after a rejection. At the stability
+      // limit of a stiff contact this avoids the grow–reject cycle of the plain controller.
+      if (just_rejected) dt = std::min(dt, dt_used);
+      just_rejected = false;
       if (x != last_x_) rhs(x, dxdt, t);
       check(x, t);
       if (settle(x, t)) rhs(x, dxdt, t);
