@@ -210,6 +210,32 @@ TEST(Simulation, BristleSlidesAboveTheStaticLimit) {
   EXPECT_NEAR(a, expected, 1e-4 * expected);  // rocking averages out, as for the block
 }
 
+// Dwell (MODEL.md §3): at rest (s = 1) the stick state grows as s_dw = 1 − exp(−T/τ_dw), so
+// the friction limit after a stop of length T is μ_S − (μ_S − μ_C) exp(−T/τ_dw).
+TEST(Simulation, DwellStrengthensStaticFriction) {
+  constexpr double kSide = 0.02, kTau = 0.05, kMuC = 0.2, kMuS = 0.35;  // τ_dw in s
+  Model model = Model::withEffects({"stiffness", "damping", "coulomb", "stribeck", "bristle", "dwell"});
+  model.setParameter("stiffness.kv", kSoftKv);
+  model.setParameter("damping.a", 10.0);
+  model.setParameter("coulomb.mu", kMuC);
+  model.setParameter("stribeck.mu_s", kMuS);
+  model.setParameter("dwell.tau_dw", kTau);
+  dynamics::RigidBody box =
+      freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)}, Eigen::Isometry3d::Identity());
+  const double d = box.mass * kG / (kSoftKv * kSide * kSide);
+  box.X_WB0 = at({0.0, 0.0, kSide / 2 - d});
+  Scenario s = onPlate(box, model);
+  tight(s, 2.0 * kTau, 100.0);
+  const auto out = run(s);
+  for (const Snapshot& snap : out) {
+    const double T = snap.t;
+    // s = exp(−v²/v_s²) = 1 to ~1e-12 for the box at rest (|v| < 1e-9 m/s).
+    EXPECT_NEAR(snap.pairs[0].state.s_dw, 1.0 - std::exp(-T / kTau), 1e-8) << T;
+    EXPECT_NEAR(snap.pairs[0].result.mu_max, kMuS - (kMuS - kMuC) * std::exp(-T / kTau), 1e-8)
+        << T;
+  }
+}
+
 // The same scenario seen from a moved and turned world frame gives the moved trajectory.
 TEST(Simulation, InvariantUnderRigidMotion) {
   Model model = Model::withEffects({"stiffness", "damping", "coulomb", "stribeck", "bristle",
