@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 
 namespace vcontact::volume {
@@ -24,16 +25,15 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // drops a triangle that the exact edge-function test would count.
 constexpr double kBoxInflation = 1e-9;
 
+// Fraction of a cell by which a triangle's footprint is widened when choosing the lines to
+// test against it: far above the rounding of the footprint (~1e-15 cell), far below a cell.
+constexpr double kCellMargin = 1e-6;
+
 /// A crossing of a body's boundary along a line: +1 entering, −1 leaving, at parameter t.
 struct Crossing {
   double t;
   int delta;
   bool operator<(const Crossing& o) const { return t < o.t; }
-};
-
-/// A line p(t) = s + t u in W, |u| = 1.
-struct Line {
-  Vector3d s, u;
 };
 
 struct WorldBox {
@@ -54,125 +54,14 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
-/// Side of the origin relative to the edge a→b, with ties (origin on the edge's line) given
-/// to exactly one of the two triangles sharing the edge (they traverse it in opposite
-/// directions): the "top-left" rule of rasterisers.
+/// Side of the point q relative to the edge a→b (all in the plate plane), with ties (q on
+/// the edge's line) given to exactly one of the two triangles sharing the edge (they traverse
+/// it in opposite directions): the "top-left" rule of rasterisers.
 bool positiveSide(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const double e = cross2(a, b);
   if (e != 0.0) return e > 0.0;
   const Eigen::Vector2d d = b - a;
   return d.x() > 0.0 || (d.x() == 0.0 && d.y() > 0.0);
-}
-
-/// Crossings of a line with a mesh, found through its tree in the mesh frame M.
-class MeshLineQuery {
- public:
-  MeshLineQuery(const MeshBvh& bvh, const Isometry3d& X_WM, const Line& line_W)
-      : bvh_(bvh), s_(X_WM.inverse() * line_W.s), u_(X_WM.linear().transpose() * line_W.u) {
-    e1_ = u_.unitOrthogonal();
-    e2_ = u_.cross(e1_);
-  }
-
-  void collect(std::vector<Crossing>& out) const { visit(bvh_.root(), out); }
-
- private:
-  bool lineHitsBox(const BvhNode& node) const {
-    double tlo = -kInf, thi = kInf;
-    for (int k = 0; k < 3; ++k) {
-      const double h =
-          node.halfExtent[k] * (1.0 + kBoxInflation) + kBoxInflation * std::abs(node.center[k]);
-      const double lo = node.center[k] - h - s_[k], hi = node.center[k] + h - s_[k];
-      if (u_[k] == 0.0) {
-        if (lo > 0.0 || hi < 0.0) return false;
-        continue;
-      }
-      const double t0 = lo / u_[k], t1 = hi / u_[k];
-      tlo = std::max(tlo, std::min(t0, t1));
-      thi = std::min(thi, std::max(t0, t1));
-    }
-    return tlo <= thi;
-  }
-
-  void visit(const BvhNode& node, std::vector<Crossing>& out) const {
-    if (!lineHitsBox(node)) return;
-    if (node.isLeaf()) {
-      for (int i = node.first; i < node.first + node.count; ++i)
-        crossTriangle(bvh_.order()[i], out);
-      return;
-    }
-    visit(bvh_.nodes()[node.left], out);
-    visit(bvh_.nodes()[node.right], out);
-  }
-
-  /// Watertight line–triangle test: project the corners onto the plane ⟂ u through s (every
-  /// vertex is projected the same way wherever it appears), then edge functions of the origin.
-  void crossTriangle(int f, std::vector<Crossing>& out) const {
-    Eigen::Vector2d q[3];
-    double z[3];
-    for (int k = 0; k < 3; ++k) {
-      const Vector3d p = bvh_.mesh().corner(f, k) - s_;
-      q[k] = {p.dot(e1_), p.dot(e2_)};
-      z[k] = p.dot(u_);
-    }
-    const bool side0 = positiveSide(q[1], q[2]);
-    if (positiveSide(q[2], q[0]) != side0 || positiveSide(q[0], q[1]) != side0) return;
-    const double w0 = cross2(q[1], q[2]), w1 = cross2(q[2], q[0]), w2 = cross2(q[0], q[1]);
-    const double sum = w0 + w1 + w2;  // 2 × projected area; sign: n·u
-    if (sum == 0.0) return;           // edge-on: its neighbours carry the crossing
-    // (e1, e2, u) is right-handed, so sum > 0 ⇔ n·u > 0 ⇔ the line leaves the solid.
-    out.push_back({(w0 * z[0] + w1 * z[1] + w2 * z[2]) / sum, sum > 0.0 ? -1 : +1});
-  }
-
-  const MeshBvh& bvh_;
-  Vector3d s_, u_, e1_, e2_;
-};
-
-/// Crossings of the line with the body, sorted by t.
-std::vector<Crossing> crossings(const ColumnBody& body, const Line& line) {
-  std::vector<Crossing> out;
-  if (body.bvh) {
-    MeshLineQuery(*body.bvh, body.X_WB, line).collect(out);
-  } else {  // half-space z_B ≤ 0: z_B(t) = a + b t
-    const Vector3d z_W = body.X_WB.linear().col(2);
-    const double a = z_W.dot(line.s - body.X_WB.translation()), b = z_W.dot(line.u);
-    // Inside where a + b t < 0: from −∞ when b > 0 (or b = 0 and a ≤ 0), up to t = −a/b.
-    if (b > 0.0 || (b == 0.0 && a <= 0.0)) out.push_back({-kInf, +1});
-    if (b != 0.0) out.push_back({-a / b, b < 0.0 ? +1 : -1});
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-/// What one line contributes, in the line's own parameter t.
-struct LineIntegrals {
-  double L = 0.0, T1 = 0.0, T2 = 0.0;   ///< ∫dt, ∫t dt, ∫t² dt over A ∩ B
-  double tFirst = kInf, tLast = -kInf;  ///< where the line enters and finally leaves A ∩ B
-  double surfaceA = 0.0;                ///< Σ sign(n_A·u) over crossings of ∂A inside B
-  double surfaceB = 0.0;                ///< the same for ∂B inside A
-};
-
-/// Sweeps the merged crossings keeping both winding numbers (inside: winding > 0).
-LineIntegrals overlap(const std::vector<Crossing>& a, const std::vector<Crossing>& b) {
-  LineIntegrals r;
-  int wa = 0, wb = 0;
-  std::size_t i = 0, j = 0;
-  double tPrev = -kInf;
-  while (i < a.size() || j < b.size()) {
-    const bool fromA = j == b.size() || (i < a.size() && a[i].t <= b[j].t);
-    const Crossing& c = fromA ? a[i++] : b[j++];
-    if (wa > 0 && wb > 0) {
-      r.tFirst = std::min(r.tFirst, tPrev);
-      r.tLast = c.t;
-      r.L += c.t - tPrev;
-      r.T1 += (c.t * c.t - tPrev * tPrev) / 2.0;
-      r.T2 += (c.t * c.t * c.t - tPrev * tPrev * tPrev) / 3.0;
-    }
-    if (fromA && wb > 0) r.surfaceA -= c.delta;
-    if (!fromA && wa > 0) r.surfaceB -= c.delta;
-    (fromA ? wa : wb) += c.delta;
-    tPrev = c.t;
-  }
-  return r;
 }
 
 /// A square-celled N × N grid of lines along u over the projection of `box` onto the plane
@@ -195,8 +84,153 @@ struct Grid {
   Vector3d offset(int i, int j) const {
     return (-r1 + (i + 0.5) * 2.0 * r1 / n) * e1 + (-r2 + (j + 0.5) * 2.0 * r2 / n) * e2;
   }
-  Line line(int i, int j) const { return {o + offset(i, j), u}; }
 };
+
+/// The crossings of every line of a grid with one body, bucketed by line and sorted by t.
+/// A mesh is rasterised: each triangle whose projection meets the grid is tested against
+/// the lines through its footprint with edge functions (every vertex is projected the same
+/// way wherever it appears, and ties follow positiveSide), so a line through an edge or a
+/// vertex crosses the surface exactly once.
+class GridCrossings {
+ public:
+  GridCrossings(const Grid& g, const ColumnBody& body) : g_(g), start_(g.n * g.n + 1, 0) {
+    std::vector<std::pair<int, Crossing>> hits;
+    if (body.bvh) {
+      rasterize(*body.bvh, body.X_WB, body.bvh->root(), hits);
+    } else {
+      halfspace(body.X_WB, hits);
+    }
+    bucket(hits);
+  }
+
+  std::span<const Crossing> at(int i, int j) const {
+    const int c = i * g_.n + j;
+    return {crossings_.data() + start_[c], crossings_.data() + start_[c + 1]};
+  }
+
+ private:
+  /// Plate coordinates (along e1, e2) of line (i, j); one expression for every use.
+  Eigen::Vector2d lineAt(int i, int j) const {
+    return {-g_.r1 + (i + 0.5) * 2.0 * g_.r1 / g_.n, -g_.r2 + (j + 0.5) * 2.0 * g_.r2 / g_.n};
+  }
+
+  /// Half-space z_B ≤ 0 along line (i, j): z_B(t) = a + b t, inside where it is negative.
+  void halfspace(const Isometry3d& X_WB, std::vector<std::pair<int, Crossing>>& hits) const {
+    const Vector3d z_W = X_WB.linear().col(2);
+    const double b = z_W.dot(g_.u);
+    for (int i = 0; i < g_.n; ++i) {
+      for (int j = 0; j < g_.n; ++j) {
+        const double a = z_W.dot(g_.o + g_.offset(i, j) - X_WB.translation());
+        const int c = i * g_.n + j;
+        if (b > 0.0 || (b == 0.0 && a <= 0.0)) hits.push_back({c, {-kInf, +1}});
+        if (b != 0.0) hits.push_back({c, {-a / b, b < 0.0 ? +1 : -1}});
+      }
+    }
+  }
+
+  void rasterize(const MeshBvh& bvh, const Isometry3d& X_WM, const BvhNode& node,
+                 std::vector<std::pair<int, Crossing>>& hits) const {
+    const WorldBox wb = worldBox(node, X_WM);
+    const Vector3d c = 0.5 * (wb.lo + wb.hi) - g_.o, h = 0.5 * (wb.hi - wb.lo);
+    const double slack = kBoxInflation * (h.norm() + c.norm());
+    if (std::abs(c.dot(g_.e1)) > g_.r1 + g_.e1.cwiseAbs().dot(h) + slack ||
+        std::abs(c.dot(g_.e2)) > g_.r2 + g_.e2.cwiseAbs().dot(h) + slack) {
+      return;
+    }
+    if (!node.isLeaf()) {
+      rasterize(bvh, X_WM, bvh.nodes()[node.left], hits);
+      rasterize(bvh, X_WM, bvh.nodes()[node.right], hits);
+      return;
+    }
+    for (int k = node.first; k < node.first + node.count; ++k) {
+      rasterizeTriangle(bvh.mesh(), X_WM, bvh.order()[k], hits);
+    }
+  }
+
+  void rasterizeTriangle(const geometry::TriangleMesh& mesh, const Isometry3d& X_WM, int f,
+                         std::vector<std::pair<int, Crossing>>& hits) const {
+    Eigen::Vector2d q[3];
+    double z[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vector3d p = X_WM * mesh.corner(f, k) - g_.o;
+      q[k] = {p.dot(g_.e1), p.dot(g_.e2)};
+      z[k] = p.dot(g_.u);
+    }
+    const Eigen::Vector2d lo = q[0].cwiseMin(q[1]).cwiseMin(q[2]);
+    const Eigen::Vector2d hi = q[0].cwiseMax(q[1]).cwiseMax(q[2]);
+    const double cell1 = 2.0 * g_.r1 / g_.n, cell2 = 2.0 * g_.r2 / g_.n;
+    // Lines whose plate point may lie in the footprint; the margin only has to exceed the
+    // rounding of these expressions, the edge functions decide.
+    const int i0 = std::max(0, int(std::ceil((lo.x() + g_.r1) / cell1 - 0.5 - kCellMargin)));
+    const int i1 =
+        std::min(g_.n - 1, int(std::floor((hi.x() + g_.r1) / cell1 - 0.5 + kCellMargin)));
+    const int j0 = std::max(0, int(std::ceil((lo.y() + g_.r2) / cell2 - 0.5 - kCellMargin)));
+    const int j1 =
+        std::min(g_.n - 1, int(std::floor((hi.y() + g_.r2) / cell2 - 0.5 + kCellMargin)));
+    for (int i = i0; i <= i1; ++i) {
+      for (int j = j0; j <= j1; ++j) {
+        const Eigen::Vector2d s = lineAt(i, j);
+        const Eigen::Vector2d a = q[0] - s, b = q[1] - s, c = q[2] - s;
+        const bool side0 = positiveSide(b, c);
+        if (positiveSide(c, a) != side0 || positiveSide(a, b) != side0) continue;
+        const double w0 = cross2(b, c), w1 = cross2(c, a), w2 = cross2(a, b);
+        const double sum = w0 + w1 + w2;  // 2 × projected area; sign: n·u
+        if (sum == 0.0) continue;         // edge-on: its neighbours carry the crossing
+        // (e1, e2, u) is right-handed, so sum > 0 ⇔ n·u > 0 ⇔ the line leaves the solid.
+        hits.push_back(
+            {i * g_.n + j, {(w0 * z[0] + w1 * z[1] + w2 * z[2]) / sum, sum > 0.0 ? -1 : +1}});
+      }
+    }
+  }
+
+  /// Counting sort of the hits by line, then by t within each line.
+  void bucket(const std::vector<std::pair<int, Crossing>>& hits) {
+    for (const auto& [c, x] : hits) ++start_[c + 1];
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    crossings_.resize(hits.size());
+    std::vector<int> next(start_.begin(), start_.end() - 1);
+    for (const auto& [c, x] : hits) crossings_[next[c]++] = x;
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+      std::sort(crossings_.begin() + start_[c], crossings_.begin() + start_[c + 1]);
+    }
+  }
+
+  const Grid& g_;
+  std::vector<int> start_;
+  std::vector<Crossing> crossings_;
+};
+
+/// What one line contributes, in the line's own parameter t.
+struct LineIntegrals {
+  double L = 0.0, T1 = 0.0, T2 = 0.0;   ///< ∫dt, ∫t dt, ∫t² dt over A ∩ B
+  double tFirst = kInf, tLast = -kInf;  ///< where the line enters and finally leaves A ∩ B
+  double surfaceA = 0.0;                ///< Σ sign(n_A·u) over crossings of ∂A inside B
+  double surfaceB = 0.0;                ///< the same for ∂B inside A
+};
+
+/// Sweeps the merged crossings keeping both winding numbers (inside: winding > 0).
+LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b) {
+  LineIntegrals r;
+  int wa = 0, wb = 0;
+  std::size_t i = 0, j = 0;
+  double tPrev = -kInf;
+  while (i < a.size() || j < b.size()) {
+    const bool fromA = j == b.size() || (i < a.size() && a[i].t <= b[j].t);
+    const Crossing& c = fromA ? a[i++] : b[j++];
+    if (wa > 0 && wb > 0) {
+      r.tFirst = std::min(r.tFirst, tPrev);
+      r.tLast = c.t;
+      r.L += c.t - tPrev;
+      r.T1 += (c.t * c.t - tPrev * tPrev) / 2.0;
+      r.T2 += (c.t * c.t * c.t - tPrev * tPrev * tPrev) / 3.0;
+    }
+    if (fromA && wb > 0) r.surfaceA -= c.delta;
+    if (!fromA && wa > 0) r.surfaceB -= c.delta;
+    (fromA ? wa : wb) += c.delta;
+    tPrev = c.t;
+  }
+  return r;
+}
 
 /// Sums over a grid: moments about o (W axes), the surface sums, and δ per line.
 struct GridSums {
@@ -238,13 +272,13 @@ struct GridSums {
 GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
                    std::vector<double>* depth) {
   if (depth) depth->assign(static_cast<std::size_t>(g.n) * g.n, 0.0);
+  const GridCrossings crossA(g, a), crossB(g, b);
   return tbb::parallel_reduce(
       tbb::blocked_range<int>(0, g.n), GridSums{},
       [&](const tbb::blocked_range<int>& rows, GridSums sums) {
         for (int i = rows.begin(); i < rows.end(); ++i) {
           for (int j = 0; j < g.n; ++j) {
-            const Line l = g.line(i, j);
-            const LineIntegrals li = overlap(crossings(a, l), crossings(b, l));
+            const LineIntegrals li = overlap(crossA.at(i, j), crossB.at(i, j));
             sums.add(li, g.offset(i, j), g.u, g.cellArea());
             if (depth) (*depth)[static_cast<std::size_t>(i) * g.n + j] = li.L;
           }

@@ -1,13 +1,14 @@
 #pragma once
 // Column integration of the interference of two bodies (MODEL.md §1, V = ∫_S δ dS): lines
 // along the contact normal n on a square grid over the plate S; along each line the exact
-// in/out intervals of both bodies come from ray–mesh crossings (bounding-volume tree and a
-// watertight edge-function test, so a line through an edge or vertex crosses once), their
-// overlap gives δ and the exact line integrals of 1, t, t²; across lines the midpoint rule.
-// The grid is refined (×2 per level) until two levels agree on V to the requested tolerance,
-// and that difference is reported as the error estimate.
+// in/out intervals of both bodies come from its crossings with their surfaces (triangles
+// found through the bounding-volume tree and rasterised onto the grid with watertight edge
+// functions, so a line through an edge or vertex crosses once), their overlap gives δ and the
+// exact line integrals of 1, t, t²; across lines the midpoint rule. The grid is refined (×2
+// per level) until two successive level-to-level changes of V are within the requested
+// tolerance, and the larger of them is reported as the error estimate.
 //
-// The normal comes from three coarse passes along the world axes: a line along e_k crossing
+// The normal comes from three passes along the world axes: a line along e_k crossing
 // ∂B1 inside B2 at a face with normal n_B1 contributes sign(n_B1·e_k) dS to
 // (∫_{∂B1∩B2} n_B1 dA)_k (and likewise for ∂B2 inside B1), so
 // n ∝ ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA needs only crossing signs (MODEL.md §1).
