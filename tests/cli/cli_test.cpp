@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -22,7 +24,11 @@ struct CommandResult {
 };
 
 CommandResult run(const std::string& args) {
-  const fs::path errFile = fs::temp_directory_path() / "vcontact_cli_test_stderr.txt";
+  // One stderr file per test: CTest runs the tests of this file in parallel processes.
+  const fs::path errFile =
+      fs::temp_directory_path() /
+      (std::string("vcontact_cli_") + testing::UnitTest::GetInstance()->current_test_info()->name() +
+       "_" + std::to_string(getpid()) + ".stderr");
   const std::string cmd = std::string(VCONTACT_BINARY) + " " + args + " 2>" + errFile.string();
   CommandResult r{};
   FILE* pipe = popen(cmd.c_str(), "r");
@@ -30,8 +36,11 @@ CommandResult run(const std::string& args) {
   while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
   const int status = pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(errFile);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  {
+    std::ifstream e(errFile);
+    r.err.assign(std::istreambuf_iterator<char>(e), {});
+  }
+  fs::remove(errFile);
   return r;
 }
 
