@@ -92,6 +92,7 @@ void residualsAgainstRegime(std::ostringstream& h, const ReportInput& in) {
       {"sliding speed |v_t| [m/s]", [](const validation::RegimeSample& r) { return r.speed; }},
       {"spin ratio r_gyr|ω_n|/|v_t|", [](const validation::RegimeSample& r) { return r.spin_ratio; }},
       {"time at rest [s]", [](const validation::RegimeSample& r) { return r.time_at_rest; }},
+      {"rest before this motion [s]", [](const validation::RegimeSample& r) { return r.preceding_rest; }},
       {"penetration rate [m/s]", [](const validation::RegimeSample& r) { return r.penetration_rate; }},
       {"normal load f_n [N]", [](const validation::RegimeSample& r) { return r.load; }}};
   for (const auto& v : vars) {

@@ -103,8 +103,10 @@ const std::vector<RegimeVariable>& regimeVariables() {
        [](const RegimeSample& r) { return r.speed; }},
       {"spin ratio r_gyr|ω_n|/|v_t|", "", "spin-dominated sliding", "translation-dominated sliding",
        [](const RegimeSample& r) { return r.spin_ratio; }},
-      {"time at rest", "s", "restart after a long stop", "moving",
+      {"time at rest", "s", "long at rest", "moving",
        [](const RegimeSample& r) { return r.time_at_rest; }},
+      {"rest before this motion", "s", "restart after a long stop", "restart after a short stop",
+       [](const RegimeSample& r) { return r.preceding_rest; }},
       {"penetration rate δ̇_c", "m/s", "fast approach (impact)", "separating",
        [](const RegimeSample& r) { return r.penetration_rate; }},
       {"normal load f_n", "N", "high load", "light load or no contact",
@@ -125,26 +127,38 @@ std::string format3(double v) {
   return s.str();
 }
 
+// Mean mid-rank percentile of the window's samples within the whole record: 0.5 when the
+// window is typical of the record in this variable, near 1 (0) when it sits at the top
+// (bottom) of its range. A rank statistic (Mann–Whitney), blind to units and outliers.
+double windowRank(const std::vector<double>& all, const std::vector<double>& sorted,
+                  std::size_t a, std::size_t b) {
+  double sum = 0.0;
+  for (std::size_t i = a; i <= b; ++i) {
+    const auto lo = std::lower_bound(sorted.begin(), sorted.end(), all[i]);
+    const auto hi = std::upper_bound(sorted.begin(), sorted.end(), all[i]);
+    sum += (static_cast<double>(lo - sorted.begin()) + 0.5 * static_cast<double>(hi - lo));
+  }
+  return sum / (static_cast<double>(b - a + 1) * static_cast<double>(sorted.size()));
+}
+
 // The regime variable in which the window [a, b] is most unlike the whole record.
 std::string describeRegime(const std::vector<RegimeSample>& regime, std::size_t a, std::size_t b) {
   double best = 0.0;
   std::string text = "throughout the record (no regime variable singles the window out)";
   for (const auto& var : regimeVariables()) {
-    std::vector<double> in;
-    for (std::size_t i = a; i <= b; ++i) in.push_back(var.get(regime[i]));
-    const double m = quantile(in, 0.5);
-    double below = 0.0, equal = 0.0;
-    for (const auto& r : regime) {
-      const double x = var.get(r);
-      below += x < m;
-      equal += x == m;
-    }
-    const double q = (below + 0.5 * equal) / static_cast<double>(regime.size());  // mid-rank
+    std::vector<double> all;
+    for (const auto& r : regime) all.push_back(var.get(r));
+    std::vector<double> sorted = all;
+    std::sort(sorted.begin(), sorted.end());
+    const double q = windowRank(all, sorted, a, b);
     if (std::abs(q - 0.5) <= best) continue;
     best = std::abs(q - 0.5);
+    const std::vector<double> in(all.begin() + static_cast<std::ptrdiff_t>(a),
+                                 all.begin() + static_cast<std::ptrdiff_t>(b) + 1);
     std::ostringstream s;
     const bool high = q > 0.5;
-    s << var.name << (high ? " > " : " < ") << format3(quantile(in, high ? 0.1 : 0.9));
+    s << var.name << " in [" << format3(quantile(in, 0.1)) << ", " << format3(quantile(in, 0.9))
+      << "]";
     if (*var.unit) s << ' ' << var.unit;
     s << " (" << (high ? var.high : var.low) << ")";
     text = s.str();

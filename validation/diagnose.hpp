@@ -13,8 +13,9 @@
 //
 // `where` locates the baseline's failures: samples whose moving-window chi exceeds
 // kWindowChi are merged into time windows, and each window is described by the regime
-// variable (speed, spin ratio, time at rest, penetration rate, load) in which it is most
-// unlike the rest of the record.
+// variable (speed, spin ratio, time at rest, rest before the motion, penetration rate, load)
+// in which it is most unlike the rest of the record (mean rank of its samples farthest from
+// the middle), as that variable's 10–90 % range over the window and what it means.
 //
 // --iterate adds greedily; an effect added early can become unnecessary once a later one is
 // in (it was the best partial stand-in). When the last verdict is "none", each effect added
@@ -53,7 +54,7 @@ struct FailureWindow {
   std::string output;
   double t0 = 0.0, t1 = 0.0;  ///< s
   double chi = 0.0;           ///< sqrt(mean (r/σ)²) over the window
-  std::string regime;         ///< e.g. "spin ratio r_gyr|ω_n|/|v_t| > 2"
+  std::string regime;         ///< e.g. "spin ratio r_gyr|ω_n|/|v_t| in [2.1, 8.4] (spin-dominated sliding)"
 };
 
 struct DiagnosisStage {

@@ -125,6 +125,27 @@ RegimeSample regimeOf(const SampleGeometry& g, double load, double v_eps) {
   return r;
 }
 
+// Time at rest and the length of the rest before the current motion (stop–dwell–restart).
+struct RestClock {
+  double since = 0.0, lastRest = 0.0;
+  bool resting = false;
+
+  void update(double t, const SampleGeometry& g, RegimeSample& r) {
+    if (!g.cv.inContact()) {
+      resting = false;
+      lastRest = 0.0;
+      return;
+    }
+    const double spin = g.cv.r_gyr * std::abs(g.motion.w_W.dot(g.cv.normal));
+    const bool atRest = std::hypot(r.speed, spin) < kRestSpeed;
+    if (atRest && !resting) since = t;
+    if (!atRest && resting) lastRest = t - since;
+    resting = atRest;
+    r.time_at_rest = atRest ? t - since : 0.0;
+    r.preceding_rest = atRest ? 0.0 : lastRest;
+  }
+};
+
 // One exponential Euler step of the pair state over dt (see the header).
 void advance(const Model& model, const SampleGeometry& g, const dynamics::ContactResult& at,
              double dt, PairState& state) {
@@ -181,7 +202,7 @@ Prediction Replayer::run(const Model& model) {
   p.wrench.setZero(static_cast<Eigen::Index>(n), 6);
   p.regime.resize(n);
   PairState state;
-  double restSince = samples.front().t;
+  RestClock rest;
   for (std::size_t i = 0; i < n; ++i) {
     const SampleGeometry& g = geometry[i];
     model.settle(g.cv, g.motion, state);  // projection, dwell jump, reset out of contact
@@ -189,11 +210,7 @@ Prediction Replayer::run(const Model& model) {
     const Eigen::Vector3d tau_Bo = r.wrench.tau_W + g.p_BoC_P.cross(r.wrench.f_W);
     p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Bo.transpose();
     p.regime[i] = regimeOf(g, r.f_n, model.settings.v_eps);
-    const double spin = g.cv.r_gyr * std::abs(g.motion.w_W.dot(g.cv.normal));
-    if (std::hypot(p.regime[i].speed, spin) >= kRestSpeed || !g.cv.inContact()) {
-      restSince = samples[i].t;
-    }
-    p.regime[i].time_at_rest = samples[i].t - restSince;
+    rest.update(samples[i].t, g, p.regime[i]);
     if (i + 1 < n) advance(model, g, r, samples[i + 1].t - samples[i].t, state);
   }
   return p;

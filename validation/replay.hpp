@@ -41,7 +41,8 @@ struct SampleGeometry {
 struct RegimeSample {
   double speed = 0.0;             ///< sliding speed |v_t|, m/s
   double spin_ratio = 0.0;        ///< r_gyr |ω_n| / max(|v_t|, v_ε), –
-  double time_at_rest = 0.0;      ///< time since v_avg fell below kRestSpeed, s
+  double time_at_rest = 0.0;      ///< time since v_avg fell below kRestSpeed (0 moving), s
+  double preceding_rest = 0.0;    ///< moving: length of the rest before this motion, s
   double penetration_rate = 0.0;  ///< δ̇_c, m/s
   double load = 0.0;              ///< f_n, N
 };

@@ -70,6 +70,20 @@ TEST(Diagnose, IterateFindsTwoHiddenEffects) {
   EXPECT_EQ(result.stages.back().verdict, "none");
 }
 
+// `where` finds the restart after the longest stop (1.8 → 3.3 s) as the worst failure of a
+// model without dwell, and says it is about the rest that preceded the motion.
+TEST(Diagnose, WhereLocatesTheRestartAfterTheLongStop) {
+  const std::vector<std::string> effects = {"stiffness", "coulomb", "stribeck", "dwell"};
+  const Dataset d = test::syntheticDataset("dwell", 600, test::trueModel(effects), 9);
+  const Diagnosis result = diagnose(d, noiseLevels(d), test::startModel(effects, "dwell"));
+  const auto& where = result.stages.front().where;
+  ASSERT_FALSE(where.empty());
+  EXPECT_EQ(where.front().output, "fx");
+  EXPECT_LE(where.front().t0, 3.35);
+  EXPECT_GE(where.front().t1, 3.3);
+  EXPECT_EQ(where.front().regime.rfind("rest before this motion", 0), 0u) << where.front().regime;
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryEffect, HiddenEffect, ::testing::ValuesIn(test::effectCases()),
                          [](const auto& info) { return info.param.effect; });
 

@@ -194,8 +194,8 @@ TEST_F(ValidationCli, ReportRendersEveryChartInHeadlessChromium) {
   std::ptrdiff_t charts = 0;
   for (std::size_t p = html.find("<svg class=\"chart\""); p != std::string::npos;
        p = html.find("<svg class=\"chart\"", p + 1)) ++charts;
-  // chi bars + 2 outputs × (measured/model + residuals) + 5 regime plots.
-  EXPECT_EQ(charts, 1 + 2 * 2 + 5);
+  // chi bars + 2 outputs × (measured/model + residuals) + 6 regime plots.
+  EXPECT_EQ(charts, 1 + 2 * 2 + 6);
   const fs::path profile = dir_ / "chromium-profile";
   const std::string cmd = "timeout 120 " + chromium.string() +
                           " --headless --no-sandbox --disable-gpu --disable-background-networking"
