@@ -135,7 +135,8 @@ void parameterTable(std::ostringstream& h, const ReportInput& in) {
     << "<th>status</th></tr>\n";
   for (const auto& p : f.parameters) {
     const std::string err = p.fixed ? "" : (std::isfinite(p.stdError) ? num(p.stdError, 3) : "∞");
-    const std::string status = p.fixed ? "fixed" : (p.identifiable ? "fitted" : "not identifiable");
+    const std::string held = in.command == "compare" ? "as given" : "fixed";
+    const std::string status = p.fixed ? held : (p.identifiable ? "fitted" : "not identifiable");
     h << "<tr><td>" << p.name << "</td><td>" << num(p.value, 6) << "</td><td>" << err << "</td><td>"
       << escapeXml(p.unit) << "</td><td>" << status << "</td></tr>\n";
   }
