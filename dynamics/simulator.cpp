@@ -222,6 +222,23 @@ void Simulator::check(const State& x, double t) const {
   }
 }
 
+// ", pair 'name' (normal force F N)" for the pair with the largest normal force at the latest
+// evaluation: the likeliest cause of a step-size collapse. Empty when nothing touches.
+std::string Simulator::stiffestPair() const {
+  std::size_t best = last_pairs_.size();
+  double f_max = 0.0;
+  for (std::size_t k = 0; k < last_pairs_.size(); ++k) {
+    if (last_pairs_[k].result.f_n > f_max) {
+      f_max = last_pairs_[k].result.f_n;
+      best = k;
+    }
+  }
+  if (best == last_pairs_.size()) return "";
+  std::ostringstream s;
+  s << ", pair '" << scenario_.pairs[best].name << "' (normal force " << f_max << " N)";
+  return s.str();
+}
+
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
                     const std::function<void(double)>& on_progress, SimulationSummary& summary) {
   namespace odeint = boost::numeric::odeint;
@@ -264,8 +281,8 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
         dt = dt_try;
         if (dt < set.min_step) {
           std::ostringstream s;
-          s << where(t) << ": step size " << dt << " s fell below the minimum " << set.min_step
-            << " s (contact too stiff for the tolerances, or a discontinuity)";
+          s << where(t) << stiffestPair() << ": step size " << dt << " s fell below the minimum "
+            << set.min_step << " s (contact too stiff for the tolerances, or a discontinuity)";
           throw SimulationError(t, s.str());
         }
         continue;

@@ -77,6 +77,7 @@ class Simulator {
   BodyKinematics kinematics(const State& x, std::size_t body, double t) const;
   bool settle(State& x, double t);
   void check(const State& x, double t) const;
+  std::string stiffestPair() const;
 
   Scenario scenario_;
   std::vector<int> offset_;       ///< start of each free body's 13 states, −1 if not free
