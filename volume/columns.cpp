@@ -20,9 +20,9 @@ using geometry::MeshBvh;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Node boxes are inflated by this fraction of their size (plus an absolute floor from the
-// coordinates) before a line is tested against them, so that rounding in the slab test never
-// drops a triangle that the exact edge-function test would count.
+// A node's footprint on the grid is widened by this fraction of its size and distance before
+// it is culled, so that rounding in the cull never drops a triangle that the edge functions
+// would count.
 constexpr double kBoxInflation = 1e-9;
 
 // Fraction of a cell by which a triangle's footprint is widened when choosing the lines to
@@ -333,7 +333,7 @@ struct AxisPasses {
 
 /// One pass along each world axis. A line along e_k crossing ∂B1 inside B2 with normal n_B1
 /// adds sign(n_B1·e_k) dS to (∫_{∂B1∩B2} n_B1 dA)_k, and likewise for ∂B2, so component k
-/// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by a cell
+/// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by two cells
 /// all round, bound the region as sampled; the three passes' bounds are intersected.
 AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
                       int resolution) {
@@ -376,6 +376,48 @@ std::pair<Vector3d, WorldBox> normalAndBox(const ColumnBody& a, const ColumnBody
   return {Vector3d::Zero(), box};
 }
 
+struct Refined {
+  GridSums sums;              ///< of the finest level
+  int resolution = 0;         ///< its lines per side
+  double error = kInf;        ///< the reported estimate
+  std::vector<double> depth;  ///< δ per line of the finest level, when asked for
+};
+
+/// Refines the grid ×2 per level until two successive level-to-level changes of V are within
+/// the tolerance; the larger of them is the estimate (one change alone can vanish by chance).
+Refined refine(const ColumnBody& a, const ColumnBody& b, const WorldBox& box, const Vector3d& n,
+               const ColumnOptions& options, bool wantDepth) {
+  Refined r;
+  r.resolution = options.initialResolution;
+  r.sums = integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr);
+  double previousChange = kInf;
+  while (r.resolution < options.maxResolution) {
+    r.resolution *= 2;
+    const GridSums next =
+        integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr);
+    const double change = std::abs(next.M.m0 - r.sums.M.m0) / next.M.m0;
+    r.error = std::max(change, previousChange);
+    previousChange = change;
+    r.sums = next;
+    if (r.error <= options.relativeTolerance) break;
+  }
+  return r;
+}
+
+/// The δ map: the plate point and δ of every wet line.
+ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
+  ColumnField field;
+  for (int i = 0; i < g.n; ++i) {
+    for (int j = 0; j < g.n; ++j) {
+      const double d = depth[static_cast<std::size_t>(i) * g.n + j];
+      if (d <= 0.0) continue;
+      field.points_W.push_back(g.o + g.offset(i, j));
+      field.depth.push_back(d);
+    }
+  }
+  return field;
+}
+
 }  // namespace
 
 ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const ColumnOptions& options,
@@ -386,41 +428,16 @@ ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const Col
   if (overlap.empty()) return none;
   const auto [n, box] = normalAndBox(a, b, overlap, options);
   if (n.isZero()) return none;
-  // Refine until two successive level-to-level differences are within the tolerance; the
-  // larger of them is the reported estimate (one difference alone can vanish by chance).
-  std::vector<double> depth;
-  int res = options.initialResolution;
-  GridSums fine = integrate(a, b, Grid(box, n, res), nullptr);
-  double previousChange = kInf, error = kInf;
-  while (res < options.maxResolution) {
-    res *= 2;
-    const GridSums next = integrate(a, b, Grid(box, n, res), field ? &depth : nullptr);
-    const double change = std::abs(next.M.m0 - fine.M.m0) / next.M.m0;
-    error = std::max(change, previousChange);
-    previousChange = change;
-    fine = next;
-    if (error <= options.relativeTolerance) break;
-  }
-  if (!(fine.M.m0 > 0.0)) return none;
-  const Grid g(box, n, res);
-  if (field) {
-    *field = {};
-    for (int i = 0; i < res; ++i) {
-      for (int j = 0; j < res; ++j) {
-        const double d = depth[static_cast<std::size_t>(i) * res + j];
-        if (d > 0.0) {
-          field->points_W.push_back(g.o + g.offset(i, j));
-          field->depth.push_back(d);
-        }
-      }
-    }
-  }
-  const Vector3d c_o = fine.M.m1 / fine.M.m0;
+  const Refined r = refine(a, b, box, n, options, field != nullptr);
+  if (!(r.sums.M.m0 > 0.0)) return none;
+  const Grid g(box, n, r.resolution);
+  if (field) *field = fieldOf(g, r.depth);
+  const geometry::Moments& M = r.sums.M;
+  const Vector3d c_o = M.m1 / M.m0;
   ContactVolume cv =
-      assembleContactVolume(fine.M.m0, g.o + c_o, fine.M.m2 - fine.M.m0 * c_o * c_o.transpose(), n,
-                            fine.wetLines * g.cellArea(), fine.maxDepth, Method::kColumns);
-  cv.relative_error = error;
-  cv.J_s_approximated = false;
+      assembleContactVolume(M.m0, g.o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
+                            r.sums.wetLines * g.cellArea(), r.sums.maxDepth, Method::kColumns);
+  cv.relative_error = r.error;
   return cv;
 }
 
