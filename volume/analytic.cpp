@@ -21,6 +21,10 @@ using Eigen::Vector3d;
 // overstates the K15 error of a smooth integrand by orders of magnitude, so 1e-11 here
 // delivers the 1e-9 the backend promises with margin.
 constexpr double kQuadratureTolerance = 1e-11;
+// Integrate in θ when an end of the piece has θ below this fraction of the other end's
+// (d^{3/2} behaviour dominates), unless the θ range is too narrow to carry ζ accurately.
+constexpr double kThetaRatio = 0.5;
+constexpr double kMinThetaRange = 1e-6;
 
 // ---------------------------------------------------------------------------------------
 // Sphere (MODEL.md §5). u is the height above the sphere's lowest point, u ∈ [0, d]; the
@@ -51,42 +55,53 @@ ContactVolume sphereInHalfspaceFrame(double R, const Vector3d& c_H, const Isomet
 // d = R(1 − cos θ)) the segment moments about the edge point ξ' = ξ + R = 0 are
 //   A      = 2R² ∫ sin²φ,           S_ξ'  = 2R³ ∫ (1 − cos φ) sin²φ,
 //   S_ξ'ξ' = 2R⁴ ∫ (1 − cos φ)² sin²φ,  S_ηη = (2/3)R⁴ ∫ sin⁴φ.
-// The integrands are trigonometric polynomials, so 20-point Gauss–Legendre on [0, θ] is
-// exact to rounding (error term below 1e-20 for θ ≤ π), and, with positive integrands and
-// 1 − cos φ written 2 sin²(φ/2), no digits are lost to cancellation as θ → 0.
+// (closed forms below, with a series where they would cancel as θ → 0).
 // The slices are then integrated over ζ adaptively, in θ where an end of the interval is
 // a tangency (d = 0 or d = 2R: there the slice moments behave like d^{3/2} in ζ but are
 // smooth in θ), otherwise in ζ itself.
 
-struct GaussLegendre20 {
-  std::array<double, 20> x{}, w{};  // on [−1, 1]
-  GaussLegendre20() {
-    constexpr int n = 20;
-    for (int i = 0; i < n / 2; ++i) {
-      double z = std::cos(M_PI * (i + 0.75) / (n + 0.5));
-      double dp = 0.0;
-      for (int iter = 0; iter < 100; ++iter) {
-        double p0 = 1.0, p1 = 0.0;
-        for (int k = 1; k <= n; ++k) {
-          const double p2 = p1;
-          p1 = p0;
-          p0 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p2) / k;
-        }
-        dp = n * (z * p0 - p1) / (z * z - 1.0);
-        const double dz = p0 / dp;
-        z -= dz;
-        if (std::abs(dz) < 1e-16) break;
-      }
-      x[i] = -z;
-      x[n - 1 - i] = z;
-      w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
-  }
-};
+// Each integrand is a trigonometric polynomial Σ_k a_k cos kφ (k ≤ 4):
+//   sin²φ                 = 1/2 − cos 2φ/2
+//   (1 − cos φ) sin²φ     = 1/2 − cos φ/4 − cos 2φ/2 + cos 3φ/4
+//   (1 − cos φ)² sin²φ    = 5/8 − cos φ/2 − cos 2φ/2 + cos 3φ/2 − cos 4φ/8
+//   sin⁴φ                 = 3/8 − cos 2φ/2 + cos 4φ/8
+// so ∫_0^θ = a_0 θ + Σ_k a_k sin kθ / k, from one sincos and the multiple-angle recurrence.
+// For small θ those terms cancel down to the θ³…θ⁷ leading order; there the Taylor series
+//   ∫_0^θ = Σ_j (−1)^j θ^{2j+1}/(2j+1)! · Σ_k a_k k^{2j}
+// is used instead: its coefficients are exact (k ≤ 4, a_k in eighths) and its terms do not
+// cancel. Switching at θ = 0.75 keeps both sides within ~1e-13 relative.
+constexpr int kTrigTerms = 5;
+using TrigPoly = std::array<double, kTrigTerms>;  // a_0 … a_4
+constexpr TrigPoly kSin2 = {0.5, 0.0, -0.5, 0.0, 0.0};
+constexpr TrigPoly kOmcSin2 = {0.5, -0.25, -0.5, 0.25, 0.0};
+constexpr TrigPoly kOmc2Sin2 = {0.625, -0.5, -0.5, 0.5, -0.125};
+constexpr TrigPoly kSin4 = {0.375, 0.0, -0.5, 0.0, 0.125};
+constexpr double kSeriesBelow = 0.75;
+constexpr int kSeriesTerms = 18;  // (4·0.75)^{37}/37! < 1e-17
 
-const GaussLegendre20& gaussLegendre20() {
-  static const GaussLegendre20 rule;
-  return rule;
+double integrateClosed(const TrigPoly& a, double theta, const std::array<double, kTrigTerms>& sinK) {
+  double sum = a[0] * theta;
+  for (int k = 1; k < kTrigTerms; ++k) sum += a[k] * sinK[k] / k;
+  return sum;
+}
+
+/// Σ_k a_k k^{2j} for j < kSeriesTerms: the series coefficients, exact in binary.
+std::array<double, kSeriesTerms> seriesMoments(const TrigPoly& a) {
+  std::array<double, kSeriesTerms> m{};
+  for (int j = 0; j < kSeriesTerms; ++j) {
+    m[j] = j == 0 ? a[0] : 0.0;
+    for (int k = 1; k < kTrigTerms; ++k) m[j] += a[k] * std::pow(static_cast<double>(k), 2 * j);
+  }
+  return m;
+}
+
+double integrateSeries(const std::array<double, kSeriesTerms>& m, double theta) {
+  double sum = 0.0, power = theta;  // θ^{2j+1}/(2j+1)!
+  for (int j = 0; j < kSeriesTerms; ++j) {
+    sum += (j % 2 == 0 ? power : -power) * m[j];
+    power *= theta * theta / ((2.0 * j + 2.0) * (2.0 * j + 3.0));
+  }
+  return sum;
 }
 
 struct Segment {
@@ -94,21 +109,32 @@ struct Segment {
 };
 
 Segment segmentMoments(double R, double theta) {
-  const auto& gl = gaussLegendre20();
-  const double half = 0.5 * theta;
-  double i20 = 0.0, i21 = 0.0, i22 = 0.0, i40 = 0.0;
-  for (int k = 0; k < 20; ++k) {
-    const double phi = half * (gl.x[k] + 1.0);
-    const double s = std::sin(phi), s2 = s * s;
-    const double sh = std::sin(0.5 * phi), omc = 2.0 * sh * sh;  // 1 − cos φ
-    i20 += gl.w[k] * s2;
-    i21 += gl.w[k] * omc * s2;
-    i22 += gl.w[k] * omc * omc * s2;
-    i40 += gl.w[k] * s2 * s2;
+  double i20, i21, i22, i40;
+  if (theta < kSeriesBelow) {
+    static const auto m20 = seriesMoments(kSin2), m21 = seriesMoments(kOmcSin2),
+                      m22 = seriesMoments(kOmc2Sin2), m40 = seriesMoments(kSin4);
+    i20 = integrateSeries(m20, theta);
+    i21 = integrateSeries(m21, theta);
+    i22 = integrateSeries(m22, theta);
+    i40 = integrateSeries(m40, theta);
+  } else {
+    std::array<double, kTrigTerms> sinK{};
+    const double s1 = std::sin(theta), c1 = std::cos(theta);
+    double sPrev = 0.0, sCur = s1;
+    sinK[1] = s1;
+    for (int k = 2; k < kTrigTerms; ++k) {  // sin kθ = 2 cos θ sin (k−1)θ − sin (k−2)θ
+      const double next = 2.0 * c1 * sCur - sPrev;
+      sPrev = sCur;
+      sCur = next;
+      sinK[k] = sCur;
+    }
+    i20 = integrateClosed(kSin2, theta, sinK);
+    i21 = integrateClosed(kOmcSin2, theta, sinK);
+    i22 = integrateClosed(kOmc2Sin2, theta, sinK);
+    i40 = integrateClosed(kSin4, theta, sinK);
   }
   const double R2 = R * R;
-  return {2.0 * R2 * half * i20, 2.0 * R2 * R * half * i21, 2.0 * R2 * R2 * half * i22,
-          (2.0 / 3.0) * R2 * R2 * half * i40};
+  return {2.0 * R2 * i20, 2.0 * R2 * R * i21, 2.0 * R2 * R2 * i22, (2.0 / 3.0) * R2 * R2 * i40};
 }
 
 /// θ with d = R(1 − cos θ), accurate for small d; d is clamped to [0, 2R].
@@ -178,6 +204,11 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
           tangency.push_back(zeta);
         }
       }
+      // Where the cut passes the axis (d = R, θ = π/2) the side-shadow term switches from
+      // 2 sin θ to 2(2 − sin θ): continuous with its slope, but its curvature jumps, and an
+      // adaptive rule would bisect towards that point for a long time. Cut there instead.
+      const double axis = h / c.nz;
+      if (axis > -0.5 * L && axis < 0.5 * L) cuts.push_back(axis);
     }
     std::sort(cuts.begin(), cuts.end());
     auto isTangency = [&](double z) {
@@ -199,27 +230,32 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
         total += f;
         continue;
       }
-      if (isTangency(a) || isTangency(b)) {
-        // θ as the variable: ζ(θ) = (h + sR cos θ)/n_z, |dζ/dθ| = sR sin θ / |n_z|.
-        const double ta = isTangency(a) ? (c.depth(a) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(a));
-        const double tb = isTangency(b) ? (c.depth(b) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(b));
-        const double lo = std::min(ta, tb), hi = std::max(ta, tb);
+      const double ta = isTangency(a) ? (c.depth(a) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(a));
+      const double tb = isTangency(b) ? (c.depth(b) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(b));
+      // θ is the better variable where d runs close to 0 (or 2R) relative to its range: the
+      // slice moments go like d^{3/2} there. ζ is kept where θ barely moves (the axis almost
+      // parallel to the plane), since ζ(θ) would then be ill-conditioned.
+      const double tLo = std::min(ta, tb), tHi = std::max(ta, tb);
+      const bool nearTangency = tLo < kThetaRatio * tHi || (M_PI - tHi) < kThetaRatio * (M_PI - tLo);
+      QuadratureResult<9> r;
+      if (isTangency(a) || isTangency(b) || (nearTangency && tHi - tLo > kMinThetaRange)) {
+        // ζ(θ) − a = (sR/n_z)(cos θ − cos θ_a), the difference of cosines written as a
+        // product so that it keeps its digits; |dζ/dθ| = sR sin θ / |n_z|.
         auto f = [&](double theta) -> Slice {
-          const double zeta = (h + c.s * R * std::cos(theta)) / c.nz;
+          const double dcos = -2.0 * std::sin(0.5 * (theta + ta)) * std::sin(0.5 * (theta - ta));
+          const double zeta = a + c.s * R * dcos / c.nz;
           return sliceIntegrand(R, c.s, theta, zeta - c.zetaDeep) *
                  (c.s * R * std::sin(theta) / std::abs(c.nz));
         };
-        const auto r = integrateAdaptive<9>(f, lo, hi, kQuadratureTolerance);
-        total += r.value;
-        relErr = std::max(relErr, r.relative_error);
+        r = integrateAdaptive<9>(f, tLo, tHi, kQuadratureTolerance);
       } else {
         auto f = [&](double zeta) -> Slice {
           return sliceIntegrand(R, c.s, segmentAngle(R, c.depth(zeta)), zeta - c.zetaDeep);
         };
-        const auto r = integrateAdaptive<9>(f, a, b, kQuadratureTolerance);
-        total += r.value;
-        relErr = std::max(relErr, r.relative_error);
+        r = integrateAdaptive<9>(f, a, b, kQuadratureTolerance);
       }
+      total += r.value;
+      relErr = std::max(relErr, r.relative_error);
     }
     for (double zeta : {-0.5 * L, 0.5 * L}) {
       capArea += std::abs(c.nz) * segmentMoments(R, segmentAngle(R, c.depth(zeta))).A;
