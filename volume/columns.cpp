@@ -334,11 +334,12 @@ struct AxisPasses {
 /// One pass along each world axis. A line along e_k crossing ∂B1 inside B2 with normal n_B1
 /// adds sign(n_B1·e_k) dS to (∫_{∂B1∩B2} n_B1 dA)_k, and likewise for ∂B2, so component k
 /// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by two cells
-/// all round, bound the region as sampled; the three passes' bounds are intersected.
+/// all round, bound the region as sampled. The three passes' bounds are united, not
+/// intersected: a thin region that one pass resolves and another misses (two ribs pressed
+/// unequally) must stay inside the box.
 AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
                       int resolution) {
   AxisPasses out;
-  out.region = box;
   for (int k = 0; k < 3; ++k) {
     const Grid g(box, Vector3d::Unit(k), resolution);
     const GridSums s = integrate(a, b, g, nullptr);
@@ -347,8 +348,10 @@ AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& 
     // Two cells of margin on every axis: a thin rim between sampled lines, or a line just
     // missed, lies within a cell of a wet one for any region the grid resolves.
     const Vector3d margin = Vector3d::Constant(2.0 * (box.hi - box.lo).maxCoeff() / resolution);
-    out.region = out.region.intersected({g.o + s.wet.lo - margin, g.o + s.wet.hi + margin});
+    const WorldBox wet{g.o + s.wet.lo - margin, g.o + s.wet.hi + margin};
+    out.region = {out.region.lo.cwiseMin(wet.lo), out.region.hi.cwiseMax(wet.hi)};
   }
+  out.region = out.region.intersected(box);
   out.found = !out.region.empty();
   return out;
 }

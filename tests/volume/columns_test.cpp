@@ -88,6 +88,30 @@ TEST(Columns, AgreesWithCgalOnNamedPairs) {
   }
 }
 
+// Regression: two separate regions pressed unequally (a part on two feet, one barely
+// touching). The axis passes resolve the thin one in some directions only; the integration
+// box must still hold both. Exact: V = s² (d₁ + d₂), normal +z.
+TEST(Columns, KeepsAThinSecondRegion) {
+  const double s = 0.01, d1 = 1e-3, d2 = 2e-5;
+  TriangleMesh feet = geometry::tessellateBox(Vector3d::Constant(s));
+  const TriangleMesh second = feet;
+  feet.vertices.col(0).array() -= 0.02;
+  feet.vertices.col(2).array() += s / 2 - d1;
+  feet.vertices.conservativeResize(16, 3);
+  feet.vertices.bottomRows(8) = second.vertices;
+  feet.vertices.bottomRows(8).col(0).array() += 0.02;
+  feet.vertices.bottomRows(8).col(2).array() += s / 2 - d2;
+  feet.triangles.conservativeResize(24, 3);
+  feet.triangles.bottomRows(12) = second.triangles.array() + 8;
+  const TriangleMesh plate = geometry::tessellateBox(Vector3d(0.08, 0.03, 0.01));
+  const MeshBvh a(feet), b(plate);
+  const Isometry3d X_WB = test::translation({0, 0, -0.005});  // plate top at z = 0
+  const ContactVolume col = columnsContact({&a, Isometry3d::Identity()}, {&b, X_WB});
+  EXPECT_NEAR(col.volume, s * s * (d1 + d2), volumeTolerance(col) * s * s * (d1 + d2));
+  EXPECT_GT(col.volume, s * s * d1 * (1 + 0.5 * d2 / d1));  // the thin foot is counted
+  EXPECT_LE((col.normal - Vector3d::UnitZ()).norm(), 2e-2);
+}
+
 // Against the exact clip for a mesh on a half-space, from shallow to deep.
 TEST(Columns, AgreesWithHalfspaceClip) {
   const MeshBvh sphere(geometry::tessellateSphere(0.0137, 64, 33));
