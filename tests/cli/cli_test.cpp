@@ -1,7 +1,5 @@
 // The vcontact command as a user runs it: exit codes, messages, output files.
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -12,16 +10,14 @@
 
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
+#include "support/run_command.hpp"
 
 namespace vcontact {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int exitCode;
-  std::string out, err;
-};
+using test::CommandResult;
 
 CommandResult run(const std::string& args) {
   // One stderr file per test: CTest runs the tests of this file in parallel processes.
@@ -29,17 +25,7 @@ CommandResult run(const std::string& args) {
       fs::temp_directory_path() /
       (std::string("vcontact_cli_") + testing::UnitTest::GetInstance()->current_test_info()->name() +
        "_" + std::to_string(getpid()) + ".stderr");
-  const std::string cmd = std::string(VCONTACT_BINARY) + " " + args + " 2>" + errFile.string();
-  CommandResult r{};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  {
-    std::ifstream e(errFile);
-    r.err.assign(std::istreambuf_iterator<char>(e), {});
-  }
+  CommandResult r = test::runCommand(std::string(VCONTACT_BINARY) + " " + args, errFile);
   fs::remove(errFile);
   return r;
 }

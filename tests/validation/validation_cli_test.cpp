@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "io/model_file.hpp"
+#include "support/run_command.hpp"
 #include "io/validation_output.hpp"
 #include "validation/effect_cases.hpp"
 
@@ -23,22 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int exitCode;
-  std::string out, err;
-};
-
-CommandResult runCommand(const std::string& cmd, const fs::path& errFile) {
-  CommandResult r{};
-  FILE* pipe = popen((cmd + " 2>" + errFile.string()).c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(errFile);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
-}
+using test::CommandResult;
+using test::runCommand;
 
 std::string readText(const fs::path& p) {
   std::ifstream in(p);

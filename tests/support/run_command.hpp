@@ -1,0 +1,34 @@
+#pragma once
+// Runs a command as a user would, capturing its exit code, standard output and standard
+// error. Each caller names its own stderr file: CTest runs tests as parallel processes.
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <sys/wait.h>
+
+namespace vcontact::test {
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+inline CommandResult runCommand(const std::string& command, const std::filesystem::path& errFile) {
+  CommandResult r;
+  FILE* pipe = popen((command + " 2>" + errFile.string()).c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(errFile);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+}  // namespace vcontact::test
