@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/error.hpp"
+#include "support/test_support.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -87,14 +88,7 @@ TEST_F(DatasetFiles, DifferentiatesMissingVelocitiesAndSaysSo) {
   }
 }
 
-std::string rejection(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string rejection(const std::function<void()>& f) { return test::inputErrorMessage(f); }
 
 struct BadCsv {
   const char* name;

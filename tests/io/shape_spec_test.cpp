@@ -5,18 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "geometry/error.hpp"
+#include "support/test_support.hpp"
 
 namespace vcontact::io {
 namespace {
 
-std::string rejection(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string rejection(const std::function<void()>& f) { return test::inputErrorMessage(f); }
 
 TEST(ShapeSpec, Primitives) {
   EXPECT_DOUBLE_EQ(std::get<geometry::Sphere>(parseShape("sphere:0.01", "A").shape).radius, 0.01);

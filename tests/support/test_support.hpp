@@ -2,9 +2,13 @@
 // Helpers shared by the tests: reproducible poses and tensor comparisons.
 
 #include <cmath>
+#include <functional>
 #include <random>
+#include <string>
 
 #include <Eigen/Geometry>
+
+#include "geometry/error.hpp"
 
 namespace vcontact::test {
 
@@ -31,6 +35,16 @@ double relativeDifference(const A& a, const B& b) {
 /// Rotation taking the frame's z axis onto the unit vector `to`.
 inline Eigen::Matrix3d rotationZTo(const Eigen::Vector3d& to) {
   return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), to).toRotationMatrix();
+}
+
+/// The message of the InputError that `f` throws, or "" when it throws none.
+inline std::string inputErrorMessage(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace vcontact::test
