@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/error.hpp"
+#include "io/json_file.hpp"
 #include "io/shape_json.hpp"
 
 namespace vcontact::io {
@@ -27,18 +28,6 @@ constexpr std::size_t kMinimumSamples = 3;
 bool isWrench(const std::string& c) {
   return std::find(validation::kWrenchColumns.begin(), validation::kWrenchColumns.end(), c) !=
          validation::kWrenchColumns.end();
-}
-
-json readSidecar(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, fs::exists(path) ? "cannot be read" : "no such file");
-  try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    std::ostringstream os;
-    os << "not valid JSON (byte " << e.byte << "): " << e.what();
-    throw InputError(path, os.str());
-  }
 }
 
 std::string requireString(const json& j, const std::string& key, const std::string& where) {
@@ -209,7 +198,7 @@ void readOutputsAndNoise(const json& j, const std::string& where, const std::str
 }  // namespace
 
 DatasetReadResult readDataset(const std::string& sidecarPath) {
-  const json j = readSidecar(sidecarPath);
+  const json j = readJsonFile(sidecarPath);
   const std::string& where = sidecarPath;
   if (!j.is_object()) throw InputError(where, "the sidecar must be a JSON object");
   const std::string format = requireString(j, "format", where);

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "dynamics/effects/registry.hpp"
 #include "geometry/error.hpp"
+#include "io/json_file.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -125,14 +125,7 @@ dynamics::Model modelFromJson(const nlohmann::json& j, const std::string& source
 }
 
 dynamics::Model readModelFile(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, "cannot open model file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(f);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json j = readJsonFile(path);
   return modelFromJson(j, path);
 }
 

@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "io/json_file.hpp"
 #include "io/model_file.hpp"
 #include "io/shape_spec.hpp"
 
@@ -296,14 +296,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
 }
 
 ScenarioFile readScenarioFile(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, "cannot open scenario file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(f);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json j = readJsonFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return scenarioFromJson(j, path, dir.empty() ? "." : dir);
 }

@@ -1,0 +1,15 @@
+#pragma once
+// Reading a JSON file, with the errors every reader of the project reports the same way.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace vcontact::io {
+
+/// Parses the file at `path`.
+/// @throws InputError naming `path`: "no such file", "cannot be read", or
+///         "not valid JSON (byte N): …"
+nlohmann::json readJsonFile(const std::string& path);
+
+}  // namespace vcontact::io
