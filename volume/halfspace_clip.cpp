@@ -12,52 +12,69 @@ using Eigen::Vector3d;
 using geometry::BvhNode;
 using geometry::MeshBvh;
 
-/// Point where the edge from a (inside, z < 0) to b (outside, z ≥ 0) crosses z = 0.
-Vector3d crossing(const Vector3d& a, const Vector3d& b) {
-  const double t = a.z() / (a.z() - b.z());
-  Vector3d p = a + t * (b - a);
-  p.z() = 0.0;  // exactly on the plane, so the cap contributes nothing
-  return p;
-}
+/// The plane z_H = 0 seen from the mesh frame M, for bounding whole nodes: z_H(p) = n·p + h
+/// for p in M. (Vertex heights come from the transformed vertices themselves, see clipFace.)
+struct PlaneInM {
+  Vector3d n;  ///< z_H in M axes (unit)
+  double h;    ///< z_H of the origin of M
 
-/// Running sums over the fan pieces (o, a, b, c), corners relative to o: with
+  explicit PlaneInM(const Eigen::Isometry3d& X_HM)
+      : n(X_HM.linear().row(2).transpose()), h(X_HM.translation().z()) {}
+  double z(const Vector3d& p_M) const { return n.dot(p_M) + h; }
+};
+
+/// Running sums over the fan pieces (o, a, b, c), corners relative to o in H axes: with
 /// D = a·(b × c) and s = a + b + c, the moments about o are m0 = ΣD/6, m1 = Σ D s/24 and
-/// m2 = Σ D (a aᵀ + b bᵀ + c cᵀ + s sᵀ)/120 (as tetrahedronMoments, kept as plain sums
-/// because this is the inner loop of the clip).
+/// m2 = Σ D (a aᵀ + b bᵀ + c cᵀ + s sᵀ)/120 (as tetrahedronMoments, kept as plain sums, m2 as
+/// its six distinct entries, because this is the inner loop of the clip).
 struct FanSum {
   double D = 0.0;
   Vector3d Ds = Vector3d::Zero();
-  Eigen::Matrix3d DQ = Eigen::Matrix3d::Zero();
-  double area = 0.0;  ///< projected area of the downward-facing pieces
+  double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, xz = 0.0, yz = 0.0;
+  double area = 0.0;  ///< projected area of the downward-facing clipped faces, m²
 
-  /// Adds the tetrahedron (o, a, b, c) and the shadow of the face (a, b, c) if it faces down.
+  /// Adds the tetrahedron (o, a, b, c).
   void add(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-    const Vector3d bc = b.cross(c);
-    const double d = a.dot(bc);
-    const Vector3d sum = a + b + c;
+    const double d = a.x() * (b.y() * c.z() - b.z() * c.y()) +
+                     a.y() * (b.z() * c.x() - b.x() * c.z()) +
+                     a.z() * (b.x() * c.y() - b.y() * c.x());
+    const double sx = a.x() + b.x() + c.x(), sy = a.y() + b.y() + c.y(),
+                 sz = a.z() + b.z() + c.z();
     D += d;
-    Ds += d * sum;
-    DQ.noalias() +=
-        d * (a * a.transpose() + b * b.transpose() + c * c.transpose() + sum * sum.transpose());
-    const double nz2 = (b - a).cross(c - a).z();  // 2 × signed projected area
-    if (nz2 < 0.0) area -= 0.5 * nz2;
+    Ds += d * Vector3d(sx, sy, sz);
+    xx += d * (a.x() * a.x() + b.x() * b.x() + c.x() * c.x() + sx * sx);
+    yy += d * (a.y() * a.y() + b.y() * b.y() + c.y() * c.y() + sy * sy);
+    zz += d * (a.z() * a.z() + b.z() * b.z() + c.z() * c.z() + sz * sz);
+    xy += d * (a.x() * a.y() + b.x() * b.y() + c.x() * c.y() + sx * sy);
+    xz += d * (a.x() * a.z() + b.x() * b.z() + c.x() * c.z() + sx * sz);
+    yz += d * (a.y() * a.z() + b.y() * b.z() + c.y() * c.z() + sy * sz);
   }
 
-  void addTo(ClippedMoments& out) const {
-    out.moments.m0 += D / 6.0;
-    out.moments.m1 += Ds / 24.0;
-    out.moments.m2 += DQ / 120.0;
-    out.area += area;
+  geometry::Moments moments() const {
+    geometry::Moments m;
+    m.m0 = D / 6.0;
+    m.m1 = Ds / 24.0;
+    m.m2 << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+    m.m2 /= 120.0;
+    return m;
   }
 };
 
-/// Adds the part of the triangle v (corners relative to o, H axes) below z = 0 as fan pieces
-/// with apex o (MODEL.md §1: the region is mesh ∩ {z_H ≤ 0}).
+/// Adds the part below the plane z = 0 of the triangle v (corners relative to o, H axes) as
+/// fan pieces with apex o (MODEL.md §1: the region is mesh ∩ {z_H ≤ 0}), and its shadow on
+/// the plane if it faces down. With o and the crossing points exactly on the plane, the cap
+/// polygon contributes nothing and is not built; the heights that decide a corner's side are
+/// the very coordinates the pieces are made of, so shallow contacts keep their digits.
 void clipTriangle(const Vector3d (&v)[3], FanSum& out) {
   const int inside = (v[0].z() < 0.0) + (v[1].z() < 0.0) + (v[2].z() < 0.0);
   if (inside == 0) return;
+  // Twice the projected area of the whole face, negative when it faces down; the clipped part
+  // keeps a fraction of it (a triangle and its sub-polygons share one normal).
+  const double up2 = (v[1].x() - v[0].x()) * (v[2].y() - v[0].y()) -
+                     (v[1].y() - v[0].y()) * (v[2].x() - v[0].x());
   if (inside == 3) {
     out.add(v[0], v[1], v[2]);
+    if (up2 < 0.0) out.area -= 0.5 * up2;
     return;
   }
   // Rotate so that the lone vertex (inside when inside == 1, outside when 2) comes first;
@@ -68,70 +85,127 @@ void clipTriangle(const Vector3d (&v)[3], FanSum& out) {
   const Vector3d& a = v[k0];
   const Vector3d& b = v[(k0 + 1) % 3];
   const Vector3d& c = v[(k0 + 2) % 3];
+  // The edges from the lone corner cross the plane at fractions tb, tc of their length.
+  const double tb = a.z() / (a.z() - b.z()), tc = a.z() / (a.z() - c.z());
+  Vector3d pb = a + tb * (b - a), pc = a + tc * (c - a);
+  pb.z() = 0.0;
+  pc.z() = 0.0;
+  double kept;  // fraction of the face's area below the plane
   if (loneInside) {
-    out.add(a, crossing(a, b), crossing(a, c));
+    out.add(a, pb, pc);
+    kept = tb * tc;
   } else {
-    const Vector3d pb = crossing(b, a), pc = crossing(c, a);
     out.add(pb, b, c);
     out.add(pb, c, pc);
+    kept = 1.0 - tb * tc;
   }
+  if (up2 < 0.0) out.area -= 0.5 * kept * up2;
 }
+
+/// Clips triangle f of `mesh` (pose X_HM) about o_H into `out`.
+void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Eigen::Isometry3d& X_HM,
+              const Vector3d& o_H, FanSum& out) {
+  const Vector3d v[3] = {X_HM * mesh.corner(f, 0) - o_H, X_HM * mesh.corner(f, 1) - o_H,
+                         X_HM * mesh.corner(f, 2) - o_H};
+  clipTriangle(v, out);
+}
+
+/// o: the deepest vertex (given in H) dropped onto the plane, in H and in M.
+struct Apex {
+  Vector3d o_H, o_M;
+  Apex(const Eigen::Isometry3d& X_HM, const Vector3d& deepest_H)
+      : o_H(deepest_H.x(), deepest_H.y(), 0.0), o_M(X_HM.inverse() * o_H) {}
+};
+
+/// The clip's sums as ClippedMoments in H: `inH` about o in H axes, `inM` about o in M axes.
+ClippedMoments toHalfspaceFrame(const geometry::Moments& inH, const geometry::Moments& inM,
+                                double area, double depth, const Vector3d& o_H,
+                                const Eigen::Matrix3d& R_HM) {
+  ClippedMoments out;
+  out.moments.m0 = inH.m0 + inM.m0;
+  out.moments.m1 = inH.m1 + R_HM * inM.m1;
+  out.moments.m2 = inH.m2 + R_HM * inM.m2 * R_HM.transpose();
+  out.area = area;
+  out.depth = depth;
+  out.origin = o_H;
+  return out;
+}
+
+// A straddling subtree of at most this many triangles is clipped triangle by triangle rather
+// than opened further: telling a triangle's side from its three heights costs less than
+// bounding a node, and a triangle wholly above the plane costs nothing more.
+constexpr int kClipLeafSize = 8;
 
 // A box is treated as wholly on one side only when its z-range clears the plane by more than
 // the rounding of the range itself (a few ulps of the coordinates); closer boxes are opened
 // and their triangles clipped one by one exactly as the reference does.
 constexpr double kBoxRoundingUlps = 16.0;
 
-/// Traversal state of the accelerated clip.
+/// Traversal state of the accelerated clip. Everything is computed in the mesh frame M about
+/// o, and the sums are rotated into H once at the end: no vertex is transformed.
 class BvhClip {
  public:
   BvhClip(const MeshBvh& bvh, const Eigen::Isometry3d& X_HM)
-      : bvh_(bvh), X_HM_(X_HM), R_HM_(X_HM.linear()), z_M_(R_HM_.row(2).transpose()) {}
+      : bvh_(bvh),
+        mesh_(bvh.mesh()),
+        X_HM_(X_HM),
+        plane_(X_HM),
+        absN_(plane_.n.cwiseAbs()),
+        slackScale_(kBoxRoundingUlps * std::numeric_limits<double>::epsilon()),
+        slackBase_(X_HM.translation().cwiseAbs().sum()) {}
 
   ClippedMoments run() {
-    ClippedMoments out;
+    // Scratch lists reused across queries on this thread: a query allocates nothing.
+    thread_local std::vector<const BvhNode*> below, straddling;
+    below.clear();
+    straddling.clear();
+    below_ = &below;
+    straddling_ = &straddling;
     collect(bvh_.root());
     // The lowest vertex lies in a collected node (it is below the plane when there is
     // contact); search only those, the lowest-reaching first.
     double best = std::numeric_limits<double>::infinity();
-    for (const BvhNode* node : below_) best = deepestZ(*node, best);
-    for (const BvhNode* node : straddling_) best = deepestZ(*node, best);
-    if (!(best < 0.0)) return out;
-    out.depth = -best;
-    out.origin = Vector3d(deepest_.x(), deepest_.y(), 0.0);
-    o_H_ = out.origin;
-    for (const BvhNode* node : below_) addWholeNode(*node, out);
+    for (const BvhNode* node : below) best = deepestZ(*node, best);
+    for (const BvhNode* node : straddling) best = deepestZ(*node, best);
+    if (!(best < 0.0)) return ClippedMoments{};
+    const Apex apex(X_HM_, deepest_);
     FanSum clipped;
-    for (const BvhNode* node : straddling_) clipLeaf(*node, clipped);
-    clipped.addTo(out);
-    // Wholly-below subtrees were summed about o in M axes; rotate them into H once.
-    const Vector3d m1_H = R_HM_ * belowInM_.m1;
-    out.moments.m0 += belowInM_.m0;
-    out.moments.m1 += m1_H;
-    out.moments.m2 += R_HM_ * belowInM_.m2 * R_HM_.transpose();
-    return out;
+    for (const BvhNode* node : straddling) {
+      for (int i = node->first; i < node->first + node->count; ++i) {
+        clipFace(mesh_, bvh_.order()[i], X_HM_, apex.o_H, clipped);
+      }
+    }
+    // Wholly-below subtrees are summed about o in M axes and rotated into H once.
+    geometry::Moments belowInM;
+    double area = clipped.area;
+    for (const BvhNode* node : below) {
+      belowInM += geometry::fanMoments(node->integrals, node->center - apex.o_M);
+      area += downwardArea(*node);
+    }
+    return toHalfspaceFrame(clipped.moments(), belowInM, area, -best, apex.o_H, X_HM_.linear());
   }
 
+ private:
   struct ZRange {
     double lo, hi;
   };
 
   /// Bounds of z_H over the node's vertices: the tighter of its box and its normal slab.
-  /// With z_M = the plane normal in M, split into a part along the slab axis a and the rest:
-  /// (p − c)·z_M = (z_M·a) s + (p − c)·z_⊥ with s ∈ [axialLo, axialHi], |…| ≤ |z_⊥| ρ.
+  /// With n = the plane normal in M, split into a part along the slab axis a and the rest:
+  /// (p − c)·n = (n·a) s + (p − c)·n_⊥ with s ∈ [axialLo, axialHi], |…| ≤ |n_⊥| ρ.
+  /// The slab is worked out only when the box alone cannot place the node.
   ZRange zRange(const BvhNode& node) const {
-    const double cz = (X_HM_ * node.center).z();
-    const double boxExtent = z_M_.cwiseAbs().dot(node.halfExtent);
-    const double za = z_M_.dot(node.normalAxis);
-    const double perp = std::sqrt(std::max(0.0, 1.0 - za * za)) * node.radialExtent;
-    const double slabLo = std::min(za * node.axialLo, za * node.axialHi) - perp;
-    const double slabHi = std::max(za * node.axialLo, za * node.axialHi) + perp;
-    const double slack = kBoxRoundingUlps * std::numeric_limits<double>::epsilon() *
-                         (std::abs(cz) + boxExtent + X_HM_.translation().cwiseAbs().sum());
-    return {cz + std::max(-boxExtent, slabLo) - slack, cz + std::min(boxExtent, slabHi) + slack};
+    const double cz = plane_.z(node.center);
+    const double boxExtent = absN_.dot(node.halfExtent);
+    const double slack = slackScale_ * (std::abs(cz) + boxExtent + slackBase_);
+    ZRange box{cz - boxExtent - slack, cz + boxExtent + slack};
+    if (box.lo >= 0.0 || box.hi < 0.0) return box;
+    const double na = plane_.n.dot(node.normalAxis);
+    const double perp = std::sqrt(std::max(0.0, 1.0 - na * na)) * node.radialExtent;
+    const double slabLo = std::min(na * node.axialLo, na * node.axialHi) - perp;
+    const double slabHi = std::max(na * node.axialLo, na * node.axialHi) + perp;
+    return {std::max(box.lo, cz + slabLo - slack), std::min(box.hi, cz + slabHi + slack)};
   }
-
-  Vector3d corner_H(int f, int k) const { return X_HM_ * bvh_.mesh().corner(f, k); }
 
   /// Branch and bound for the lowest vertex; returns the best z so far.
   double deepestZ(const BvhNode& node, double best) {
@@ -144,7 +218,7 @@ class BvhClip {
     if (node.isLeaf()) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         for (int k = 0; k < 3; ++k) {
-          const Vector3d p = corner_H(bvh_.order()[i], k);
+          const Vector3d p = X_HM_ * mesh_.corner(bvh_.order()[i], k);
           if (p.z() < best) {
             best = p.z();
             deepest_ = p;
@@ -166,36 +240,20 @@ class BvhClip {
     const ZRange z = zRange(node);
     if (z.lo >= 0.0) return;
     if (z.hi < 0.0) {
-      below_.push_back(&node);
-    } else if (node.isLeaf()) {
-      straddling_.push_back(&node);
+      below_->push_back(&node);
+    } else if (node.isLeaf() || node.count <= kClipLeafSize) {
+      straddling_->push_back(&node);
     } else {
       collect(bvh_.nodes()[node.left]);
       collect(bvh_.nodes()[node.right]);
     }
   }
 
-  void clipLeaf(const BvhNode& node, FanSum& out) const {
-    for (int i = node.first; i < node.first + node.count; ++i) {
-      const int f = bvh_.order()[i];
-      const Vector3d v[3] = {corner_H(f, 0) - o_H_, corner_H(f, 1) - o_H_, corner_H(f, 2) - o_H_};
-      clipTriangle(v, out);
-    }
-  }
-
-  /// Fan moments about o of a subtree wholly below the plane, in M axes:
-  /// δ_M = R_HMᵀ (X_HM r − o) (fan_integrals.hpp).
-  void addWholeNode(const BvhNode& node, ClippedMoments& out) {
-    const Vector3d delta_M = R_HM_.transpose() * (X_HM_ * node.center - o_H_);
-    belowInM_ += geometry::fanMoments(node.integrals, delta_M);
-    out.area += downwardArea(node);
-  }
-
-  /// Projected area onto z_H = 0 of the node's faces with n_z < 0: −(R_HM ∫n dA)_z when the
+  /// Projected area onto z_H = 0 of the node's faces with n_z < 0: −(n·∫n dA) when the
   /// normal cone lies wholly below the horizontal, 0 when wholly above, else per child.
   double downwardArea(const BvhNode& node) const {
-    const double axisZ = R_HM_.row(2).dot(node.normalAxis);
-    if (axisZ <= -node.normalSinHalfAngle) return -R_HM_.row(2).dot(node.integrals.F);
+    const double axisZ = plane_.n.dot(node.normalAxis);
+    if (axisZ <= -node.normalSinHalfAngle) return -plane_.n.dot(node.integrals.F);
     if (axisZ >= node.normalSinHalfAngle) return 0.0;
     if (!node.isLeaf()) {
       return downwardArea(bvh_.nodes()[node.left]) + downwardArea(bvh_.nodes()[node.right]);
@@ -203,48 +261,41 @@ class BvhClip {
     double area = 0.0;
     for (int i = node.first; i < node.first + node.count; ++i) {
       const int f = bvh_.order()[i];
-      const Vector3d a = corner_H(f, 0);
-      const double nz2 = (corner_H(f, 1) - a).cross(corner_H(f, 2) - a).z();
-      if (nz2 < 0.0) area -= 0.5 * nz2;
+      const Vector3d a = mesh_.corner(f, 0);
+      const double up2 = (mesh_.corner(f, 1) - a).cross(mesh_.corner(f, 2) - a).dot(plane_.n);
+      if (up2 < 0.0) area -= 0.5 * up2;
     }
     return area;
   }
 
   const MeshBvh& bvh_;
+  const geometry::TriangleMesh& mesh_;
   const Eigen::Isometry3d X_HM_;
-  const Eigen::Matrix3d R_HM_;
-  const Vector3d z_M_;  ///< the plane's normal z_H in M
-  Vector3d deepest_ = Vector3d::Zero();
-  Vector3d o_H_ = Vector3d::Zero();
-  geometry::Moments belowInM_;
-  std::vector<const BvhNode*> below_, straddling_;
+  const PlaneInM plane_;
+  const Vector3d absN_;     ///< |n| componentwise, for the box extent along n
+  const double slackScale_;  ///< kBoxRoundingUlps · eps
+  const double slackBase_;   ///< |translation|₁, the size the heights are rounded against
+  Vector3d deepest_ = Vector3d::Zero();  ///< deepest vertex, H
+  std::vector<const BvhNode*>* below_ = nullptr;
+  std::vector<const BvhNode*>* straddling_ = nullptr;
 };
 
 }  // namespace
 
 ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
                                    const Eigen::Isometry3d& X_HM) {
-  const Eigen::Index n = mesh.vertexCount();
-  geometry::Vertices p_H(n, 3);
-  Eigen::Index deepest = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    p_H.row(i) = (X_HM * mesh.vertex(i)).transpose();
-    if (p_H(i, 2) < p_H(deepest, 2)) deepest = i;
+  if (mesh.vertexCount() == 0) return ClippedMoments{};
+  Vector3d deepest = X_HM * mesh.vertex(0);
+  for (Eigen::Index i = 1; i < mesh.vertexCount(); ++i) {
+    const Vector3d p = X_HM * mesh.vertex(i);
+    if (p.z() < deepest.z()) deepest = p;
   }
-  ClippedMoments out;
-  if (n == 0) return out;
-  out.depth = -p_H(deepest, 2);
-  if (out.depth <= 0.0) return out;
-  const Vector3d o(p_H(deepest, 0), p_H(deepest, 1), 0.0);
-  out.origin = o;
+  if (!(deepest.z() < 0.0)) return ClippedMoments{};
+  const Apex apex(X_HM, deepest);
   FanSum sum;
-  for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
-    Vector3d v[3];
-    for (int k = 0; k < 3; ++k) v[k] = p_H.row(mesh.triangles(f, k)).transpose() - o;
-    clipTriangle(v, sum);
-  }
-  sum.addTo(out);
-  return out;
+  for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) clipFace(mesh, f, X_HM, apex.o_H, sum);
+  return toHalfspaceFrame(sum.moments(), geometry::Moments{}, sum.area, -deepest.z(), apex.o_H,
+                          X_HM.linear());
 }
 
 ClippedMoments clipMeshByHalfspace(const MeshBvh& bvh, const Eigen::Isometry3d& X_HM) {
