@@ -1,0 +1,588 @@
+#include "volume/mesh_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "geometry/moments.hpp"
+#include "volume/exact_predicates.hpp"
+
+namespace vcontact::volume {
+namespace {
+
+using Eigen::Isometry3d;
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using geometry::BvhNode;
+using geometry::MeshBvh;
+using geometry::MeshEdge;
+using geometry::MeshTopology;
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+/// Boxes are grown by this fraction of the largest coordinate in play. Placing a vertex in W
+/// or in the other body's frame rounds it by a few ε of that size; 1e-12 (≈ 4500 ε) covers
+/// it many times over, so the broad phase never drops a pair the exact predicates would see.
+constexpr double kBoxMargin = 1e-12;
+/// A double orient3d det[u, v, w] of rounded differences is within this factor times
+/// ‖u‖₁‖v‖₁‖w‖₁ (≥ the permanent) of the exact value: ≈ 8ε from the differences, products
+/// and sums (Shewchuk 1997 bounds orient3d by 7ε of the permanent); 32ε for margin.
+constexpr double kOrientBound = 32.0 * kEps;
+/// A region whose volume is below kVolumeNoise·ε·(the V error from moving every boundary
+/// point by ε·scale, plus the terms' own rounding) is rounding noise: the bodies touch (a
+/// perturbed flat contact) without overlapping. Each point is placed or constructed to a
+/// few ε of the largest coordinate; 64 leaves a factor of ten.
+constexpr double kVolumeNoise = 64.0;
+
+/// A set of small integers that clears in O(1) between queries (epoch stamps).
+class StampSet {
+ public:
+  void reset(std::size_t n) {
+    if (stamp_.size() < n) stamp_.resize(n, 0);
+    if (++epoch_ == 0) {  // wrapped: forget every old stamp
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      epoch_ = 1;
+    }
+  }
+  bool contains(int i) const { return stamp_[static_cast<std::size_t>(i)] == epoch_; }
+  /// True when i was not in the set.
+  bool insert(int i) {
+    auto& s = stamp_[static_cast<std::size_t>(i)];
+    if (s == epoch_) return false;
+    s = epoch_;
+    return true;
+  }
+
+ private:
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+};
+
+/// Per-mesh memory reused by the queries of one thread, so a query costs what it touches.
+struct SideScratch {
+  StampSet placed;  ///< vertices already placed in W
+  std::vector<Vector3d> p_W;
+  StampSet inside;  ///< vertices inside the other body
+  std::vector<int> insideList;
+  StampSet cut;  ///< faces with at least one intersection segment
+  std::vector<int> cutList;
+  StampSet crossingEdge;  ///< edges that cross the other surface
+  std::vector<char> seeded;  ///< per component: has a crossing edge
+};
+
+/// One edge of one mesh through one face of the other.
+struct Crossing {
+  int side;       ///< mesh of the edge: 0 = A, 1 = B
+  int edge;       ///< edge index in that mesh
+  int face;       ///< face of the other mesh
+  int sigma;      ///< +1: the edge, run v0 → v1, enters the other body here; −1: leaves
+  double lambda;  ///< position along v0 → v1, in [0, 1]
+  Vector3d x;     ///< W
+};
+
+/// An end of the segment t_A ∩ t_B, oriented as the boundary of t_A ∩ B.
+struct Endpoint {
+  std::uint64_t key;  ///< (t_A << 32) | t_B
+  int crossing;
+  bool start;
+};
+
+/// A directed boundary edge (p → q) of the region t ∩ (other body), t a face of mesh `side`.
+struct Piece {
+  int side;
+  int face;
+  Vector3d p, q;
+};
+
+struct WholeFace {
+  int side;
+  int face;
+};
+
+struct Scratch {
+  SideScratch sides[2];
+  std::vector<Crossing> crossings;
+  std::vector<int> order;
+  std::vector<Endpoint> endpoints;
+  std::vector<Piece> pieces;
+  std::vector<WholeFace> wholes;
+  std::vector<std::pair<int, int>> nodeStack;
+  std::vector<int> stack;
+  std::vector<std::pair<Vector3d, double>> faceArea;  ///< per piece: unit face normal, area
+};
+
+/// A mesh placed in W for one query.
+struct Body {
+  const MeshBvh& bvh;
+  const MeshTopology& topo;
+  Isometry3d X_WM;
+  SideScratch& s;
+
+  const geometry::TriangleMesh& mesh() const { return bvh.mesh(); }
+  /// p_W of vertex v, placed on first use.
+  const Vector3d& p(int v) {
+    if (s.placed.insert(v)) s.p_W[static_cast<std::size_t>(v)] = X_WM * mesh().vertex(v);
+    return s.p_W[static_cast<std::size_t>(v)];
+  }
+  const Vector3d& corner(int f, int k) { return p(mesh().triangles(f, k)); }
+};
+
+/// The symbolic translation of a segment of mesh `side` relative to the other mesh's faces:
+/// A is the body moved by +τ (exact_predicates.hpp).
+int perturbationSign(int side) { return side == 0 ? 1 : -1; }
+
+/// True when the points P lie strictly on one side of the plane of triangle T, by more than
+/// the rounding of a double orient3d (so the exact predicates would find no crossing).
+bool strictlyOneSide(const Vector3d* T, const Vector3d* P) {
+  const Vector3d u = T[1] - T[0], v = T[2] - T[0];
+  const Vector3d n = u.cross(v);
+  const double uv = u.lpNorm<1>() * v.lpNorm<1>();
+  int above = 0, below = 0;
+  for (int i = 0; i < 3; ++i) {
+    const Vector3d w = P[i] - T[0];
+    const double d = n.dot(w);
+    const double bound = kOrientBound * uv * w.lpNorm<1>();
+    if (d > bound) {
+      ++above;
+    } else if (d < -bound) {
+      ++below;
+    } else {
+      return false;
+    }
+  }
+  return above == 3 || below == 3;
+}
+
+/// Axis-aligned box of a body-frame box placed by X (conservative), as {centre, half-size}.
+std::pair<Vector3d, Vector3d> placedBox(const Isometry3d& X, const Vector3d& center,
+                                        const Vector3d& half) {
+  return {X * center, X.linear().cwiseAbs() * half};
+}
+
+bool boxesOverlap(const std::pair<Vector3d, Vector3d>& a, const std::pair<Vector3d, Vector3d>& b,
+                  double margin) {
+  return ((a.first - b.first).cwiseAbs().array() <=
+          (a.second + b.second).array() + margin)
+      .all();
+}
+
+/// Segment p0 + t (p1 − p0), t ∈ [0, 1], meets the box (centre c, half-sizes h)?
+bool segmentMeetsBox(const Vector3d& p0, const Vector3d& p1, const Vector3d& c,
+                     const Vector3d& h) {
+  double t0 = 0.0, t1 = 1.0;
+  const Vector3d d = p1 - p0;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = c[k] - h[k] - p0[k], hi = c[k] + h[k] - p0[k];
+    if (d[k] == 0.0) {
+      if (lo > 0.0 || hi < 0.0) return false;
+      continue;
+    }
+    double a = lo / d[k], b = hi / d[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+class Intersector {
+ public:
+  Intersector(Body a, Body b, Scratch& scratch) : body_{a, b}, w_(scratch) {
+    for (int side = 0; side < 2; ++side) {
+      Body& m = body_[side];
+      const auto nv = static_cast<std::size_t>(m.mesh().vertexCount());
+      const auto nf = static_cast<std::size_t>(m.mesh().triangleCount());
+      m.s.placed.reset(nv);
+      if (m.s.p_W.size() < nv) m.s.p_W.resize(nv);
+      m.s.inside.reset(nv);
+      m.s.insideList.clear();
+      m.s.cut.reset(nf);
+      m.s.cutList.clear();
+      m.s.crossingEdge.reset(m.topo.edges().size());
+      m.s.seeded.assign(m.topo.components().size(), 0);
+    }
+    w_.crossings.clear();
+    w_.endpoints.clear();
+    w_.pieces.clear();
+    w_.wholes.clear();
+    const auto extent = [](const Body& m) {
+      const BvhNode& r = m.bvh.root();
+      return m.X_WM.translation().norm() + r.center.norm() + r.halfExtent.norm();
+    };
+    margin_ = kBoxMargin * (extent(body_[0]) + extent(body_[1]));
+  }
+
+  ContactVolume run() {
+    findCrossings();
+    walkEdges();
+    buildSegments();
+    for (int side = 0; side < 2; ++side) {
+      floodInside(side);
+      classifyUnseededComponents(side);
+      addWholeEdgesOfCutFaces(side);
+      collectWholeFaces(side);
+    }
+    return integrate();
+  }
+
+  std::string describeFailure(const std::string& what) const {
+    std::ostringstream s;
+    s.precision(17);
+    s << "fast mesh-mesh: " << what << "; X_WA =\n"
+      << body_[0].X_WM.matrix() << "\nX_WB =\n"
+      << body_[1].X_WM.matrix();
+    return s.str();
+  }
+
+ private:
+  // --- 1, 2: candidate face pairs and their crossings --------------------------------------
+
+  void findCrossings() {
+    const Isometry3d X_BA = body_[1].X_WM.inverse() * body_[0].X_WM;
+    const Matrix3d absR = X_BA.linear().cwiseAbs();
+    const auto& nodesA = body_[0].bvh.nodes();
+    const auto& nodesB = body_[1].bvh.nodes();
+    auto& stack = w_.nodeStack;
+    stack.assign(1, {0, 0});
+    while (!stack.empty()) {
+      const auto [ia, ib] = stack.back();
+      stack.pop_back();
+      const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
+      const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
+      const Vector3d c = X_BA * na.center;
+      const Vector3d h = absR * na.halfExtent + nb.halfExtent;
+      if (((c - nb.center).cwiseAbs().array() > h.array() + margin_).any()) continue;
+      if (na.isLeaf() && nb.isLeaf()) {
+        testLeaves(na, nb);
+      } else if (nb.isLeaf() ||
+                 (!na.isLeaf() && na.halfExtent.squaredNorm() >= nb.halfExtent.squaredNorm())) {
+        stack.emplace_back(na.left, ib);
+        stack.emplace_back(na.right, ib);
+      } else {
+        stack.emplace_back(ia, nb.left);
+        stack.emplace_back(ia, nb.right);
+      }
+    }
+  }
+
+  void testLeaves(const BvhNode& na, const BvhNode& nb) {
+    const auto& orderA = body_[0].bvh.order();
+    const auto& orderB = body_[1].bvh.order();
+    for (int i = na.first; i < na.first + na.count; ++i) {
+      for (int j = nb.first; j < nb.first + nb.count; ++j) {
+        testFaces(orderA[static_cast<std::size_t>(i)], orderB[static_cast<std::size_t>(j)]);
+      }
+    }
+  }
+
+  void testFaces(int tA, int tB) {
+    const Vector3d A[3] = {body_[0].corner(tA, 0), body_[0].corner(tA, 1), body_[0].corner(tA, 2)};
+    const Vector3d B[3] = {body_[1].corner(tB, 0), body_[1].corner(tB, 1), body_[1].corner(tB, 2)};
+    if (strictlyOneSide(B, A) || strictlyOneSide(A, B)) return;
+    // Each edge is tested by its owner face only: one decision per (edge, face) pair.
+    for (int k = 0; k < 3; ++k) {
+      const int e = body_[0].topo.cornerEdge(tA, k);
+      if (body_[0].topo.edges()[static_cast<std::size_t>(e)].tri[0] == tA) testEdge(0, e, tB);
+      const int f = body_[1].topo.cornerEdge(tB, k);
+      if (body_[1].topo.edges()[static_cast<std::size_t>(f)].tri[0] == tB) testEdge(1, f, tA);
+    }
+  }
+
+  void testEdge(int side, int e, int face) {
+    Body& m = body_[side];
+    Body& o = body_[1 - side];
+    const MeshEdge& E = m.topo.edges()[static_cast<std::size_t>(e)];
+    const Vector3d& p = m.p(E.v0);
+    const Vector3d& q = m.p(E.v1);
+    const Vector3d& a = o.corner(face, 0);
+    const Vector3d& b = o.corner(face, 1);
+    const Vector3d& c = o.corner(face, 2);
+    const int sigma = perturbedSegmentCrossing(p, q, a, b, c, perturbationSign(side));
+    if (sigma == 0) return;
+    // x where the segment meets the plane: λ = d_p / (d_p − d_q), d = n·(· − a). The exact
+    // predicate has decided that it crosses; λ is clamped against rounding.
+    const Vector3d n = (b - a).cross(c - a);
+    const double dp = n.dot(p - a), dq = n.dot(q - a);
+    const double denom = dp - dq;
+    const double lambda = denom != 0.0 ? std::clamp(dp / denom, 0.0, 1.0) : 0.5;
+    w_.crossings.push_back({side, e, face, sigma, lambda, p + lambda * (q - p)});
+  }
+
+  // --- 3: boundary pieces -------------------------------------------------------------------
+
+  void emitAlongEdge(int side, const MeshEdge& E, const Vector3d& from, const Vector3d& to) {
+    w_.pieces.push_back({side, E.tri[0], from, to});  // the owner runs v0 → v1
+    w_.pieces.push_back({side, E.tri[1], to, from});
+  }
+
+  void markInside(int side, int v) {
+    if (body_[side].s.inside.insert(v)) body_[side].s.insideList.push_back(v);
+  }
+
+  /// The parts of each crossing edge inside the other body; seeds the inside flood.
+  void walkEdges() {
+    auto& order = w_.order;
+    order.resize(w_.crossings.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    const auto& X = w_.crossings;
+    std::sort(order.begin(), order.end(), [&X](int i, int j) {
+      const Crossing& a = X[static_cast<std::size_t>(i)];
+      const Crossing& b = X[static_cast<std::size_t>(j)];
+      return std::tie(a.side, a.edge, a.lambda) < std::tie(b.side, b.edge, b.lambda);
+    });
+    for (std::size_t i = 0; i < order.size();) {
+      const Crossing& first = X[static_cast<std::size_t>(order[i])];
+      Body& m = body_[first.side];
+      const MeshEdge& E = m.topo.edges()[static_cast<std::size_t>(first.edge)];
+      m.s.crossingEdge.insert(first.edge);
+      m.s.seeded[static_cast<std::size_t>(m.topo.component(E.v0))] = 1;
+      // Inside before the first crossing iff that crossing leaves the other body; after each
+      // crossing iff it enters.
+      bool inside = first.sigma < 0;
+      if (inside) markInside(first.side, E.v0);
+      Vector3d from = m.p(E.v0);
+      for (; i < order.size(); ++i) {
+        const Crossing& c = X[static_cast<std::size_t>(order[i])];
+        if (c.side != first.side || c.edge != first.edge) break;
+        if (inside) emitAlongEdge(first.side, E, from, c.x);
+        from = c.x;
+        inside = c.sigma > 0;
+      }
+      if (inside) {
+        emitAlongEdge(first.side, E, from, m.p(E.v1));
+        markInside(first.side, E.v1);
+      }
+    }
+  }
+
+  /// Pairs the crossings into the segments t_A ∩ t_B. With d = n_A × n_B, the region
+  /// t_A ∩ B lies to the left of d seen from n_A, and t_B ∩ A to the left of −d. An edge of
+  /// t_A that enters B ends the segment (t_A's boundary goes on along the edge, into B); an
+  /// edge of t_B that enters A starts it (the same rule seen from t_B, whose segment runs −d).
+  void buildSegments() {
+    for (std::size_t i = 0; i < w_.crossings.size(); ++i) {
+      const Crossing& c = w_.crossings[i];
+      const MeshEdge& E = body_[c.side].topo.edges()[static_cast<std::size_t>(c.edge)];
+      for (int j = 0; j < 2; ++j) {
+        const bool enters = (j == 0 ? c.sigma : -c.sigma) > 0;  // along the face's own run
+        const auto t = static_cast<std::uint64_t>(E.tri[j]);
+        const auto f = static_cast<std::uint64_t>(c.face);
+        if (c.side == 0) {
+          w_.endpoints.push_back({(t << 32) | f, static_cast<int>(i), !enters});
+        } else {
+          w_.endpoints.push_back({(f << 32) | t, static_cast<int>(i), enters});
+        }
+      }
+    }
+    std::sort(w_.endpoints.begin(), w_.endpoints.end(),
+              [](const Endpoint& a, const Endpoint& b) { return a.key < b.key; });
+    for (std::size_t i = 0; i < w_.endpoints.size(); i += 2) {
+      const Endpoint& e0 = w_.endpoints[i];
+      if (i + 1 >= w_.endpoints.size() || w_.endpoints[i + 1].key != e0.key ||
+          w_.endpoints[i + 1].start == e0.start ||
+          (i + 2 < w_.endpoints.size() && w_.endpoints[i + 2].key == e0.key)) {
+        throw std::logic_error(describeFailure("a face pair's crossings do not form one segment"));
+      }
+      const Endpoint& e1 = w_.endpoints[i + 1];
+      const Vector3d& xs = w_.crossings[static_cast<std::size_t>(e0.start ? e0.crossing : e1.crossing)].x;
+      const Vector3d& xe = w_.crossings[static_cast<std::size_t>(e0.start ? e1.crossing : e0.crossing)].x;
+      const int tA = static_cast<int>(e0.key >> 32);
+      const int tB = static_cast<int>(e0.key & 0xffffffffu);
+      w_.pieces.push_back({0, tA, xs, xe});
+      w_.pieces.push_back({1, tB, xe, xs});
+      if (body_[0].s.cut.insert(tA)) body_[0].s.cutList.push_back(tA);
+      if (body_[1].s.cut.insert(tB)) body_[1].s.cutList.push_back(tB);
+    }
+  }
+
+  /// Inside status spreads over the edges that cross nothing.
+  void floodInside(int side) {
+    Body& m = body_[side];
+    auto& stack = w_.stack;
+    stack.assign(m.s.insideList.begin(), m.s.insideList.end());
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      for (const int* e = m.topo.edgesBegin(v); e != m.topo.edgesEnd(v); ++e) {
+        if (m.s.crossingEdge.contains(*e)) continue;
+        const MeshEdge& E = m.topo.edges()[static_cast<std::size_t>(*e)];
+        const int w = E.v0 == v ? E.v1 : E.v0;
+        if (m.s.inside.insert(w)) {
+          m.s.insideList.push_back(w);
+          stack.push_back(w);
+        }
+      }
+    }
+  }
+
+  /// A connected part with no crossing edge is wholly inside or wholly outside (it may
+  /// still be pierced by edges of the other mesh); one exact ray-parity test decides.
+  void classifyUnseededComponents(int side) {
+    Body& m = body_[side];
+    Body& o = body_[1 - side];
+    const auto otherBox = placedBox(o.X_WM, o.bvh.root().center, o.bvh.root().halfExtent);
+    const auto& comps = m.topo.components();
+    for (std::size_t c = 0; c < comps.size(); ++c) {
+      if (m.s.seeded[c]) continue;
+      const geometry::Aabb& bb = comps[c].bounds;
+      const auto box = placedBox(m.X_WM, 0.5 * (bb.min + bb.max), 0.5 * bb.size());
+      if (!boxesOverlap(box, otherBox, margin_)) continue;
+      if (!contains(1 - side, m.p(comps[c].vertices.front()), perturbationSign(side))) continue;
+      for (const int v : comps[c].vertices) markInside(side, v);
+    }
+  }
+
+  /// Is p_W (a point of the other mesh, moved by s·τ) inside mesh `side`? Parity of the
+  /// crossings of a segment from p to beyond the mesh's box, through its tree.
+  bool contains(int side, const Vector3d& p_W, int s) {
+    Body& m = body_[side];
+    const BvhNode& root = m.bvh.root();
+    const Isometry3d X_MW = m.X_WM.inverse();
+    const Vector3d p_M = X_MW * p_W;
+    if (((p_M - root.center).cwiseAbs().array() > root.halfExtent.array() + margin_).any()) {
+      return false;
+    }
+    // A fixed direction that no mesh built on axes or simple angles lies along.
+    const Vector3d dir_M = Vector3d(0.5773, 0.2113, 0.7887).normalized();
+    const double length = 2.0 * ((p_M - root.center).norm() + root.halfExtent.norm());
+    const Vector3d f_M = p_M + length * dir_M;
+    const Vector3d f_W = m.X_WM * f_M;
+    const Vector3d grow = Vector3d::Constant(margin_);
+    int crossings = 0;
+    auto& stack = w_.stack;
+    stack.assign(1, 0);
+    while (!stack.empty()) {
+      const BvhNode& n = m.bvh.nodes()[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      if (!segmentMeetsBox(p_M, f_M, n.center, n.halfExtent + grow)) continue;
+      if (!n.isLeaf()) {
+        stack.push_back(n.left);
+        stack.push_back(n.right);
+        continue;
+      }
+      for (int i = n.first; i < n.first + n.count; ++i) {
+        const int f = m.bvh.order()[static_cast<std::size_t>(i)];
+        if (perturbedSegmentCrossing(p_W, f_W, m.corner(f, 0), m.corner(f, 1), m.corner(f, 2),
+                                     s) != 0) {
+          ++crossings;
+        }
+      }
+    }
+    return crossings % 2 == 1;
+  }
+
+  /// The edges of a cut face that cross nothing and lie inside bound its region whole.
+  void addWholeEdgesOfCutFaces(int side) {
+    Body& m = body_[side];
+    for (const int t : m.s.cutList) {
+      for (int k = 0; k < 3; ++k) {
+        const int e = m.topo.cornerEdge(t, k);
+        if (m.s.crossingEdge.contains(e) || !m.s.inside.contains(m.mesh().triangles(t, k))) {
+          continue;
+        }
+        w_.pieces.push_back({side, t, m.corner(t, k), m.corner(t, (k + 1) % 3)});
+      }
+    }
+  }
+
+  /// Faces that are not cut and have an inside vertex are wholly inside.
+  void collectWholeFaces(int side) {
+    Body& m = body_[side];
+    for (const int v : m.s.insideList) {
+      for (const int* f = m.topo.facesBegin(v); f != m.topo.facesEnd(v); ++f) {
+        if (m.mesh().triangles(*f, 0) == v && !m.s.cut.contains(*f)) w_.wholes.push_back({side, *f});
+      }
+    }
+  }
+
+  // --- 4: integration -----------------------------------------------------------------------
+
+  ContactVolume integrate() {
+    const ContactVolume none{.method = Method::kFast};
+    Vector3d o;
+    if (!w_.crossings.empty()) {
+      o = w_.crossings.front().x;
+    } else if (!w_.wholes.empty()) {
+      o = body_[w_.wholes.front().side].corner(w_.wholes.front().face, 0);
+    } else {
+      return none;
+    }
+    geometry::Moments M;
+    double termSum = 0.0;     // Σ |fan term volumes|
+    double areaSum = 0.0;     // Σ |piece areas|
+    double scale = o.cwiseAbs().maxCoeff();
+    Vector3d areaVec[2] = {Vector3d::Zero(), Vector3d::Zero()};
+    const auto add = [&](const Vector3d& c, const Vector3d& p, const Vector3d& q) {
+      const geometry::Moments t = geometry::tetrahedronMoments(Vector3d::Zero(), c - o, p - o, q - o);
+      M += t;
+      termSum += std::abs(t.m0);
+      scale = std::max({scale, p.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
+    };
+    // Per piece: the unit normal of its face and its signed area, kept for the area pass.
+    auto& faceArea = w_.faceArea;
+    faceArea.clear();
+    for (const Piece& pc : w_.pieces) {
+      Body& m = body_[pc.side];
+      const Vector3d& a = m.corner(pc.face, 0);
+      const Vector3d nrm = (m.corner(pc.face, 1) - a).cross(m.corner(pc.face, 2) - a).normalized();
+      const Vector3d c = o - nrm * nrm.dot(o - a);  // o projected onto the face's plane
+      add(c, pc.p, pc.q);
+      const double s = 0.5 * nrm.dot((pc.p - c).cross(pc.q - c));
+      areaVec[pc.side] += s * nrm;
+      areaSum += std::abs(s);
+      faceArea.emplace_back(nrm, s);
+    }
+    for (const WholeFace& wf : w_.wholes) {
+      Body& m = body_[wf.side];
+      const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
+      add(a, b, c);
+      const Vector3d N = 0.5 * (b - a).cross(c - a);
+      areaVec[wf.side] += N;
+      areaSum += N.norm();
+    }
+    const double noise = kVolumeNoise * kEps * (scale * areaSum + termSum);
+    const Vector3d nSum = areaVec[1] - areaVec[0];  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA
+    if (!(M.m0 > noise) || nSum.norm() == 0.0) return none;
+    const Vector3d n = nSum.normalized();
+
+    double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
+    const auto extend = [&](const Vector3d& p) {
+      lo = std::min(lo, n.dot(p - o));
+      hi = std::max(hi, n.dot(p - o));
+    };
+    for (std::size_t i = 0; i < w_.pieces.size(); ++i) {
+      area2 += std::abs(n.dot(faceArea[i].first)) * faceArea[i].second;
+      extend(w_.pieces[i].p);
+    }
+    for (const WholeFace& wf : w_.wholes) {
+      Body& m = body_[wf.side];
+      const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
+      area2 += 0.5 * std::abs(n.dot((b - a).cross(c - a)));
+      extend(a), extend(b), extend(c);
+    }
+    const Vector3d c_o = M.m1 / M.m0;
+    return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
+                                 0.5 * area2, hi - lo, Method::kFast);
+  }
+
+  Body body_[2];
+  Scratch& w_;
+  double margin_ = 0.0;
+};
+
+}  // namespace
+
+ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
+                              const MeshBvh& b, const MeshTopology& topoB,
+                              const Isometry3d& X_WB) {
+  thread_local Scratch scratch;
+  Intersector query(Body{a, topoA, X_WA, scratch.sides[0]}, Body{b, topoB, X_WB, scratch.sides[1]},
+                    scratch);
+  return query.run();
+}
+
+}  // namespace vcontact::volume
