@@ -102,11 +102,31 @@ void clipTriangle(const Vector3d (&v)[3], FanSum& out) {
   if (up2 < 0.0) out.area -= 0.5 * kept * up2;
 }
 
-/// Clips triangle f of `mesh` (pose X_HM) about o_H into `out`.
-void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Eigen::Isometry3d& X_HM,
+/// The pose X_HM applied one coordinate at a time: z_H alone decides which side a vertex is
+/// on, and x_H, y_H are needed only for triangles that reach below the plane. Each coordinate
+/// is summed in the order Eigen's `X_HM * p` uses, so the heights are the same numbers as
+/// those of the transformed vertex (callers and tests may compute a depth either way).
+struct Placement {
+  explicit Placement(const Eigen::Isometry3d& X_HM) : R(X_HM.linear()), t(X_HM.translation()) {}
+  double coordinate(int i, const Vector3d& p) const {
+    return R(i, 0) * p.x() + R(i, 1) * p.y() + R(i, 2) * p.z() + t(i);
+  }
+  double z(const Vector3d& p) const { return coordinate(2, p); }
+
+  Eigen::Matrix3d R;
+  Vector3d t;
+};
+
+/// Clips triangle f of `mesh` (placed by X_HM) about o_H into `out`.
+void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Placement& X_HM,
               const Vector3d& o_H, FanSum& out) {
-  const Vector3d v[3] = {X_HM * mesh.corner(f, 0) - o_H, X_HM * mesh.corner(f, 1) - o_H,
-                         X_HM * mesh.corner(f, 2) - o_H};
+  const Vector3d p[3] = {mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)};
+  const double z[3] = {X_HM.z(p[0]), X_HM.z(p[1]), X_HM.z(p[2])};
+  if (z[0] >= 0.0 && z[1] >= 0.0 && z[2] >= 0.0) return;
+  Vector3d v[3];
+  for (int k = 0; k < 3; ++k) {
+    v[k] = Vector3d(X_HM.coordinate(0, p[k]) - o_H.x(), X_HM.coordinate(1, p[k]) - o_H.y(), z[k]);
+  }
   clipTriangle(v, out);
 }
 
@@ -149,6 +169,7 @@ class BvhClip {
       : bvh_(bvh),
         mesh_(bvh.mesh()),
         X_HM_(X_HM),
+        placement_(X_HM),
         plane_(X_HM),
         absN_(plane_.n.cwiseAbs()),
         slackScale_(kBoxRoundingUlps * std::numeric_limits<double>::epsilon()),
@@ -172,7 +193,7 @@ class BvhClip {
     FanSum clipped;
     for (const BvhNode* node : straddling) {
       for (int i = node->first; i < node->first + node->count; ++i) {
-        clipFace(mesh_, bvh_.order()[i], X_HM_, apex.o_H, clipped);
+        clipFace(mesh_, bvh_.order()[i], placement_, apex.o_H, clipped);
       }
     }
     // Wholly-below subtrees are summed about o in M axes and rotated into H once.
@@ -218,10 +239,11 @@ class BvhClip {
     if (node.isLeaf()) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         for (int k = 0; k < 3; ++k) {
-          const Vector3d p = X_HM_ * mesh_.corner(bvh_.order()[i], k);
-          if (p.z() < best) {
-            best = p.z();
-            deepest_ = p;
+          const Vector3d p = mesh_.corner(bvh_.order()[i], k);
+          const double z = placement_.z(p);
+          if (z < best) {
+            best = z;
+            deepest_ = X_HM_ * p;
           }
         }
       }
@@ -271,6 +293,7 @@ class BvhClip {
   const MeshBvh& bvh_;
   const geometry::TriangleMesh& mesh_;
   const Eigen::Isometry3d X_HM_;
+  const Placement placement_;
   const PlaneInM plane_;
   const Vector3d absN_;     ///< |n| componentwise, for the box extent along n
   const double slackScale_;  ///< kBoxRoundingUlps · eps
@@ -292,8 +315,11 @@ ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
   }
   if (!(deepest.z() < 0.0)) return ClippedMoments{};
   const Apex apex(X_HM, deepest);
+  const Placement placement(X_HM);
   FanSum sum;
-  for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) clipFace(mesh, f, X_HM, apex.o_H, sum);
+  for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
+    clipFace(mesh, f, placement, apex.o_H, sum);
+  }
   return toHalfspaceFrame(sum.moments(), geometry::Moments{}, sum.area, -deepest.z(), apex.o_H,
                           X_HM.linear());
 }
