@@ -6,6 +6,8 @@
 #include "volume/cgal_reference.hpp"
 #include "volume/columns.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/mesh_mesh.hpp"
+#include "volume/mesh_topology_cache.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -42,6 +44,18 @@ ContactVolume cgalReference(const geometry::Shape& a, const Eigen::Isometry3d& X
   unsupported(Method::kCgal, a, b, "it intersects two meshes, or a mesh and a half-space");
 }
 
+ContactVolume fastMeshMesh(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                           const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+  const auto* ma = meshOf(a);
+  const auto* mb = meshOf(b);
+  if (!ma || !mb) {
+    unsupported(Method::kFast, a, b,
+                "it intersects two meshes (for a mesh against a half-space use halfspace)");
+  }
+  return meshMeshContact(*bvhOf(ma->mesh), *topologyOf(ma->mesh), X_WA, *bvhOf(mb->mesh),
+                         *topologyOf(mb->mesh), X_WB);
+}
+
 /// A mesh (with its cached tree) or a half-space as a column-method body; null otherwise.
 std::optional<ColumnBody> columnBody(const geometry::Shape& s, const Eigen::Isometry3d& X_WS,
                                      std::shared_ptr<const geometry::MeshBvh>& keepAlive) {
@@ -70,7 +84,7 @@ ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& 
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
   if (analyticSupports(a, b)) return Method::kAnalytic;
   if ((meshOf(a) && isHalfspace(b)) || (meshOf(b) && isHalfspace(a))) return Method::kHalfspace;
-  if (meshOf(a) && meshOf(b)) return Method::kColumns;
+  if (meshOf(a) && meshOf(b)) return Method::kFast;
   throw InputError("", "no volume method in this build handles " + geometry::describe(a) +
                            " against " + geometry::describe(b));
 }
@@ -83,10 +97,10 @@ ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& 
     case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
     case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);
     case Method::kCgal: return cgalReference(a, X_WA, b, X_WB);
+    case Method::kFast: return fastMeshMesh(a, X_WA, b, X_WB);
     case Method::kColumns: return columnsContact(a, X_WA, b, X_WB, nullptr);
-    default:
-      unsupported(m, a, b, "this backend is not part of this build yet");
   }
+  unsupported(m, a, b, "unknown method");
 }
 
 }  // namespace vcontact::volume

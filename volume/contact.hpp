@@ -13,11 +13,14 @@
 namespace vcontact::volume {
 
 /// The method used when none is asked for: analytic for a primitive against a half-space,
-/// the exact half-space clip for a mesh against a half-space, columns for two meshes.
+/// the exact half-space clip for a mesh against a half-space, the exact local surface
+/// integration (fast, mesh_mesh.hpp) for two meshes.
 /// @throws InputError when no backend in this build handles the pair
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 
-/// ContactVolume of A (B1) and B (B2) by `method` (default: defaultMethod).
+/// ContactVolume of A (B1) and B (B2) by `method` (default: defaultMethod). `fast` takes
+/// two meshes only: a mesh against a half-space is refused (the halfspace clip is the exact
+/// method for it).
 /// @throws InputError when the method does not handle the pair, naming both shapes
 ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,

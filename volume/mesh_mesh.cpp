@@ -36,6 +36,11 @@ constexpr double kOrientBound = 32.0 * kEps;
 /// perturbed flat contact) without overlapping. Each point is placed or constructed to a
 /// few ε of the largest coordinate; 64 leaves a factor of ten.
 constexpr double kVolumeNoise = 64.0;
+/// The two boundary parts' area vectors are each of the order of Σ|patch area| and cancel
+/// to rounding (a few ε times the ratio of the coordinates' size to the region's, far below
+/// 1e-9 for any region above a millionth of its distance from the origin) when the region is
+/// bounded by one body alone; below this fraction n is undefined (contactNormal).
+constexpr double kNormalNoise = 1e-9;
 
 /// A set of small integers that clears in O(1) between queries (epoch stamps).
 class StampSet {
@@ -70,6 +75,8 @@ struct SideScratch {
   StampSet cut;  ///< faces with at least one intersection segment
   std::vector<int> cutList;
   StampSet crossingEdge;  ///< edges that cross the other surface
+  StampSet coplanarSame;      ///< faces in the plane of a face of the other mesh, same way
+  StampSet coplanarOpposite;  ///< ... facing it
   std::vector<char> seeded;  ///< per component: has a crossing edge
 };
 
@@ -97,6 +104,13 @@ struct Piece {
   Vector3d p, q;
 };
 
+/// A boundary patch as the area and depth passes see it.
+struct Patch {
+  Vector3d normal;  ///< unit normal of its face
+  double area;      ///< signed area (a piece's share of its face's region)
+  Vector3d p, q;    ///< points of the patch, for the extent along n
+};
+
 struct WholeFace {
   int side;
   int face;
@@ -111,7 +125,7 @@ struct Scratch {
   std::vector<WholeFace> wholes;
   std::vector<std::pair<int, int>> nodeStack;
   std::vector<int> stack;
-  std::vector<std::pair<Vector3d, double>> faceArea;  ///< per piece: unit face normal, area
+  std::vector<Patch> patches;
 };
 
 /// A mesh placed in W for one query.
@@ -134,9 +148,12 @@ struct Body {
 /// A is the body moved by +τ (exact_predicates.hpp).
 int perturbationSign(int side) { return side == 0 ? 1 : -1; }
 
-/// True when the points P lie strictly on one side of the plane of triangle T, by more than
-/// the rounding of a double orient3d (so the exact predicates would find no crossing).
-bool strictlyOneSide(const Vector3d* T, const Vector3d* P) {
+/// Where the points P lie relative to the plane of triangle T, judged in double with the
+/// rounding bound of orient3d: strictly on one side (so the exact predicates would find no
+/// crossing), all three within rounding of the plane (possibly coplanar), or neither.
+enum class PlaneSide { kOneSide, kNearPlane, kMixed };
+
+PlaneSide planeSide(const Vector3d* T, const Vector3d* P) {
   const Vector3d u = T[1] - T[0], v = T[2] - T[0];
   const Vector3d n = u.cross(v);
   const double uv = u.lpNorm<1>() * v.lpNorm<1>();
@@ -149,11 +166,10 @@ bool strictlyOneSide(const Vector3d* T, const Vector3d* P) {
       ++above;
     } else if (d < -bound) {
       ++below;
-    } else {
-      return false;
     }
   }
-  return above == 3 || below == 3;
+  if (above == 3 || below == 3) return PlaneSide::kOneSide;
+  return above + below == 0 ? PlaneSide::kNearPlane : PlaneSide::kMixed;
 }
 
 /// Axis-aligned box of a body-frame box placed by X (conservative), as {centre, half-size}.
@@ -203,6 +219,8 @@ class Intersector {
       m.s.cut.reset(nf);
       m.s.cutList.clear();
       m.s.crossingEdge.reset(m.topo.edges().size());
+      m.s.coplanarSame.reset(nf);
+      m.s.coplanarOpposite.reset(nf);
       m.s.seeded.assign(m.topo.components().size(), 0);
     }
     w_.crossings.clear();
@@ -282,7 +300,9 @@ class Intersector {
   void testFaces(int tA, int tB) {
     const Vector3d A[3] = {body_[0].corner(tA, 0), body_[0].corner(tA, 1), body_[0].corner(tA, 2)};
     const Vector3d B[3] = {body_[1].corner(tB, 0), body_[1].corner(tB, 1), body_[1].corner(tB, 2)};
-    if (strictlyOneSide(B, A) || strictlyOneSide(A, B)) return;
+    const PlaneSide sideA = planeSide(B, A);
+    if (sideA == PlaneSide::kOneSide || planeSide(A, B) == PlaneSide::kOneSide) return;
+    if (sideA == PlaneSide::kNearPlane) flagIfCoplanar(tA, A, tB, B);
     // Each edge is tested by its owner face only: one decision per (edge, face) pair.
     for (int k = 0; k < 3; ++k) {
       const int e = body_[0].topo.cornerEdge(tA, k);
@@ -290,6 +310,22 @@ class Intersector {
       const int f = body_[1].topo.cornerEdge(tB, k);
       if (body_[1].topo.edges()[static_cast<std::size_t>(f)].tri[0] == tB) testEdge(1, f, tA);
     }
+  }
+
+  /// Faces in one plane (exactly): their shared patch belongs to both boundaries. Same
+  /// orientation (flush faces of a body in a pocket): its normals cancel in MODEL.md §1's
+  /// n (n_B − n_A = 0); opposite orientation (faces pressed together): a region of zero
+  /// thickness. The perturbation keeps such a patch on one body only (or as a sliver on
+  /// both), so the flagged faces are left out of n (and slivers out of area and depth), which
+  /// makes those independent of the perturbation's direction, as the unperturbed region is.
+  void flagIfCoplanar(int tA, const Vector3d* A, int tB, const Vector3d* B) {
+    for (int k = 0; k < 3; ++k) {
+      if (orient3d(B[0], B[1], B[2], A[k]) != 0) return;
+    }
+    const bool same = (A[1] - A[0]).cross(A[2] - A[0]).dot((B[1] - B[0]).cross(B[2] - B[0])) > 0.0;
+    StampSet SideScratch::*flag = same ? &SideScratch::coplanarSame : &SideScratch::coplanarOpposite;
+    (body_[0].s.*flag).insert(tA);
+    (body_[1].s.*flag).insert(tB);
   }
 
   void testEdge(int side, int e, int face) {
@@ -501,6 +537,13 @@ class Intersector {
 
   // --- 4: integration -----------------------------------------------------------------------
 
+  /// What a face's pieces add to n, and to area and depth (flagIfCoplanar).
+  bool inNormal(int side, int face) const {
+    return !body_[side].s.coplanarSame.contains(face) &&
+           !body_[side].s.coplanarOpposite.contains(face);
+  }
+  bool inArea(int side, int face) const { return !body_[side].s.coplanarOpposite.contains(face); }
+
   ContactVolume integrate() {
     const ContactVolume none{.method = Method::kFast};
     Vector3d o;
@@ -511,62 +554,65 @@ class Intersector {
     } else {
       return none;
     }
+    // Every piece and whole face as a directed boundary patch: its face's unit normal and
+    // its signed area (area and depth are evaluated once n is known).
+    auto& patches = w_.patches;
+    patches.clear();
     geometry::Moments M;
-    double termSum = 0.0;     // Σ |fan term volumes|
-    double areaSum = 0.0;     // Σ |piece areas|
+    double termSum = 0.0;  // Σ |fan term volumes|
+    double areaSum = 0.0;  // Σ |patch areas|
     double scale = o.cwiseAbs().maxCoeff();
-    Vector3d areaVec[2] = {Vector3d::Zero(), Vector3d::Zero()};
-    const auto add = [&](const Vector3d& c, const Vector3d& p, const Vector3d& q) {
-      const geometry::Moments t = geometry::tetrahedronMoments(Vector3d::Zero(), c - o, p - o, q - o);
+    Vector3d nSum = Vector3d::Zero();  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1)
+    const auto add = [&](int side, int face, const Vector3d& c, const Vector3d& p,
+                         const Vector3d& q, const Vector3d& nrm, double area) {
+      const geometry::Moments t =
+          geometry::tetrahedronMoments(Vector3d::Zero(), c - o, p - o, q - o);
       M += t;
       termSum += std::abs(t.m0);
+      areaSum += std::abs(area);
       scale = std::max({scale, p.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
+      if (inNormal(side, face)) nSum += (side == 1 ? area : -area) * nrm;
+      if (inArea(side, face)) patches.push_back({nrm, area, p, q});
     };
-    // Per piece: the unit normal of its face and its signed area, kept for the area pass.
-    auto& faceArea = w_.faceArea;
-    faceArea.clear();
     for (const Piece& pc : w_.pieces) {
       Body& m = body_[pc.side];
       const Vector3d& a = m.corner(pc.face, 0);
       const Vector3d nrm = (m.corner(pc.face, 1) - a).cross(m.corner(pc.face, 2) - a).normalized();
       const Vector3d c = o - nrm * nrm.dot(o - a);  // o projected onto the face's plane
-      add(c, pc.p, pc.q);
-      const double s = 0.5 * nrm.dot((pc.p - c).cross(pc.q - c));
-      areaVec[pc.side] += s * nrm;
-      areaSum += std::abs(s);
-      faceArea.emplace_back(nrm, s);
+      add(pc.side, pc.face, c, pc.p, pc.q, nrm, 0.5 * nrm.dot((pc.p - c).cross(pc.q - c)));
     }
     for (const WholeFace& wf : w_.wholes) {
       Body& m = body_[wf.side];
       const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
-      add(a, b, c);
-      const Vector3d N = 0.5 * (b - a).cross(c - a);
-      areaVec[wf.side] += N;
-      areaSum += N.norm();
+      const Vector3d N = (b - a).cross(c - a);
+      const double twiceArea = N.norm();
+      add(wf.side, wf.face, a, b, c, N / twiceArea, 0.5 * twiceArea);
+      if (inArea(wf.side, wf.face)) patches.push_back({N / twiceArea, 0.0, a, a});  // for depth
     }
-    const double noise = kVolumeNoise * kEps * (scale * areaSum + termSum);
-    const Vector3d nSum = areaVec[1] - areaVec[0];  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA
-    if (!(M.m0 > noise) || nSum.norm() == 0.0) return none;
-    const Vector3d n = nSum.normalized();
+    if (!(M.m0 > kVolumeNoise * kEps * (scale * areaSum + termSum))) return none;
+    const Vector3d c_o = M.m1 / M.m0;
+    const Vector3d n = contactNormal(nSum, areaSum, o + c_o);
 
     double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
-    const auto extend = [&](const Vector3d& p) {
-      lo = std::min(lo, n.dot(p - o));
-      hi = std::max(hi, n.dot(p - o));
-    };
-    for (std::size_t i = 0; i < w_.pieces.size(); ++i) {
-      area2 += std::abs(n.dot(faceArea[i].first)) * faceArea[i].second;
-      extend(w_.pieces[i].p);
+    for (const Patch& pt : patches) {
+      area2 += std::abs(n.dot(pt.normal)) * pt.area;
+      for (const Vector3d* p : {&pt.p, &pt.q}) {
+        lo = std::min(lo, n.dot(*p - o));
+        hi = std::max(hi, n.dot(*p - o));
+      }
     }
-    for (const WholeFace& wf : w_.wholes) {
-      Body& m = body_[wf.side];
-      const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
-      area2 += 0.5 * std::abs(n.dot((b - a).cross(c - a)));
-      extend(a), extend(b), extend(c);
-    }
-    const Vector3d c_o = M.m1 / M.m0;
     return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
                                  0.5 * area2, hi - lo, Method::kFast);
+  }
+
+  /// n from the area vectors; when they cancel (the region is bounded by one body's surface
+  /// alone: a body wholly inside the other, or only flush faces besides), MODEL.md §1 leaves
+  /// n undefined, and it is taken from B's box centre towards p_c (B's z axis if they meet).
+  Vector3d contactNormal(const Vector3d& nSum, double areaSum, const Vector3d& p_c) const {
+    if (nSum.norm() > kNormalNoise * areaSum) return nSum.normalized();
+    const Vector3d d = p_c - body_[1].X_WM * body_[1].bvh.root().center;
+    if (d.norm() > 0.0) return d.normalized();
+    return body_[1].X_WM.linear().col(2);
   }
 
   Body body_[2];

@@ -9,8 +9,10 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh_topology.hpp"
+#include "geometry/moments.hpp"
 #include "support/test_support.hpp"
 #include "volume/cgal_reference.hpp"
 #include "volume/contact.hpp"
@@ -88,6 +90,241 @@ TEST(FastMeshMesh, TwoSpheres) {
   expectAgree(s, X_WA, s, Isometry3d::Identity(), "spheres shallow");
   X_WA.translation() = Vector3d(0.0013, -0.0007, 0.011);
   expectAgree(s, X_WA, s, Isometry3d::Identity(), "spheres deep");
+}
+
+Isometry3d pose(const Vector3d& axis, double angle, const Vector3d& t) {
+  Isometry3d X = Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+  X.translation() = t;
+  return X;
+}
+
+/// A named pose pair of the cross-method table.
+struct Case {
+  std::string name;
+  std::shared_ptr<const Body> a, b;
+  Isometry3d X_WA, X_WB;
+};
+
+std::vector<Case> cases() {
+  const auto sphere = std::make_shared<const Body>(geometry::tessellateSphere(0.01, 32, 17));
+  const auto torus = std::make_shared<const Body>(geometry::tessellateTorus(0.021, 0.0071, 48, 16));
+  const auto box = std::make_shared<const Body>(test::subdividedBox(Vector3d(0.06, 0.06, 0.02), 6));
+  const auto bracket = std::make_shared<const Body>(test::lBracket(0.04, 0.008, 0.03));
+  const auto cube = std::make_shared<const Body>(geometry::tessellateBox(Vector3d(0.015, 0.013, 0.011)));
+  const auto plate = std::make_shared<const Body>(test::plateWithHole(0.02, 0.006, 0.005, 48));
+  const auto peg = std::make_shared<const Body>(geometry::tessellateCylinder(0.0049, 0.03, 40));
+  const auto big = std::make_shared<const Body>(geometry::tessellateSphere(0.015, 40, 21));
+  const Isometry3d I = Isometry3d::Identity();
+  return {
+      // Ring-shaped region: the sphere sits in the torus' hole, touching the tube all round.
+      {"sphere in torus hole", big, torus, pose({1, 0, 0}, 0.02, {0.0011, 0.0007, 0.0013}), I},
+      // Ring-shaped region: the torus lies on the box's top face (z = 0.01), tilted.
+      {"torus on box", torus, box, pose({1, 0.3, 0}, 0.05, {0.0017, -0.0023, 0.01 + 0.0071 - 0.0009}), I},
+      // L-shaped region: a block pushed into the bracket's inner corner (x, y = 0.008).
+      {"block in L-bracket corner", cube, bracket,
+       pose({0, 0, 1}, 0.1, {0.008 + 0.0075 - 0.0006, 0.008 + 0.0065 - 0.0004, 0.0151}), I},
+      // Two separate regions: a tilted peg bears on the hole's top edge on one side and its
+      // bottom edge on the other.
+      {"tilted peg in hole", peg, plate, pose({1, 0, 0}, 0.05, {0.00003, 0.0, 0.0031}), I},
+      {"spheres shallow", sphere, sphere, pose({1, 2, 0}, 0.3, {0.0013, -0.0007, 0.0198}), I},
+  };
+}
+
+TEST(FastMeshMesh, AgreesWithCgalOnNonConvexPairs) {
+  for (const Case& c : cases()) expectAgree(*c.a, c.X_WA, *c.b, c.X_WB, c.name);
+}
+
+// Moving both bodies by one rigid motion moves the region with them. The placed vertices
+// round differently (ε times the 0.37 m translation), which moves V by about that over the
+// region's depth (≥ 0.1 mm here): ~1e-12; 1e-10 bounds it with room.
+TEST(FastMeshMesh, InvariantUnderMovingBothBodies) {
+  constexpr double kTol = 1e-10;
+  unsigned seed = 11;
+  for (const Case& c : cases()) {
+    const Isometry3d P = test::randomPose(seed++);
+    const ContactVolume ref = fast(*c.a, c.X_WA, *c.b, c.X_WB);
+    const ContactVolume moved = fast(*c.a, P * c.X_WA, *c.b, P * c.X_WB);
+    SCOPED_TRACE(c.name);
+    ASSERT_GT(ref.volume, 0.0);
+    EXPECT_NEAR(moved.volume, ref.volume, kTol * ref.volume);
+    EXPECT_LE((moved.centroid - P * ref.centroid).norm(), kTol * std::cbrt(ref.volume) + 1e-15 * 0.37);
+    EXPECT_LE((moved.normal - P.linear() * ref.normal).norm(), kTol);
+    const Eigen::Matrix3d R = P.linear();
+    EXPECT_LE(test::relativeDifference(moved.J_v, R * ref.J_v * R.transpose()), kTol);
+    expectAgree(*c.a, P * c.X_WA, *c.b, P * c.X_WB, c.name + " (moved)");
+  }
+}
+
+// Swapping A and B gives the same region seen from the other side: the same V, centroid and
+// tensors, the normal flipped. The perturbation moves the other body then, and the crossings
+// are found in another order: rounding only, ε amplified by the region's extent over its
+// thickness (~1e3 for the peg's 60 µm crescents), so 1e-10.
+TEST(FastMeshMesh, SymmetricInTheBodies) {
+  constexpr double kTol = 1e-10;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const ContactVolume ab = fast(*c.a, c.X_WA, *c.b, c.X_WB);
+    const ContactVolume ba = fast(*c.b, c.X_WB, *c.a, c.X_WA);
+    ASSERT_GT(ab.volume, 0.0);
+    EXPECT_NEAR(ba.volume, ab.volume, kTol * ab.volume);
+    EXPECT_LE((ba.centroid - ab.centroid).norm(), kTol * std::cbrt(ab.volume));
+    EXPECT_LE((ba.normal + ab.normal).norm(), kTol);
+    EXPECT_LE(test::relativeDifference(ba.J_v, ab.J_v), kTol);
+    EXPECT_NEAR(ba.area, ab.area, kTol * ab.area);
+  }
+}
+
+TEST(FastMeshMesh, ApartIsZero) {
+  const Body s(geometry::tessellateSphere(0.01, 32, 17));
+  // Boxes overlap (corners of the bounding cubes) but the spheres do not: the containment
+  // test runs and must say outside.
+  const Isometry3d X_WA = pose({0, 0, 1}, 0.0, {0.0145, 0.0145, 0.0});
+  const ContactVolume cv = fast(s, X_WA, s, Isometry3d::Identity());
+  EXPECT_EQ(cv.volume, 0.0);
+  EXPECT_FALSE(cv.inContact());
+  EXPECT_EQ(cv.method, Method::kFast);
+  const ContactVolume far = fast(s, pose({0, 0, 1}, 0.0, {1.0, 0.0, 0.0}), s, Isometry3d::Identity());
+  EXPECT_EQ(far.volume, 0.0);
+}
+
+// A body wholly inside the other: no crossing at all, found by the containment test, and
+// the region is the small body itself. Its boundary lies on the small body alone, so
+// MODEL.md §1 leaves n undefined (the CGAL reference reports no contact when the small body
+// is B, and a rounding-noise normal when it is A); the moments are compared, and n must be
+// a unit vector pointing from B's centre towards p_c.
+TEST(FastMeshMesh, BodyWhollyInside) {
+  const Body small(geometry::tessellateSphere(0.004, 24, 13));
+  const Body big(geometry::tessellateSphere(0.015, 40, 21));
+  const Isometry3d I = Isometry3d::Identity();
+  const Isometry3d X_WS = pose({1, 1, 0}, 0.4, {0.0021, -0.0013, 0.0017});
+  const ContactVolume c = cgalMeshMeshContact(small.mesh(), X_WS, big.mesh(), I);
+  ASSERT_GT(c.volume, 0.0);
+  const ContactVolume in = fast(small, X_WS, big, I);
+  const ContactVolume out = fast(big, I, small, X_WS);
+  for (const ContactVolume* f : {&in, &out}) {
+    EXPECT_NEAR(f->volume, c.volume, kVolumeTol * c.volume);
+    EXPECT_LE((f->centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+    EXPECT_LE(test::relativeDifference(f->J_v, c.J_v), kMomentTol);
+    EXPECT_NEAR(f->normal.norm(), 1.0, 1e-15);
+  }
+  EXPECT_LE((in.normal - in.centroid.normalized()).norm(), 1e-12);  // big is centred at 0
+  EXPECT_LE((out.normal - (out.centroid - X_WS.translation()).normalized()).norm(), 1e-12);
+}
+
+/// Every output finite (no NaN from a degenerate contact).
+void expectFinite(const ContactVolume& cv) {
+  EXPECT_TRUE(std::isfinite(cv.volume));
+  EXPECT_TRUE(cv.centroid.allFinite());
+  EXPECT_TRUE(cv.normal.allFinite());
+  EXPECT_TRUE(cv.J_v.allFinite());
+  EXPECT_TRUE(cv.J_s.allFinite());
+  EXPECT_TRUE(std::isfinite(cv.area) && std::isfinite(cv.depth) && std::isfinite(cv.r_gyr));
+}
+
+// Faces that touch exactly (A's bottom face on B's top face, z = 0.01 in both, exact in
+// binary): no overlap, in either order (the perturbation then moves A apart, or into B by
+// an infinitesimal, which the noise floor removes).
+TEST(FastMeshMesh, TouchingFacesAreZero) {
+  const Body box(geometry::tessellateBox(Vector3d(0.02, 0.02, 0.02)));
+  const Isometry3d above = pose({0, 0, 1}, 0.0, {0.0037, 0.0029, 0.02});
+  const ContactVolume ab = fast(box, above, box, Isometry3d::Identity());
+  const ContactVolume ba = fast(box, Isometry3d::Identity(), box, above);
+  expectFinite(ab);
+  expectFinite(ba);
+  EXPECT_EQ(ab.volume, 0.0);
+  EXPECT_EQ(ba.volume, 0.0);
+  const ContactVolume c = cgalMeshMeshContact(box.mesh(), above, box.mesh(), Isometry3d::Identity());
+  EXPECT_EQ(c.volume, 0.0);
+}
+
+// Box on box, overlapping 3 mm, with every side face coplanar with one of the other box
+// and, with different subdivisions, edges of one lying in faces of the other and crossing
+// its edges exactly. V = 0.02 · 0.02 · 0.003 up to the rounding of 0.017.
+TEST(FastMeshMesh, CoplanarFacesMatchCgal) {
+  const Body a(test::subdividedBox(Vector3d(0.02, 0.02, 0.02), 3));
+  const Body b(test::subdividedBox(Vector3d(0.02, 0.02, 0.02), 2));
+  const Isometry3d X_WA = pose({0, 0, 1}, 0.0, {0.0, 0.0, 0.017});
+  for (bool swap : {false, true}) {
+    SCOPED_TRACE(swap);
+    const ContactVolume f = swap ? fast(b, Isometry3d::Identity(), a, X_WA) : fast(a, X_WA, b, Isometry3d::Identity());
+    const ContactVolume c = swap ? cgalMeshMeshContact(b.mesh(), Isometry3d::Identity(), a.mesh(), X_WA)
+                                 : cgalMeshMeshContact(a.mesh(), X_WA, b.mesh(), Isometry3d::Identity());
+    expectFinite(f);
+    EXPECT_NEAR(f.volume, 0.02 * 0.02 * 0.003, 1e-12 * f.volume);
+    EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
+    EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+    EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
+    EXPECT_LE((f.normal - c.normal).norm(), kMomentTol);
+    EXPECT_NEAR(f.area, c.area, kMomentTol * c.area);
+  }
+}
+
+// The same mesh at the same pose: every face coincides with one of the other; the region is
+// the whole body (the limit under the perturbation), as CGAL finds.
+TEST(FastMeshMesh, IdenticalMeshesAtIdenticalPoses) {
+  const Body torus(geometry::tessellateTorus(0.021, 0.0071, 24, 12));
+  const Isometry3d X = test::randomPose(5, 0.05);
+  const ContactVolume f = fast(torus, X, torus, X);
+  expectFinite(f);
+  geometry::Moments M;
+  for (Eigen::Index t = 0; t < torus.mesh().triangleCount(); ++t) {
+    M += geometry::tetrahedronMoments(X.translation(), X * torus.mesh().corner(t, 0),
+                                      X * torus.mesh().corner(t, 1), X * torus.mesh().corner(t, 2));
+  }
+  EXPECT_NEAR(f.volume, M.m0, 1e-12 * M.m0);
+  const ContactVolume c = cgalMeshMeshContact(torus.mesh(), X, torus.mesh(), X);
+  EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
+  EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+  EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
+}
+
+// Vertices exactly on a face: an octahedron whose four equator vertices lie in the box's top
+// face plane (z = 0.01) and whose lower apex is inside: V = half the octahedron, (2/3) a³.
+// Then the apex alone touching the face: V = 0.
+TEST(FastMeshMesh, VertexExactlyOnAFace) {
+  const Body box(geometry::tessellateBox(Vector3d(0.02, 0.02, 0.02)));
+  const double a = 0.005;
+  const Body half(test::octahedron(Vector3d(0.0031, -0.0027, 0.01), a));
+  for (bool swap : {false, true}) {
+    SCOPED_TRACE(swap);
+    const Isometry3d I = Isometry3d::Identity();
+    const ContactVolume f = swap ? fast(box, I, half, I) : fast(half, I, box, I);
+    const ContactVolume c = swap ? cgalMeshMeshContact(box.mesh(), I, half.mesh(), I)
+                                 : cgalMeshMeshContact(half.mesh(), I, box.mesh(), I);
+    expectFinite(f);
+    EXPECT_NEAR(f.volume, 2.0 / 3.0 * a * a * a, 1e-12 * f.volume);
+    EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
+    EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+    EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
+    EXPECT_LE((f.normal - (swap ? -1.0 : 1.0) * Vector3d::UnitZ()).norm(), 1e-12);
+  }
+  const Body apex(test::octahedron(Vector3d(0.0031, -0.0027, 0.01 + a), a));
+  for (bool swap : {false, true}) {
+    const Isometry3d I = Isometry3d::Identity();
+    const ContactVolume f = swap ? fast(box, I, apex, I) : fast(apex, I, box, I);
+    expectFinite(f);
+    EXPECT_EQ(f.volume, 0.0);
+  }
+}
+
+// The dispatcher: two meshes default to fast; fast refuses a half-space, naming both shapes.
+TEST(FastMeshMesh, Dispatcher) {
+  const geometry::Shape s = geometry::Mesh{
+      std::make_shared<const geometry::TriangleMesh>(geometry::tessellateSphere(0.01, 32, 17)), "ball"};
+  const Isometry3d X_WA = pose({1, 2, 0}, 0.3, {0.0013, -0.0007, 0.0198});
+  EXPECT_EQ(defaultMethod(s, s), Method::kFast);
+  const ContactVolume d = computeContact(s, X_WA, s, Isometry3d::Identity());
+  const Body body(*std::get<geometry::Mesh>(s).mesh);
+  const ContactVolume f = fast(body, X_WA, body, Isometry3d::Identity());
+  EXPECT_EQ(d.method, Method::kFast);
+  ASSERT_GT(f.volume, 0.0);
+  EXPECT_EQ(d.volume, f.volume);
+  const std::string msg = test::inputErrorMessage([&] {
+    computeContact(s, X_WA, geometry::HalfSpace{}, Isometry3d::Identity(), Method::kFast);
+  });
+  EXPECT_NE(msg.find("ball"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--method fast"), std::string::npos) << msg;
 }
 
 }  // namespace

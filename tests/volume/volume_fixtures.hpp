@@ -2,6 +2,7 @@
 // Meshes and poses shared by the volume tests: the named bodies of the cross-method tables.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -84,6 +85,65 @@ inline geometry::TriangleMesh subdividedBox(const Eigen::Vector3d& size, int n) 
 inline geometry::TriangleMesh lBracket(double leg, double thickness, double width) {
   const double a = leg, t = thickness;
   return extrudePolygon({{0, 0}, {a, 0}, {a, t}, {t, t}, {t, a}, {0, a}}, width, 3);
+}
+
+/// Square plate (x, y ∈ [−half, half], z ∈ [0, thickness]) with a round hole of radius
+/// `holeRadius` about the z axis, `n` segments around (a multiple of 8, so the square's
+/// corners are vertices). Outer and hole boundary vertices share their angles.
+inline geometry::TriangleMesh plateWithHole(double half, double thickness, double holeRadius,
+                                            int n) {
+  geometry::TriangleMesh m;
+  m.vertices.resize(4 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n, c = std::cos(t), s = std::sin(t);
+    const double k = half / std::max(std::abs(c), std::abs(s));  // circle pushed onto the square
+    m.vertices.row(i) << holeRadius * c, holeRadius * s, 0.0;      // hole, bottom
+    m.vertices.row(n + i) << k * c, k * s, 0.0;                      // outer, bottom
+    m.vertices.row(2 * n + i) << holeRadius * c, holeRadius * s, thickness;  // hole, top
+    m.vertices.row(3 * n + i) << k * c, k * s, thickness;                    // outer, top
+  }
+  std::vector<Eigen::Vector3i> f;
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const int ib = i, jb = j, ob = n + i, pb = n + j, it = 2 * n + i, jt = 2 * n + j,
+              ot = 3 * n + i, pt = 3 * n + j;
+    f.emplace_back(it, ot, pt), f.emplace_back(it, pt, jt);  // top, +z
+    f.emplace_back(ib, pb, ob), f.emplace_back(ib, jb, pb);  // bottom, −z
+    f.emplace_back(ob, pb, pt), f.emplace_back(ob, pt, ot);  // outer wall, outward
+    f.emplace_back(ib, jt, jb), f.emplace_back(ib, it, jt);  // hole wall, towards the axis
+  }
+  m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<Eigen::Index>(i)) = f[i];
+  return m;
+}
+
+/// Regular octahedron with vertices centre ± a along each axis (8 faces).
+inline geometry::TriangleMesh octahedron(const Eigen::Vector3d& centre, double a) {
+  geometry::TriangleMesh m;
+  m.vertices.resize(6, 3);
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    d[k] = a;
+    m.vertices.row(2 * k) = (centre + d).transpose();
+    m.vertices.row(2 * k + 1) = (centre - d).transpose();
+  }
+  // Vertex 2k is +axis k, 2k + 1 is −axis k; a face (x, y, z) of signs is counter-clockwise
+  // seen from outside when the sign product is positive, reversed otherwise.
+  m.triangles.resize(8, 3);
+  int f = 0;
+  for (int sx = 0; sx < 2; ++sx) {
+    for (int sy = 0; sy < 2; ++sy) {
+      for (int sz = 0; sz < 2; ++sz) {
+        const int x = sx, y = 2 + sy, z = 4 + sz;
+        if ((sx + sy + sz) % 2 == 0) {
+          m.triangles.row(f++) << x, y, z;
+        } else {
+          m.triangles.row(f++) << x, z, y;
+        }
+      }
+    }
+  }
+  return m;
 }
 
 inline Eigen::Isometry3d translation(const Eigen::Vector3d& t) {
