@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   vcontact::cli::addTessellateCommand(app);
   vcontact::cli::addSimulateCommand(app);
   vcontact::cli::addValidationCommands(app);
+  vcontact::cli::addFrictionMapCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
