@@ -6,7 +6,8 @@
 //   *_deep: the same at 3 mm (d/R = 0.3), where whole subtrees lie below the plane;
 //   sphere_pair_*: two such spheres, centres 19.8 mm apart (0.2 mm overlap along the line).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
-// the half-space modelled as a box), columns (column integration to 1e-3).
+// the half-space modelled as a box), columns (column integration to 1e-3), fast (exact local
+// surface integration of two meshes, volume/mesh_mesh.hpp).
 
 #include <benchmark/benchmark.h>
 
@@ -17,10 +18,12 @@
 #include <string>
 
 #include "geometry/bvh.hpp"
+#include "geometry/mesh_topology.hpp"
 #include "geometry/tessellate.hpp"
 #include "volume/cgal_reference.hpp"
 #include "volume/columns.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/mesh_mesh.hpp"
 
 namespace {
 
@@ -54,6 +57,14 @@ Isometry3d poseAtDepth(const MeshBvh& m, double d) {
   }
   X.translation() = Vector3d(0.0013, -0.0007, -zmin - d);
   return X;
+}
+
+/// The topology of sphere(triangles), built once like its tree.
+const vcontact::geometry::MeshTopology& sphereTopology(int triangles) {
+  static std::map<int, std::unique_ptr<vcontact::geometry::MeshTopology>> cache;
+  auto& slot = cache[triangles];
+  if (!slot) slot = std::make_unique<vcontact::geometry::MeshTopology>(sphere(triangles).mesh());
+  return *slot;
 }
 
 void report(benchmark::State& state, const ContactVolume& cv, const MeshBvh& m) {
@@ -120,6 +131,12 @@ void registerPair(const std::string& size, int triangles, bool withCgal) {
           return vcontact::volume::columnsContact({&m, X_WA}, {&m, X_WB});
         },
         m);
+  })->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark((name + "fast").c_str(), [=](benchmark::State& s) {
+    const MeshBvh& m = sphere(triangles);
+    const auto& topo = sphereTopology(triangles);
+    run(
+        s, [&] { return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB); }, m);
   })->Unit(benchmark::kMicrosecond);
   if (!withCgal) return;
   benchmark::RegisterBenchmark((name + "cgal").c_str(), [=](benchmark::State& s) {

@@ -94,8 +94,9 @@ void addVolumeCommand(CLI::App& app) {
   cmd->add_option("--pose-a", opts->poseA, "pose of A in the world")->capture_default_str();
   cmd->add_option("--pose-b", opts->poseB, "pose of B in the world")->capture_default_str();
   cmd->add_option("--method", opts->method,
-                  "analytic | halfspace | cgal | columns (default: the best the pair allows; "
-                  "fast is not in this build)");
+                  "analytic | halfspace | cgal | fast | columns (default: the best the pair "
+                  "allows: analytic for a primitive on a half-space, halfspace for a mesh on a "
+                  "half-space, fast (exact local surface integration) for two meshes)");
   cmd->add_option("--field", opts->field,
                   "write the penetration-depth map of the column method to this CSV");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");

@@ -32,8 +32,10 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
 /// @pre (a, b, c) has non-zero area (a degenerate triangle is never crossed).
 /// The answer is exact and depends only on the geometry, so the crossing of one edge with
 /// one triangle is decided the same way by every caller.
+/// @param knownP, knownQ  sign of orient3d(a, b, c, p) (resp. q) when the caller has already
+///   established it (non-zero, e.g. by a filtered evaluation), else 0 to evaluate it here
 int perturbedSegmentCrossing(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
                              const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                             const Eigen::Vector3d& c, int s);
+                             const Eigen::Vector3d& c, int s, int knownP = 0, int knownQ = 0);
 
 }  // namespace vcontact::volume

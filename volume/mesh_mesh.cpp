@@ -148,28 +148,28 @@ struct Body {
 /// A is the body moved by +τ (exact_predicates.hpp).
 int perturbationSign(int side) { return side == 0 ? 1 : -1; }
 
-/// Where the points P lie relative to the plane of triangle T, judged in double with the
-/// rounding bound of orient3d: strictly on one side (so the exact predicates would find no
-/// crossing), all three within rounding of the plane (possibly coplanar), or neither.
-enum class PlaneSide { kOneSide, kNearPlane, kMixed };
-
-PlaneSide planeSide(const Vector3d* T, const Vector3d* P) {
+/// Side of the plane of triangle T each point P[i] lies on, judged in double with the
+/// rounding bound of orient3d: +1 or −1 when certain (the exact sign then agrees and no
+/// perturbation is involved), 0 when within rounding of the plane.
+/// @return +1 or −1 when all three are certainly on that side, else 0
+int planeSides(const Vector3d* T, const Vector3d* P, int* side) {
   const Vector3d u = T[1] - T[0], v = T[2] - T[0];
   const Vector3d n = u.cross(v);
-  const double uv = u.lpNorm<1>() * v.lpNorm<1>();
-  int above = 0, below = 0;
+  const double uv = kOrientBound * u.lpNorm<1>() * v.lpNorm<1>();
   for (int i = 0; i < 3; ++i) {
     const Vector3d w = P[i] - T[0];
     const double d = n.dot(w);
-    const double bound = kOrientBound * uv * w.lpNorm<1>();
-    if (d > bound) {
-      ++above;
-    } else if (d < -bound) {
-      ++below;
-    }
+    const double bound = uv * w.lpNorm<1>();
+    side[i] = d > bound ? 1 : (d < -bound ? -1 : 0);
   }
-  if (above == 3 || below == 3) return PlaneSide::kOneSide;
-  return above + below == 0 ? PlaneSide::kNearPlane : PlaneSide::kMixed;
+  return side[0] == side[1] && side[1] == side[2] ? side[0] : 0;
+}
+
+/// The triangles' axis-aligned boxes overlap (grown by `margin`)?
+bool triangleBoxesOverlap(const Vector3d* A, const Vector3d* B, double margin) {
+  const Vector3d loA = A[0].cwiseMin(A[1]).cwiseMin(A[2]), hiA = A[0].cwiseMax(A[1]).cwiseMax(A[2]);
+  const Vector3d loB = B[0].cwiseMin(B[1]).cwiseMin(B[2]), hiB = B[0].cwiseMax(B[1]).cwiseMax(B[2]);
+  return (loA.array() <= hiB.array() + margin).all() && (loB.array() <= hiA.array() + margin).all();
 }
 
 /// Axis-aligned box of a body-frame box placed by X (conservative), as {centre, half-size}.
@@ -274,6 +274,7 @@ class Intersector {
       const Vector3d c = X_BA * na.center;
       const Vector3d h = absR * na.halfExtent + nb.halfExtent;
       if (((c - nb.center).cwiseAbs().array() > h.array() + margin_).any()) continue;
+      if (!slabsOverlap(na, c, X_BA.linear() * na.normalAxis, nb)) continue;
       if (na.isLeaf() && nb.isLeaf()) {
         testLeaves(na, nb);
       } else if (nb.isLeaf() ||
@@ -285,6 +286,26 @@ class Intersector {
         stack.emplace_back(ia, nb.right);
       }
     }
+  }
+
+  /// The slab bounds of two nodes (bvh.hpp: axial range along the normal axis, radius about
+  /// it), both in B's frame: each node's vertices projected onto the other's axis must meet
+  /// the other's axial range. Tight where boxes are not: two nearly flat, tilted patches.
+  bool slabsOverlap(const BvhNode& na, const Vector3d& centerA, const Vector3d& axisA,
+                    const BvhNode& nb) const {
+    const auto meets = [this](const BvhNode& slab, const Vector3d& slabCenter,
+                              const Vector3d& slabAxis, const BvhNode& other,
+                              const Vector3d& otherCenter, const Vector3d& otherAxis) {
+      // other's vertices: otherCenter + s·otherAxis + radial part (≤ radialExtent, ⟂ axis)
+      const double k = slabAxis.dot(otherAxis);
+      const double radial = other.radialExtent * std::sqrt(std::max(0.0, 1.0 - k * k));
+      const double c = (otherCenter - slabCenter).dot(slabAxis);
+      const double lo = c + std::min(k * other.axialLo, k * other.axialHi) - radial;
+      const double hi = c + std::max(k * other.axialLo, k * other.axialHi) + radial;
+      return lo <= slab.axialHi + margin_ && hi >= slab.axialLo - margin_;
+    };
+    return meets(na, centerA, axisA, nb, nb.center, nb.normalAxis) &&
+           meets(nb, nb.center, nb.normalAxis, na, centerA, axisA);
   }
 
   void testLeaves(const BvhNode& na, const BvhNode& nb) {
@@ -300,17 +321,29 @@ class Intersector {
   void testFaces(int tA, int tB) {
     const Vector3d A[3] = {body_[0].corner(tA, 0), body_[0].corner(tA, 1), body_[0].corner(tA, 2)};
     const Vector3d B[3] = {body_[1].corner(tB, 0), body_[1].corner(tB, 1), body_[1].corner(tB, 2)};
-    const PlaneSide sideA = planeSide(B, A);
-    if (sideA == PlaneSide::kOneSide || planeSide(A, B) == PlaneSide::kOneSide) return;
-    if (sideA == PlaneSide::kNearPlane) flagIfCoplanar(tA, A, tB, B);
-    // Each edge is tested by its owner face only: one decision per (edge, face) pair.
+    if (!triangleBoxesOverlap(A, B, margin_)) return;
+    int sideA[3], sideB[3];  // corners of each face against the other's plane
+    if (planeSides(B, A, sideA) != 0 || planeSides(A, B, sideB) != 0) return;
+    if (sideA[0] == 0 && sideA[1] == 0 && sideA[2] == 0) flagIfCoplanar(tA, A, tB, B);
+    // Each edge is tested by its owner face only: one decision per (edge, face) pair. An
+    // edge with both ends certainly on one side of the plane cannot cross (the exact test
+    // would say so too).
     for (int k = 0; k < 3; ++k) {
+      const int l = (k + 1) % 3;
+      // The owner runs the edge v0 → v1, so corner k is v0.
       const int e = body_[0].topo.cornerEdge(tA, k);
-      if (body_[0].topo.edges()[static_cast<std::size_t>(e)].tri[0] == tA) testEdge(0, e, tB);
+      if ((sideA[k] == 0 || sideA[k] != sideA[l]) &&
+          body_[0].topo.edges()[static_cast<std::size_t>(e)].tri[0] == tA) {
+        testEdge(0, e, tB, sideA[k], sideA[l]);
+      }
       const int f = body_[1].topo.cornerEdge(tB, k);
-      if (body_[1].topo.edges()[static_cast<std::size_t>(f)].tri[0] == tB) testEdge(1, f, tA);
+      if ((sideB[k] == 0 || sideB[k] != sideB[l]) &&
+          body_[1].topo.edges()[static_cast<std::size_t>(f)].tri[0] == tB) {
+        testEdge(1, f, tA, sideB[k], sideB[l]);
+      }
     }
   }
+
 
   /// Faces in one plane (exactly): their shared patch belongs to both boundaries. Same
   /// orientation (flush faces of a body in a pocket): its normals cancel in MODEL.md §1's
@@ -328,7 +361,9 @@ class Intersector {
     (body_[1].s.*flag).insert(tB);
   }
 
-  void testEdge(int side, int e, int face) {
+  /// @param s0, s1  the certain sides (±1) of the edge's ends v0, v1 against the face's
+  ///   plane, or 0 where the double evaluation was not conclusive
+  void testEdge(int side, int e, int face, int s0, int s1) {
     Body& m = body_[side];
     Body& o = body_[1 - side];
     const MeshEdge& E = m.topo.edges()[static_cast<std::size_t>(e)];
@@ -337,7 +372,7 @@ class Intersector {
     const Vector3d& a = o.corner(face, 0);
     const Vector3d& b = o.corner(face, 1);
     const Vector3d& c = o.corner(face, 2);
-    const int sigma = perturbedSegmentCrossing(p, q, a, b, c, perturbationSign(side));
+    const int sigma = perturbedSegmentCrossing(p, q, a, b, c, perturbationSign(side), s0, s1);
     if (sigma == 0) return;
     // x where the segment meets the plane: λ = d_p / (d_p − d_q), d = n·(· − a). The exact
     // predicate has decided that it crosses; λ is clamped against rounding.
