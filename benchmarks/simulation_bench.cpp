@@ -1,11 +1,14 @@
 // Whole simulations of the bundled scenarios (assets/scenarios), without output:
-// simulation/<scenario>. Counters: real_time_factor (simulated seconds per CPU second),
-// steps and contact evaluations per run, and the final height of the first free body (m) as
-// a sanity figure beside the time.
+// simulate/<scenario> with the scenario's own integrator, simulate/<scenario>/<integrator> as
+// the A/B pair of Dormand–Prince and BDF on the same scenario. Counters: real_time_factor
+// (simulated seconds per CPU second), steps, contact evaluations (Jacobians' included) and
+// Jacobians per run, output samples, and the final height of the last body (m) as a sanity
+// figure beside the time.
 
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "dynamics/simulator.hpp"
@@ -13,6 +16,7 @@
 
 namespace {
 
+using vcontact::dynamics::Integrator;
 using vcontact::dynamics::Simulator;
 using vcontact::dynamics::SimulationSummary;
 using vcontact::dynamics::Snapshot;
@@ -24,28 +28,51 @@ std::string scenarioPath(const std::string& name) {
       .string();
 }
 
-void simulate(benchmark::State& state, const std::string& name) {
-  const vcontact::io::ScenarioFile file = vcontact::io::readScenarioFile(scenarioPath(name));
+void simulate(benchmark::State& state, const std::string& name,
+              std::optional<Integrator> integrator) {
+  vcontact::io::ScenarioFile file = vcontact::io::readScenarioFile(scenarioPath(name));
+  if (integrator) file.scenario.settings.integrator = *integrator;
   double simulated = 0.0, final_height = 0.0;
-  long steps = 0, contacts = 0;
+  long steps = 0, contacts = 0, jacobians = 0, samples = 0;
   for (auto _ : state) {
     Simulator sim(file.scenario);
     SimulationSummary summary;
     Snapshot last;
-    sim.run([&](const Snapshot& s) { last = s; }, [](double) {}, summary);
+    samples = 0;
+    sim.run(
+        [&](const Snapshot& s) {
+          last = s;
+          ++samples;
+        },
+        [](double) {}, summary);
     simulated += summary.simulated_time;
     steps = summary.steps;
     contacts = summary.contact_evaluations;
+    jacobians = summary.jacobian_evaluations;
     final_height = last.bodies.back().p_WBcm.z();
   }
   state.counters["real_time_factor"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["contact_evals"] = static_cast<double>(contacts);
+  state.counters["jacobians"] = static_cast<double>(jacobians);
+  state.counters["outputs"] = static_cast<double>(samples);
   state.counters["final_z_m"] = final_height;
 }
 
-}  // namespace
+void registerScenario(const std::string& name) {
+  const std::pair<const char*, std::optional<Integrator>> variants[] = {
+      {"", std::nullopt}, {"/dopri5", Integrator::kDopri5}, {"/bdf", Integrator::kBdf}};
+  for (const auto& [suffix, integrator] : variants) {
+    benchmark::RegisterBenchmark(("simulate/" + name + suffix).c_str(), simulate, name, integrator)
+        ->Unit(benchmark::kMillisecond);
+  }
+}
 
-BENCHMARK_CAPTURE(simulate, ball_drop, std::string("ball_drop"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(simulate, ball_roll, std::string("ball_roll"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(simulate, tippe_top, std::string("tippe_top"))->Unit(benchmark::kMillisecond);
+[[maybe_unused]] const bool kRegistered = [] {
+  for (const char* name : {"ball_drop", "ball_roll", "tippe_top", "punch_slide_spin"}) {
+    registerScenario(name);
+  }
+  return true;
+}();
+
+}  // namespace

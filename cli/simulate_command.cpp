@@ -55,12 +55,15 @@ void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
                             {"steps", s.steps},
                             {"rejected_steps", s.rejected_steps},
                             {"rhs_evaluations", s.rhs_evaluations},
-                            {"contact_evaluations", s.contact_evaluations}};
+                            {"contact_evaluations", s.contact_evaluations},
+                            {"jacobian_evaluations", s.jacobian_evaluations}};
   std::ofstream(dir + "/summary.json") << j.dump(2) << '\n';
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps
             << " steps (" << s.rejected_steps << " rejected), " << s.contact_evaluations
-            << " contact evaluations\n";
+            << " contact evaluations";
+  if (s.jacobian_evaluations > 0) std::cerr << ", " << s.jacobian_evaluations << " Jacobians";
+  std::cerr << '\n';
 }
 
 void runSimulate(const SimulateOptions& o) {

@@ -20,7 +20,14 @@ struct ContactPair {
   std::optional<volume::Method> method; ///< default: volume::defaultMethod
 };
 
+/// The time integrator (dynamics/SCENARIO.md "Integrators").
+enum class Integrator {
+  kDopri5,  ///< explicit Dormand–Prince 5(4), Boost.Odeint: cheap steps, step ≲ 3.3/|λ_max|
+  kBdf,     ///< implicit variable-order BDF, SUNDIALS CVODE: steps set by accuracy alone
+};
+
 struct SimulationSettings {
+  Integrator integrator = Integrator::kDopri5;
   double duration = 1.0;          ///< s
   double output_rate_hz = 1000.0; ///< Hz, output every 1/rate s (and at t = 0)
   double abs_tol = 1e-9;          ///< absolute error per step, state units (m, m/s, rad, ...)

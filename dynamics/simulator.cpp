@@ -1,5 +1,6 @@
 #include "dynamics/simulator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -7,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <boost/numeric/odeint.hpp>
 
+#include "dynamics/bdf_integrator.hpp"
 #include "geometry/error.hpp"
 #include "volume/contact.hpp"
 
@@ -18,6 +20,10 @@ constexpr int kBodyStates = 13;  // p_WBcm (3), q_WB (w, x, y, z), v_WBcm (3), w
 // Output times k / rate are reached by shortened steps; a step that ends within this
 // fraction of the output interval of it counts as landing on it (round-off of t + dt).
 constexpr double kOutputTimeSlack = 1e-9;
+
+// BDF: |q| may drift this far from 1 before the state is rescaled (a restart). The error
+// weights of q change by as much, relatively: negligible.
+constexpr double kQuaternionNormDrift = 1e-3;
 
 std::string where(double t) {
   std::ostringstream s;
@@ -36,6 +42,21 @@ Eigen::Quaterniond quaternionAt(const double* q) {
 double meanPenetration(const volume::ContactVolume& cv) {
   if (!cv.inContact()) return 0.0;
   return cv.area > 0.0 ? cv.volume / cv.area : cv.depth;
+}
+
+// True when some state moved from `before` to `after` by more than its error tolerance.
+bool exceedsTolerance(const Simulator::State& before, const Simulator::State& after,
+                      const SimulationSettings& set) {
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    if (std::abs(after[i] - before[i]) > set.abs_tol + set.rel_tol * std::abs(before[i])) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool allFinite(const Simulator::State& v) {
+  return std::all_of(v.begin(), v.end(), [](double d) { return std::isfinite(d); });
 }
 
 void checkBody(const RigidBody& b) {
@@ -172,14 +193,27 @@ Snapshot Simulator::snapshot(const State& x, double t) {
 
 Snapshot Simulator::initialSnapshot() { return snapshot(x0_, 0.0); }
 
-// Discrete updates after an accepted step; true when the derivative must be re-evaluated.
-bool Simulator::settle(State& x, double t) {
+// Rescales every free body's quaternion to unit length; returns the largest | |q| − 1 | found.
+double Simulator::normaliseQuaternions(State& x) const {
+  double drift = 0.0;
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
     if (offset_[i] < 0) continue;
     double* q = &x[static_cast<std::size_t>(offset_[i]) + 3];
     const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     for (int j = 0; j < 4; ++j) q[j] /= norm;
+    drift = std::max(drift, std::abs(norm - 1.0));
   }
+  return drift;
+}
+
+// Discrete updates after an accepted step; true when the derivative must be re-evaluated.
+bool Simulator::settle(State& x, double t) {
+  normaliseQuaternions(x);
+  return settlePairs(x, t);
+}
+
+// The pair states' discrete updates (Model::settle) at the contacts of the latest evaluation.
+bool Simulator::settlePairs(State& x, double t) {
   bool changed = false;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const ContactPair& pair = scenario_.pairs[k];
@@ -239,13 +273,69 @@ std::string Simulator::stiffestPair() const {
   return s.str();
 }
 
+SimulationError Simulator::stepCollapse(double t, double h, const std::string& detail) const {
+  std::ostringstream s;
+  s << where(t) << stiffestPair() << ": step size " << h << " s fell below the minimum "
+    << scenario_.settings.min_step << " s (contact too stiff for the tolerances, or a "
+    << "discontinuity" << detail << ")";
+  return SimulationError(t, s.str());
+}
+
+// "body 'name' (velocity)" or "pair 'name' (bristle state)" for state index i.
+std::string Simulator::stateOwner(std::size_t i) const {
+  for (std::size_t b = 0; b < offset_.size(); ++b) {
+    if (offset_[b] < 0 || i < static_cast<std::size_t>(offset_[b]) ||
+        i >= static_cast<std::size_t>(offset_[b] + kBodyStates)) {
+      continue;
+    }
+    static const char* const kQuantity[] = {"position", "attitude", "velocity", "angular velocity"};
+    const std::size_t j = i - static_cast<std::size_t>(offset_[b]);
+    return "body '" + scenario_.bodies[b].name + "' (" + kQuantity[j < 3 ? 0 : j < 7 ? 1 : j < 10 ? 2 : 3] + ")";
+  }
+  for (std::size_t k = 0; k < pair_offset_.size(); ++k) {
+    if (i >= static_cast<std::size_t>(pair_offset_[k]) &&
+        i < static_cast<std::size_t>(pair_offset_[k] + PairState::kSize)) {
+      return "pair '" + scenario_.pairs[k].name + "' (friction state)";
+    }
+  }
+  return "state " + std::to_string(i);
+}
+
+// The right-hand side for CVODE: false, and the first non-finite rate remembered, when the
+// derivative is not finite (CVODE then retries with a shorter step).
+bool Simulator::rhsFinite(const double* x, double* dxdt, double t) {
+  rhs_x_.assign(x, x + x0_.size());
+  rhs_dxdt_.resize(x0_.size());
+  rhs(rhs_x_, rhs_dxdt_, t);
+  std::copy(rhs_dxdt_.begin(), rhs_dxdt_.end(), dxdt);
+  if (allFinite(rhs_dxdt_)) return true;
+  const auto bad = std::find_if(rhs_dxdt_.begin(), rhs_dxdt_.end(),
+                                [](double d) { return !std::isfinite(d); });
+  non_finite_ = stateOwner(static_cast<std::size_t>(bad - rhs_dxdt_.begin()));
+  return false;
+}
+
+// CVODE's failures in the words of the explicit path: time, pair or body, quantity.
+SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
+  const double t = std::max(e.time(), t_last);
+  if (e.stepCollapse()) return stepCollapse(t, std::abs(e.stepSize()), "; BDF: " + std::string(e.what()));
+  std::ostringstream s;
+  if (e.rhsFailed()) {
+    s << where(t) << ", " << non_finite_ << ": the rate of change is not finite at every step "
+      << "size tried, down to " << std::abs(e.stepSize()) << " s";
+  } else {
+    s << where(t) << stiffestPair() << ": the implicit (BDF) integrator stopped at step size "
+      << std::abs(e.stepSize()) << " s: " << e.what();
+  }
+  return SimulationError(t, s.str());
+}
+
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
                     const std::function<void(double)>& on_progress, SimulationSummary& summary) {
-  namespace odeint = boost::numeric::odeint;
-  const SimulationSettings& set = scenario_.settings;
   const auto wall_start = std::chrono::steady_clock::now();
   const long rhs_start = rhs_count_, contacts_start = contact_count_;
-  auto finish = [&](double t) {
+  double t = 0.0;
+  auto finish = [&] {
     summary.simulated_time = t;
     summary.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -253,61 +343,121 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     summary.contact_evaluations = contact_count_ - contacts_start;
   };
 
-  auto stepper =
-      odeint::make_controlled(set.abs_tol, set.rel_tol, odeint::runge_kutta_dopri5<State>());
-  auto system = [this](const State& x, State& dxdt, double t) { rhs(x, dxdt, t); };
   State x = x0_;
   State dxdt(x.size());
-  double t = 0.0;
   rhs(x, dxdt, t);
   settle(x, t);
   rhs(x, dxdt, t);
   on_output(snapshot(x, t));
+  try {
+    if (scenario_.settings.integrator == Integrator::kBdf) {
+      runBdf(x, t, on_output, on_progress, summary);
+    } else {
+      runDopri5(x, dxdt, t, on_output, on_progress, summary);
+    }
+  } catch (...) {
+    finish();
+    throw;
+  }
+  finish();
+}
 
+void Simulator::runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_output,
+                          const ProgressFn& on_progress, SimulationSummary& summary) {
+  namespace odeint = boost::numeric::odeint;
+  const SimulationSettings& set = scenario_.settings;
+  auto stepper =
+      odeint::make_controlled(set.abs_tol, set.rel_tol, odeint::runge_kutta_dopri5<State>());
+  auto system = [this](const State& x, State& dxdt, double t) { rhs(x, dxdt, t); };
   const double interval = 1.0 / set.output_rate_hz;
   long next_output = 1;
   double dt = set.initial_step;
   bool just_rejected = false;
-  try {
-    while (t < set.duration) {
-      const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
-      const double dt_free = std::min(dt, set.max_step);
-      const bool capped = t_target - t < dt_free;
-      double dt_try = capped ? t_target - t : dt_free;
-      const double dt_used = dt_try;
-      if (stepper.try_step(system, x, dxdt, t, dt_try) == odeint::fail) {
-        ++summary.rejected_steps;
-        just_rejected = true;
-        dt = dt_try;
-        if (dt < set.min_step) {
-          std::ostringstream s;
-          s << where(t) << stiffestPair() << ": step size " << dt << " s fell below the minimum "
-            << set.min_step << " s (contact too stiff for the tolerances, or a discontinuity)";
-          throw SimulationError(t, s.str());
-        }
-        continue;
-      }
-      ++summary.steps;
-      dt = capped ? std::max(dt_try, dt_free) : dt_try;
-      // Hairer, Nørsett & Wanner I, §II.4: no growth right after a rejection. At the stability
-      // limit of a stiff contact this avoids the grow–reject cycle of the plain controller.
-      if (just_rejected) dt = std::min(dt, dt_used);
-      just_rejected = false;
-      if (x != last_x_) rhs(x, dxdt, t);
-      check(x, t);
-      if (settle(x, t)) rhs(x, dxdt, t);
-      if (t >= t_target - kOutputTimeSlack * interval) {
-        t = t_target;
-        on_output(snapshot(x, t));
-        ++next_output;
-      }
-      on_progress(t);
+  while (t < set.duration) {
+    const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
+    const double dt_free = std::min(dt, set.max_step);
+    const bool capped = t_target - t < dt_free;
+    double dt_try = capped ? t_target - t : dt_free;
+    const double dt_used = dt_try;
+    if (stepper.try_step(system, x, dxdt, t, dt_try) == odeint::fail) {
+      ++summary.rejected_steps;
+      just_rejected = true;
+      dt = dt_try;
+      if (dt < set.min_step) throw stepCollapse(t, dt, "");
+      continue;
     }
-  } catch (...) {
-    finish(t);
-    throw;
+    ++summary.steps;
+    dt = capped ? std::max(dt_try, dt_free) : dt_try;
+    // Hairer, Nørsett & Wanner I, §II.4: no growth right after a rejection. At the stability
+    // limit of a stiff contact this avoids the grow–reject cycle of the plain controller.
+    if (just_rejected) dt = std::min(dt, dt_used);
+    just_rejected = false;
+    if (x != last_x_) rhs(x, dxdt, t);
+    check(x, t);
+    if (settle(x, t)) rhs(x, dxdt, t);
+    if (t >= t_target - kOutputTimeSlack * interval) {
+      t = t_target;
+      on_output(snapshot(x, t));
+      ++next_output;
+    }
+    on_progress(t);
   }
-  finish(t);
+}
+
+// CVODE steps freely (up to max_step) and the outputs are read from each step's interpolating
+// polynomial. The discrete updates of the pair states are applied by a restart, and only when
+// they move some state by more than its error tolerance: smaller ones (the projection of z
+// after the normal turned by a step's worth) are within the integration error, and
+// Model::evaluate applies them anyway. The quaternions are rescaled only when |q| drifted by
+// kQuaternionNormDrift: kinematics() normalises q, and q̇ = ½ (0, ω) ⊗ q turns q at the right
+// rate whatever its length, so the drift changes no physics; a restart at every step's worth of
+// drift (the relative tolerance) would keep the BDF at order 1.
+void Simulator::runBdf(State& x, double& t, const OutputFn& on_output,
+                       const ProgressFn& on_progress, SimulationSummary& summary) {
+  const SimulationSettings& set = scenario_.settings;
+  const BdfIntegrator::Settings bdf_settings{set.abs_tol,  set.rel_tol,  set.initial_step,
+                                             set.max_step, set.min_step, set.duration};
+  BdfIntegrator bdf(
+      x.size(), [this](double t, const double* x, double* dxdt) { return rhsFinite(x, dxdt, t); },
+      bdf_settings, t, x.data());
+  const double interval = 1.0 / set.output_rate_hz;
+  long next_output = 1;
+  State x_out(x.size()), settled(x.size());
+  auto count = [&] {
+    const BdfIntegrator::Counts c = bdf.counts();
+    summary.steps = c.steps;
+    summary.rejected_steps = c.rejected;
+    summary.jacobian_evaluations = c.jacobians;
+  };
+  while (t < set.duration) {
+    const double t_last = t;
+    try {
+      t = bdf.step();
+    } catch (const BdfError& e) {
+      count();
+      throw bdfFailure(e, t_last);
+    }
+    count();
+    std::copy(bdf.state(), bdf.state() + x.size(), x.begin());
+    // The contacts of the last Newton iterate stand for those of x: it converged to within a
+    // tenth of the error tolerance of x (CVODE's convergence test), and a fresh evaluation would
+    // cost a third of all contact evaluations.
+    check(x, t);
+    settled = x;
+    settlePairs(settled, t);
+    const bool jumped = exceedsTolerance(x, settled, set) ||
+                        normaliseQuaternions(settled) > kQuaternionNormDrift;
+    for (;;) {
+      const double t_out = std::min(static_cast<double>(next_output) * interval, set.duration);
+      if (t_out > t + kOutputTimeSlack * interval) break;
+      bdf.interpolate(std::min(t_out, t), x_out.data());
+      on_output(snapshot(x_out, t_out));
+      ++next_output;
+      if (t_out >= set.duration) break;
+    }
+    if (jumped) bdf.restart(t, settled.data());
+    on_progress(t);
+  }
 }
 
 }  // namespace vcontact::dynamics

@@ -1,14 +1,20 @@
 #pragma once
 // Time integration of a Scenario: Newton–Euler equations of the free bodies under gravity
-// and the contact wrenches of every pair, plus the pair states, with Boost.Odeint's
-// error-controlled Dormand–Prince 5(4) stepper (runge_kutta_dopri5, FSAL).
+// and the contact wrenches of every pair, plus the pair states, error-controlled with the
+// scenario's tolerances by one of two integrators (SimulationSettings::integrator):
 //
-// After each accepted step: quaternions are renormalised and every pair state is settled
-// (Model::settle: z projected onto the contact plane, reset on loss of contact, dwell jumps).
-// Steps are shortened to land on output times, so outputs are exact states, not
-// interpolations. The run stops with a SimulationError naming time, pair or body and the
-// quantity on: a non-finite state, a mean penetration V/A beyond a set fraction of a body, or a
-// step size below the minimum.
+// - Dormand–Prince 5(4), Boost.Odeint (runge_kutta_dopri5, FSAL). After each accepted step the
+//   quaternions are renormalised and every pair state is settled (Model::settle: z projected
+//   onto the contact plane, reset on loss of contact, dwell jumps). Steps are shortened to
+//   land on output times, so outputs are exact states, not interpolations.
+// - Variable-order BDF, SUNDIALS CVODE (bdf_integrator.hpp), for stiff friction states. Steps
+//   are free and outputs come from each step's interpolating polynomial. The settle updates
+//   restart the integrator when they move a state by more than its tolerance; smaller ones are
+//   within the integration error and are applied by every reader of the state anyway.
+//
+// Either run stops with a SimulationError naming time, pair or body and the quantity on: a
+// non-finite state or rate, a mean penetration V/A beyond a set fraction of a body, or a step
+// size below the minimum (or another failure of CVODE, in words).
 
 #include <functional>
 #include <stdexcept>
@@ -18,6 +24,8 @@
 #include "dynamics/scenario.hpp"
 
 namespace vcontact::dynamics {
+
+class BdfError;
 
 class SimulationError : public std::runtime_error {
  public:
@@ -49,6 +57,8 @@ struct SimulationSummary {
   long rejected_steps = 0;
   long rhs_evaluations = 0;
   long contact_evaluations = 0;  ///< volume queries (pairs × right-hand-side evaluations)
+  long jacobian_evaluations = 0; ///< BDF: difference-quotient Jacobians (their right-hand
+                                 ///< sides are in rhs_evaluations); 0 for Dormand–Prince
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
 
@@ -72,12 +82,24 @@ class Simulator {
   using State = std::vector<double>;
 
  private:
+  using OutputFn = std::function<void(const Snapshot&)>;
+  using ProgressFn = std::function<void(double t)>;
+  void runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_output,
+                 const ProgressFn& on_progress, SimulationSummary& summary);
+  void runBdf(State& x, double& t, const OutputFn& on_output, const ProgressFn& on_progress,
+              SimulationSummary& summary);
   void rhs(const State& x, State& dxdt, double t);
+  bool rhsFinite(const double* x, double* dxdt, double t);
   Snapshot snapshot(const State& x, double t);
   BodyKinematics kinematics(const State& x, std::size_t body, double t) const;
   bool settle(State& x, double t);
+  bool settlePairs(State& x, double t);
+  double normaliseQuaternions(State& x) const;
   void check(const State& x, double t) const;
   std::string stiffestPair() const;
+  std::string stateOwner(std::size_t index) const;
+  SimulationError stepCollapse(double t, double h, const std::string& detail) const;
+  SimulationError bdfFailure(const BdfError& e, double t_last) const;
 
   Scenario scenario_;
   std::vector<int> offset_;       ///< start of each free body's 13 states, −1 if not free
@@ -91,6 +113,8 @@ class Simulator {
   State last_x_;  ///< the state of the latest right-hand-side evaluation
   // The per-pair contacts of the latest right-hand-side evaluation (at last_x_).
   std::vector<PairOutput> last_pairs_;
+  State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
+  std::string non_finite_;  ///< the state whose rate was last found not finite
   long rhs_count_ = 0;
   long contact_count_ = 0;
 };

@@ -220,6 +220,16 @@ dynamics::SimulationSettings readSettings(const Reader& r) {
   dynamics::SimulationSettings s;
   s.duration = r.positive("duration", s.duration);
   s.output_rate_hz = r.positive("output_rate", s.output_rate_hz);
+  if (r.has("integrator")) {
+    const std::string name = r.text("integrator");
+    if (name == "dopri5") {
+      s.integrator = dynamics::Integrator::kDopri5;
+    } else if (name == "bdf") {
+      s.integrator = dynamics::Integrator::kBdf;
+    } else {
+      r.fail("integrator", "expected \"dopri5\" or \"bdf\"");
+    }
+  }
   if (!r.has("tolerances")) return s;
   const Reader t = r.child("tolerances");
   t.allowOnly({"abs", "rel", "initial_step", "max_step", "min_step", "max_penetration_fraction"});
@@ -239,8 +249,8 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir) {
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
-  r.allowOnly({"format", "duration", "output_rate", "gravity", "tolerances", "bodies", "models",
-               "pairs", "outputs", "description"});
+  r.allowOnly({"format", "duration", "output_rate", "integrator", "gravity", "tolerances",
+               "bodies", "models", "pairs", "outputs", "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }

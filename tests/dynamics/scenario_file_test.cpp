@@ -65,6 +65,7 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
       {"/pairs/0/model/effects/stiffness/kv", -5.0,
        "pairs[0].model.effects.stiffness.kv: stiffness.kv = -5 is outside"},
       {"/tolerances", nlohmann::json{{"rel", 0.0}}, "tolerances.rel: expected a positive number"},
+      {"/integrator", "euler", "s.json: integrator: expected \"dopri5\" or \"bdf\""},
   };
   for (const auto& c : cases) {
     nlohmann::json j = ballOnPlate();
@@ -82,25 +83,56 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
 // A contact far too soft for the ball: it sinks past 10 % of its size and the run stops with
 // the time, the pair and the quantity, after delivering every output before the stop.
 TEST(ScenarioFile, FailingRunStopsWithTimePairAndQuantity) {
-  nlohmann::json j = ballOnPlate();
-  j["pairs"][0]["model"]["effects"]["stiffness"]["kv"] = 1e3;
-  j["duration"] = 1.0;
-  const ScenarioFile f = scenarioFromJson(j, "s.json", kScenarios);
-  dynamics::Simulator sim(f.scenario);
-  std::vector<double> times;
-  dynamics::SimulationSummary summary;
-  try {
-    sim.run([&](const dynamics::Snapshot& s) { times.push_back(s.t); }, [](double) {}, summary);
-    FAIL() << "the run should have stopped";
-  } catch (const dynamics::SimulationError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("pair 'ball-plate': mean penetration V/A"), std::string::npos)
-        << message;
-    EXPECT_EQ(message.rfind("t = ", 0), 0u) << message;
-    ASSERT_FALSE(times.empty());
-    EXPECT_LE(times.back(), e.time());
-    EXPECT_GT(times.size(), 10u);  // it fell ~0.5 mm before touching: outputs were written
-    EXPECT_EQ(summary.simulated_time, e.time());
+  for (const char* integrator : {"dopri5", "bdf"}) {
+    nlohmann::json j = ballOnPlate();
+    j["pairs"][0]["model"]["effects"]["stiffness"]["kv"] = 1e3;
+    j["duration"] = 1.0;
+    j["integrator"] = integrator;
+    const ScenarioFile f = scenarioFromJson(j, "s.json", kScenarios);
+    dynamics::Simulator sim(f.scenario);
+    std::vector<double> times;
+    dynamics::SimulationSummary summary;
+    try {
+      sim.run([&](const dynamics::Snapshot& s) { times.push_back(s.t); }, [](double) {}, summary);
+      ADD_FAILURE() << integrator << ": the run should have stopped";
+    } catch (const dynamics::SimulationError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("pair 'ball-plate': mean penetration V/A"), std::string::npos)
+          << message;
+      EXPECT_EQ(message.rfind("t = ", 0), 0u) << message;
+      ASSERT_FALSE(times.empty()) << integrator;
+      EXPECT_LE(times.back(), e.time()) << integrator;
+      EXPECT_GT(times.size(), 10u) << integrator;  // it fell ~0.5 mm before touching
+      EXPECT_EQ(summary.simulated_time, e.time()) << integrator;
+    }
+  }
+}
+
+// A minimum step far above what the impact needs (kv = 1e15 N/m³: the ball's contact lasts
+// ~7 µs): both integrators stop on the step-size collapse, naming the time, the pair with its
+// normal force, and the step size.
+TEST(ScenarioFile, StepSizeCollapseNamesThePair) {
+  for (const char* integrator : {"dopri5", "bdf"}) {
+    nlohmann::json j = ballOnPlate();
+    j["integrator"] = integrator;
+    j["duration"] = 0.05;
+    j["pairs"][0]["model"]["effects"]["stiffness"]["kv"] = 1e15;
+    j["tolerances"] = {{"min_step", 1e-5}, {"initial_step", 1e-5}};
+    const ScenarioFile f = scenarioFromJson(j, "s.json", kScenarios);
+    dynamics::Simulator sim(f.scenario);
+    dynamics::SimulationSummary summary;
+    try {
+      sim.run([](const dynamics::Snapshot&) {}, [](double) {}, summary);
+      ADD_FAILURE() << integrator << ": the run should have stopped";
+    } catch (const dynamics::SimulationError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("t = ", 0), 0u) << message;
+      EXPECT_NE(message.find(", pair 'ball-plate' (normal force "), std::string::npos) << message;
+      EXPECT_NE(message.find("fell below the minimum 1e-05 s"), std::string::npos) << message;
+      // The ball touches after falling 0.5 mm, at sqrt(2 · 0.5 mm / g) = 10.1 ms.
+      EXPECT_GT(e.time(), 0.0100) << message;
+      EXPECT_GT(summary.rejected_steps, 0) << integrator;
+    }
   }
 }
 
