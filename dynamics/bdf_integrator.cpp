@@ -5,9 +5,9 @@
 #include <sstream>
 #include <utility>
 
+#include <Eigen/LU>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 namespace vcontact::dynamics {
@@ -31,9 +31,54 @@ constexpr int kMaxOrder = 2;
 realtype maxNorm(N_Vector x, N_Vector w) {
   const realtype* xd = N_VGetArrayPointer(x);
   const realtype* wd = N_VGetArrayPointer(w);
+  const sunindextype n = N_VGetLength(x);
   realtype norm = 0.0;
-  for (sunindextype i = 0; i < N_VGetLength(x); ++i) norm = std::max(norm, std::abs(xd[i] * wd[i]));
+  for (sunindextype i = 0; i < n; ++i) norm = std::max(norm, std::abs(xd[i] * wd[i]));
   return norm;
+}
+
+// The dense direct solver of the Newton iteration, M = I − γJ, by Eigen's partial-pivoting LU
+// on SUNDIALS' column-major dense matrix. It replaces SUNLinSol_Dense, whose triangular solves
+// took a quarter of ball_roll's instructions (9,000 per 18-state solve, measured by callgrind).
+struct EigenLu {
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+
+  static EigenLu& of(SUNLinearSolver S) { return *static_cast<EigenLu*>(S->content); }
+  static SUNLinearSolver_Type type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+  static int initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+  static int setup(SUNLinearSolver S, SUNMatrix A) {
+    const auto n = static_cast<Eigen::Index>(SM_COLUMNS_D(A));
+    of(S).lu.compute(Eigen::Map<const Eigen::MatrixXd>(SM_DATA_D(A), n, n));
+    // A singular M leaves a zero pivot: CVODE treats a positive flag as recoverable and retries
+    // with a shorter step, which makes M closer to I.
+    const Eigen::VectorXd pivots = of(S).lu.matrixLU().diagonal();
+    return pivots.cwiseAbs().minCoeff() > 0.0 ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+  }
+  static int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
+    const auto n = static_cast<Eigen::Index>(N_VGetLength(b));
+    Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(x), n) =
+        of(S).lu.solve(Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(b), n));
+    return SUNLS_SUCCESS;
+  }
+  static int free(SUNLinearSolver S) {
+    if (S == nullptr) return SUNLS_SUCCESS;
+    delete static_cast<EigenLu*>(S->content);
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return SUNLS_SUCCESS;
+  }
+};
+
+SUNLinearSolver makeEigenLu(SUNContext context) {
+  SUNLinearSolver S = SUNLinSolNewEmpty(context);
+  if (S == nullptr) return nullptr;
+  S->content = new EigenLu;
+  S->ops->gettype = &EigenLu::type;
+  S->ops->initialize = &EigenLu::initialize;
+  S->ops->setup = &EigenLu::setup;
+  S->ops->solve = &EigenLu::solve;
+  S->ops->free = &EigenLu::free;
+  return S;
 }
 
 // Throws std::runtime_error when a SUNDIALS set-up call fails (an internal error: every input
@@ -146,9 +191,11 @@ BdfIntegrator::BdfIntegrator(std::size_t n, Rhs f, const Settings& settings, dou
   require(SUNContext_Create(nullptr, &m.context), "SUNContext_Create");
   m.y = require(N_VNew_Serial(len, m.context), "N_VNew_Serial");
   m.y->ops->nvwrmsnorm = &maxNorm;  // inherited by every vector CVODE clones from y
+  // One call per linear combination of the Nordsieck history instead of one per term.
+  require(N_VEnableFusedOps_Serial(m.y, SUNTRUE), "N_VEnableFusedOps_Serial");
   std::copy(x0, x0 + n, N_VGetArrayPointer(m.y));
   m.A = require(SUNDenseMatrix(len, len, m.context), "SUNDenseMatrix");
-  m.solver = require(SUNLinSol_Dense(m.y, m.A, m.context), "SUNLinSol_Dense");
+  m.solver = require(makeEigenLu(m.context), "makeEigenLu");
   m.cvode = require(CVodeCreate(CV_BDF, m.context), "CVodeCreate");
   require(CVodeInit(m.cvode, &Impl::rhs, t0, m.y), "CVodeInit");
   // No Jacobian function: CVODE forms it by difference quotients, one column per state.
