@@ -336,7 +336,10 @@ struct AxisPasses {
 /// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by two cells
 /// all round, bound the region as sampled. The three passes' bounds are united, not
 /// intersected: a thin region that one pass resolves and another misses (two ribs pressed
-/// unequally) must stay inside the box.
+/// unequally) must stay inside the box. A pass that sees no wet line at all (a layer a few µm
+/// thick lying in a coordinate plane slips between the lines of the two passes across it)
+/// adds nothing to the normal: its component comes from the boundary's thin side walls, whose
+/// area vectors cancel to the order of the layer's thickness over its width.
 AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
                       int resolution) {
   AxisPasses out;
@@ -344,7 +347,7 @@ AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& 
     const Grid g(box, Vector3d::Unit(k), resolution);
     const GridSums s = integrate(a, b, g, nullptr);
     out.areaDifference[k] = s.surfaceB - s.surfaceA;
-    if (s.wetLines == 0) return AxisPasses{};
+    if (s.wetLines == 0) continue;
     // Two cells of margin on every axis: a thin rim between sampled lines, or a line just
     // missed, lies within a cell of a wet one for any region the grid resolves.
     const Vector3d margin = Vector3d::Constant(2.0 * (box.hi - box.lo).maxCoeff() / resolution);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -110,6 +111,25 @@ TEST(Columns, KeepsAThinSecondRegion) {
   EXPECT_NEAR(col.volume, s * s * (d1 + d2), volumeTolerance(col) * s * s * (d1 + d2));
   EXPECT_GT(col.volume, s * s * d1 * (1 + 0.5 * d2 / d1));  // the thin foot is counted
   EXPECT_LE((col.normal - Vector3d::UnitZ()).norm(), 2e-2);
+}
+
+// Regression: a layer a few µm thick lying in a coordinate plane (a cube face down on a plate,
+// both axis-aligned) slips between the lines of the x and y passes at every resolution; the
+// z pass alone must be enough. Exact: V = s² d, n = +z, for a half-space and a mesh plate.
+TEST(Columns, FindsAThinAxisAlignedLayer) {
+  const double s = 0.02, d = 1e-5;
+  const MeshBvh cube(geometry::tessellateBox(Vector3d::Constant(s)));
+  const MeshBvh plate(geometry::tessellateBox(Vector3d(0.06, 0.06, 0.01)));
+  const Isometry3d X_WA = test::translation({0.001, -0.002, s / 2 - d});
+  const ColumnBody onHalfspace{nullptr, Isometry3d::Identity()};
+  const ColumnBody onMesh{&plate, test::translation({0, 0, -0.005})};
+  for (const ColumnBody& b : {onHalfspace, onMesh}) {
+    const ContactVolume col = columnsContact({&cube, X_WA}, b);
+    // Every wet line has the same δ, so the midpoint rule is exact and only the rounding of
+    // δ = 1e-5 from coordinates of 1e-2 remains (ε·1e-2/1e-5 ≈ 2e-13 relative).
+    EXPECT_NEAR(col.volume, s * s * d, std::max(volumeTolerance(col), 1e-12) * s * s * d);
+    EXPECT_LE((col.normal - Vector3d::UnitZ()).norm(), 1e-9);
+  }
 }
 
 // Against the exact clip for a mesh on a half-space, from shallow to deep.
