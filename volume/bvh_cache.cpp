@@ -1,27 +1,12 @@
 #include "volume/bvh_cache.hpp"
 
-#include <map>
-#include <mutex>
+#include "volume/mesh_cache.hpp"
 
 namespace vcontact::volume {
-namespace {
-
-struct Entry {
-  std::weak_ptr<const geometry::TriangleMesh> mesh;  // detects a freed and reused address
-  std::shared_ptr<const geometry::MeshBvh> bvh;
-};
-
-}  // namespace
 
 std::shared_ptr<const geometry::MeshBvh> bvhOf(
     const std::shared_ptr<const geometry::TriangleMesh>& mesh) {
-  static std::mutex mutex;
-  static std::map<const geometry::TriangleMesh*, Entry> cache;
-  const std::lock_guard lock(mutex);
-  std::erase_if(cache, [](const auto& kv) { return kv.second.mesh.expired(); });
-  Entry& e = cache[mesh.get()];
-  if (!e.bvh) e = {mesh, std::make_shared<const geometry::MeshBvh>(*mesh)};
-  return e.bvh;
+  return derivedOf<geometry::MeshBvh>(mesh);
 }
 
 }  // namespace vcontact::volume
