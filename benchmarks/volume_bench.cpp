@@ -2,7 +2,9 @@
 // the volume it found (counter V, m³) beside its time, so a fast wrong answer shows.
 //
 // Cases: a UV sphere of radius 10 mm at 1k, 10k and 100k triangles,
-//   *_shallow: against a half-space, lowest vertex 0.1 mm (d/R = 0.01) under the plane;
+//   *_micro: against a half-space, lowest vertex 10 µm (d/R = 0.001) under the plane, the
+//     scale of metal contact (MODEL.md: micrometre penetrations);
+//   *_shallow: the same at 0.1 mm (d/R = 0.01);
 //   *_deep: the same at 3 mm (d/R = 0.3), where whole subtrees lie below the plane;
 //   sphere_pair_*: two such spheres, centres 19.8 mm apart (0.2 mm overlap along the line).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
@@ -151,6 +153,7 @@ void registerPair(const std::string& size, int triangles, bool withCgal) {
 
 int main(int argc, char** argv) {
   for (const auto& [size, triangles] : {std::pair{"1k", 1000}, {"10k", 10000}, {"100k", 100000}}) {
+    registerHalfspace(size, triangles, "micro", 0.001);
     registerHalfspace(size, triangles, "shallow", 0.01);
     registerHalfspace(size, triangles, "deep", 0.3);
     registerPair(size, triangles, triangles <= 10000);
