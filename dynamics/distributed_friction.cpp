@@ -135,7 +135,8 @@ DistributedFriction distributedFriction(const volume::ContactVolume& cv,
 
   DistributedFriction out;
   out.cells = static_cast<int>(count);
-  out.cell_area = cv.area / double(count);
+  // The grid's own cell; a field built by hand without one is taken to tile cv.area.
+  out.cell_area = field.cellArea > 0.0 ? field.cellArea : cv.area / double(count);
   double volume = 0.0;
   for (double d : field.depth) volume += d * out.cell_area;
   require(std::abs(volume - cv.volume) <= kFieldVolumeTolerance * cv.volume,

@@ -74,7 +74,8 @@ struct DistributedFriction {
 /// Pointwise Coulomb friction integrated over the columns δ map (midpoint rule, one column
 /// per cell, as the columns backend integrates V).
 /// @param cv     the contact from volume::columnsContact (p_c, n, V, area)
-/// @param field  the δ map of the same call; every cell has dS = cv.area / cells
+/// @param field  the δ map of the same call; every cell has dS = field.cellArea (cv.area / cells
+///               for a field without one)
 /// @param mu     friction coefficient, ≥ 0
 /// @param v_eps  regularisation speed of dir_ε, m/s, > 0 (ModelSettings::v_eps)
 /// @pre cv.inContact() and field.points_W.size() == field.depth.size() > 0

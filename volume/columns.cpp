@@ -413,6 +413,7 @@ Refined refine(const ColumnBody& a, const ColumnBody& b, const WorldBox& box, co
 /// The δ map: the plate point and δ of every wet line.
 ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
   ColumnField field;
+  field.cellArea = g.cellArea();
   for (int i = 0; i < g.n; ++i) {
     for (int j = 0; j < g.n; ++j) {
       const double d = depth[static_cast<std::size_t>(i) * g.n + j];

@@ -38,6 +38,7 @@ struct ColumnOptions {
 struct ColumnField {
   std::vector<Eigen::Vector3d> points_W;  ///< where each line meets the plate S, m
   std::vector<double> depth;              ///< δ along n, m
+  double cellArea = 0.0;                  ///< dS of every line's cell on the plate, m²
 };
 
 /// ContactVolume of body A (B1) and body B (B2); at least one of them must be a mesh. The
