@@ -1,7 +1,8 @@
 #pragma once
-// Variable-order BDF for stiff contact: SUNDIALS CVODE (orders 1–5, Newton iteration with a
-// dense direct solver and a difference-quotient Jacobian, Hindmarsh et al., ACM TOMS 31, 2005),
-// driven one step at a time with dense output. SUNDIALS types stay in bdf_integrator.cpp.
+// Variable-order BDF for stiff contact: SUNDIALS CVODE (orders 1–2 here, see kMaxOrder in the
+// .cpp; Newton iteration with a dense direct solver and a difference-quotient Jacobian,
+// Hindmarsh et al., ACM TOMS 31, 2005), driven one step at a time with dense output. SUNDIALS
+// types stay in bdf_integrator.cpp.
 //
 //   BdfIntegrator bdf(n, f, settings, t0, x0);
 //   double t = bdf.step();          // one accepted step; throws BdfError when CVODE gives up
