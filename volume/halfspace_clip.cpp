@@ -12,17 +12,6 @@ using Eigen::Vector3d;
 using geometry::BvhNode;
 using geometry::MeshBvh;
 
-/// The plane z_H = 0 seen from the mesh frame M, for bounding whole nodes: z_H(p) = n·p + h
-/// for p in M. (Vertex heights come from the transformed vertices themselves, see clipFace.)
-struct PlaneInM {
-  Vector3d n;  ///< z_H in M axes (unit)
-  double h;    ///< z_H of the origin of M
-
-  explicit PlaneInM(const Eigen::Isometry3d& X_HM)
-      : n(X_HM.linear().row(2).transpose()), h(X_HM.translation().z()) {}
-  double z(const Vector3d& p_M) const { return n.dot(p_M) + h; }
-};
-
 /// Running sums over the fan pieces (o, a, b, c), corners relative to o in H axes: with
 /// D = a·(b × c) and s = a + b + c, the moments about o are m0 = ΣD/6, m1 = Σ D s/24 and
 /// m2 = Σ D (a aᵀ + b bᵀ + c cᵀ + s sᵀ)/120 (as tetrahedronMoments, kept as plain sums, m2 as
@@ -112,6 +101,8 @@ struct Placement {
     return R(i, 0) * p.x() + R(i, 1) * p.y() + R(i, 2) * p.z() + t(i);
   }
   double z(const Vector3d& p) const { return coordinate(2, p); }
+  /// z_H in M axes: the plane's upward normal seen from the mesh.
+  Vector3d up() const { return R.row(2).transpose(); }
 
   Eigen::Matrix3d R;
   Vector3d t;
@@ -161,8 +152,9 @@ constexpr int kClipLeafSize = 8;
 // and their triangles clipped one by one exactly as the reference does.
 constexpr double kBoxRoundingUlps = 16.0;
 
-/// Traversal state of the accelerated clip. Everything is computed in the mesh frame M about
-/// o, and the sums are rotated into H once at the end: no vertex is transformed.
+/// Traversal state of the accelerated clip. Nodes are bounded in the mesh frame M; wholly
+/// below subtrees add their fan moments about o in M axes, rotated into H once at the end;
+/// only triangles of straddling subtrees that reach below the plane are placed in H.
 class BvhClip {
  public:
   BvhClip(const MeshBvh& bvh, const Eigen::Isometry3d& X_HM)
@@ -170,8 +162,8 @@ class BvhClip {
         mesh_(bvh.mesh()),
         X_HM_(X_HM),
         placement_(X_HM),
-        plane_(X_HM),
-        absN_(plane_.n.cwiseAbs()),
+        up_(placement_.up()),
+        absUp_(up_.cwiseAbs()),
         slackScale_(kBoxRoundingUlps * std::numeric_limits<double>::epsilon()),
         slackBase_(X_HM.translation().cwiseAbs().sum()) {}
 
@@ -216,12 +208,12 @@ class BvhClip {
   /// (p − c)·n = (n·a) s + (p − c)·n_⊥ with s ∈ [axialLo, axialHi], |…| ≤ |n_⊥| ρ.
   /// The slab is worked out only when the box alone cannot place the node.
   ZRange zRange(const BvhNode& node) const {
-    const double cz = plane_.z(node.center);
-    const double boxExtent = absN_.dot(node.halfExtent);
+    const double cz = placement_.z(node.center);
+    const double boxExtent = absUp_.dot(node.halfExtent);
     const double slack = slackScale_ * (std::abs(cz) + boxExtent + slackBase_);
     ZRange box{cz - boxExtent - slack, cz + boxExtent + slack};
     if (box.lo >= 0.0 || box.hi < 0.0) return box;
-    const double na = plane_.n.dot(node.normalAxis);
+    const double na = up_.dot(node.normalAxis);
     const double perp = std::sqrt(std::max(0.0, 1.0 - na * na)) * node.radialExtent;
     const double slabLo = std::min(na * node.axialLo, na * node.axialHi) - perp;
     const double slabHi = std::max(na * node.axialLo, na * node.axialHi) + perp;
@@ -274,8 +266,8 @@ class BvhClip {
   /// Projected area onto z_H = 0 of the node's faces with n_z < 0: −(n·∫n dA) when the
   /// normal cone lies wholly below the horizontal, 0 when wholly above, else per child.
   double downwardArea(const BvhNode& node) const {
-    const double axisZ = plane_.n.dot(node.normalAxis);
-    if (axisZ <= -node.normalSinHalfAngle) return -plane_.n.dot(node.integrals.F);
+    const double axisZ = up_.dot(node.normalAxis);
+    if (axisZ <= -node.normalSinHalfAngle) return -up_.dot(node.integrals.F);
     if (axisZ >= node.normalSinHalfAngle) return 0.0;
     if (!node.isLeaf()) {
       return downwardArea(bvh_.nodes()[node.left]) + downwardArea(bvh_.nodes()[node.right]);
@@ -284,7 +276,7 @@ class BvhClip {
     for (int i = node.first; i < node.first + node.count; ++i) {
       const int f = bvh_.order()[i];
       const Vector3d a = mesh_.corner(f, 0);
-      const double up2 = (mesh_.corner(f, 1) - a).cross(mesh_.corner(f, 2) - a).dot(plane_.n);
+      const double up2 = (mesh_.corner(f, 1) - a).cross(mesh_.corner(f, 2) - a).dot(up_);
       if (up2 < 0.0) area -= 0.5 * up2;
     }
     return area;
@@ -294,8 +286,8 @@ class BvhClip {
   const geometry::TriangleMesh& mesh_;
   const Eigen::Isometry3d X_HM_;
   const Placement placement_;
-  const PlaneInM plane_;
-  const Vector3d absN_;     ///< |n| componentwise, for the box extent along n
+  const Vector3d up_;     ///< z_H in M axes
+  const Vector3d absUp_;  ///< |z_H| componentwise, for a box's extent along it
   const double slackScale_;  ///< kBoxRoundingUlps · eps
   const double slackBase_;   ///< |translation|₁, the size the heights are rounded against
   Vector3d deepest_ = Vector3d::Zero();  ///< deepest vertex, H
@@ -308,19 +300,23 @@ class BvhClip {
 ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
                                    const Eigen::Isometry3d& X_HM) {
   if (mesh.vertexCount() == 0) return ClippedMoments{};
-  Vector3d deepest = X_HM * mesh.vertex(0);
-  for (Eigen::Index i = 1; i < mesh.vertexCount(); ++i) {
-    const Vector3d p = X_HM * mesh.vertex(i);
-    if (p.z() < deepest.z()) deepest = p;
-  }
-  if (!(deepest.z() < 0.0)) return ClippedMoments{};
-  const Apex apex(X_HM, deepest);
   const Placement placement(X_HM);
+  Eigen::Index deepest = 0;
+  double zmin = placement.z(mesh.vertex(0));
+  for (Eigen::Index i = 1; i < mesh.vertexCount(); ++i) {
+    const double z = placement.z(mesh.vertex(i));
+    if (z < zmin) {
+      zmin = z;
+      deepest = i;
+    }
+  }
+  if (!(zmin < 0.0)) return ClippedMoments{};
+  const Apex apex(X_HM, X_HM * mesh.vertex(deepest));
   FanSum sum;
   for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
     clipFace(mesh, f, placement, apex.o_H, sum);
   }
-  return toHalfspaceFrame(sum.moments(), geometry::Moments{}, sum.area, -deepest.z(), apex.o_H,
+  return toHalfspaceFrame(sum.moments(), geometry::Moments{}, sum.area, -zmin, apex.o_H,
                           X_HM.linear());
 }
 
