@@ -2,7 +2,7 @@
 # vcontact::volume, vcontact::dynamics, vcontact::validation or vcontact::io (STYLE.md §9).
 # Headers keep their layer folders, so an installed include reads as in the source tree:
 # #include "volume/contact.hpp".
-include(GNUInstallDirs)
+# GNUInstallDirs is included at the top level: geometry/ names the installed include folder.
 include(CMakePackageConfigHelpers)
 
 set(VCONTACT_LAYERS geometry volume dynamics validation io)
@@ -10,8 +10,6 @@ set(VCONTACT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/vcontact)
 
 foreach(layer IN LISTS VCONTACT_LAYERS)
   set_target_properties(vcontact_${layer} PROPERTIES EXPORT_NAME ${layer})
-  target_include_directories(vcontact_${layer} PUBLIC
-    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/vcontact>)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${layer}
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vcontact
     FILES_MATCHING PATTERN "*.hpp")
