@@ -41,6 +41,11 @@ constexpr double kVolumeNoise = 64.0;
 /// 1e-9 for any region above a millionth of its distance from the origin) when the region is
 /// bounded by one body alone; below this fraction n is undefined (contactNormal).
 constexpr double kNormalNoise = 1e-9;
+/// Crossings closer than this along their edge (as a fraction of its length) may be out of
+/// order after sorting by the rounded λ; their order is then re-derived exactly
+/// (orderAlongEdge). λ = d_p/(d_p − d_q) is good to a few ε unless the edge is within about
+/// 1e-7 rad of the face's plane; a false alarm costs one exact parity test.
+constexpr double kLambdaTie = 1e-9;
 
 /// A set of small integers that clears in O(1) between queries (epoch stamps).
 class StampSet {
@@ -407,18 +412,21 @@ class Intersector {
     });
     for (std::size_t i = 0; i < order.size();) {
       const Crossing& first = X[static_cast<std::size_t>(order[i])];
+      std::size_t end = i + 1;
+      while (end < order.size() && X[static_cast<std::size_t>(order[end])].side == first.side &&
+             X[static_cast<std::size_t>(order[end])].edge == first.edge) {
+        ++end;
+      }
+      const auto begin = order.begin() + static_cast<std::ptrdiff_t>(i);
+      bool inside = orderAlongEdge(begin, order.begin() + static_cast<std::ptrdiff_t>(end));
       Body& m = body_[first.side];
       const MeshEdge& E = m.topo.edges()[static_cast<std::size_t>(first.edge)];
       m.s.crossingEdge.insert(first.edge);
       m.s.seeded[static_cast<std::size_t>(m.topo.component(E.v0))] = 1;
-      // Inside before the first crossing iff that crossing leaves the other body; after each
-      // crossing iff it enters.
-      bool inside = first.sigma < 0;
       if (inside) markInside(first.side, E.v0);
       Vector3d from = m.p(E.v0);
-      for (; i < order.size(); ++i) {
+      for (; i < end; ++i) {
         const Crossing& c = X[static_cast<std::size_t>(order[i])];
-        if (c.side != first.side || c.edge != first.edge) break;
         if (inside) emitAlongEdge(first.side, E, from, c.x);
         from = c.x;
         inside = c.sigma > 0;
@@ -428,6 +436,40 @@ class Intersector {
         markInside(first.side, E.v1);
       }
     }
+  }
+
+  /// Puts one edge's crossings, sorted by λ, into their order along the perturbed edge and
+  /// returns whether the edge's start v0 lies inside the other body. Along an edge the
+  /// crossings alternate between entering and leaving. Sorted by λ they do, unless two of
+  /// them lie within rounding of each other or at one point (an edge through an edge or a
+  /// vertex of the other mesh, flush faces: the ties of the perturbed configuration), where
+  /// the sort may have swapped them. Then the start's status comes from the exact parity test
+  /// (as perturbed), and a crossing that breaks the alternation trades places with the next
+  /// one of the expected direction, which the true sequence puts there.
+  bool orderAlongEdge(std::vector<int>::iterator first, std::vector<int>::iterator last) {
+    const auto& X = w_.crossings;
+    const auto at = [&X](int k) -> const Crossing& { return X[static_cast<std::size_t>(k)]; };
+    bool clean = true;
+    for (auto it = first + 1; it != last && clean; ++it) {
+      clean = at(*it).sigma == -at(*(it - 1)).sigma &&
+              at(*it).lambda - at(*(it - 1)).lambda > kLambdaTie;
+    }
+    if (clean) return at(*first).sigma < 0;
+    const Crossing& c = at(*first);
+    const MeshEdge& E = body_[c.side].topo.edges()[static_cast<std::size_t>(c.edge)];
+    const bool startsInside =
+        contains(1 - c.side, body_[c.side].p(E.v0), perturbationSign(c.side));
+    int expected = startsInside ? -1 : +1;
+    for (auto it = first; it != last; ++it, expected = -expected) {
+      if (at(*it).sigma == expected) continue;
+      const auto next =
+          std::find_if(it + 1, last, [&](int k) { return at(k).sigma == expected; });
+      if (next == last) {
+        throw std::logic_error(describeFailure("an edge's crossings do not alternate"));
+      }
+      std::rotate(it, next, next + 1);
+    }
+    return startsInside;
   }
 
   /// Pairs the crossings into the segments t_A ∩ t_B. With d = n_A × n_B, the region
