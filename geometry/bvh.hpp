@@ -6,7 +6,7 @@
 //     fan_integrals.hpp);
 //   - a cone bounding its face normals (axis, sin of the half-angle), so a query can tell
 //     when every face of the subtree faces one way relative to a plane.
-// Built top-down by median split of the triangle centroids along the widest axis.
+// Built top-down by the binned surface-area heuristic over the triangle centroids (bvh.cpp).
 
 #include <Eigen/Core>
 #include <vector>
