@@ -162,10 +162,12 @@ void MeshBvh::fillNode(BvhNode& node) const {
   node.halfExtent = 0.5 * (hi - lo);
   node.normalAxis =
       normalSum.norm() > 0.0 ? Eigen::Vector3d(normalSum.normalized()) : Eigen::Vector3d::UnitZ();
-  double minCos = 1.0;
+  double minCos = 1.0, maxSin = 0.0;
   for (int i = node.first; i < node.first + node.count; ++i) {
     const int f = order_[i];
-    minCos = std::min(minCos, node.normalAxis.dot(unitNormal(mesh_, f)));
+    const Eigen::Vector3d n = unitNormal(mesh_, f);
+    minCos = std::min(minCos, node.normalAxis.dot(n));
+    maxSin = std::max(maxSin, node.normalAxis.cross(n).norm());
     node.integrals +=
         triangleFanIntegrals(mesh_.corner(f, 0) - node.center, mesh_.corner(f, 1) - node.center,
                              mesh_.corner(f, 2) - node.center);
@@ -182,7 +184,8 @@ void MeshBvh::fillNode(BvhNode& node) const {
     }
   }
   // Beyond a half-angle of π/2 the cone test is never conclusive; > 1 says so.
-  node.normalSinHalfAngle = minCos > 0.0 ? std::sqrt(1.0 - minCos * minCos) : 2.0;
+  // The sine from the cross product: √(1 − cos²) cancels for a nearly flat patch.
+  node.normalSinHalfAngle = minCos > 0.0 ? maxSin : 2.0;
 }
 
 }  // namespace vcontact::geometry

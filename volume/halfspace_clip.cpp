@@ -214,7 +214,9 @@ class BvhClip {
     ZRange box{cz - boxExtent - slack, cz + boxExtent + slack};
     if (box.lo >= 0.0 || box.hi < 0.0) return box;
     const double na = up_.dot(node.normalAxis);
-    const double perp = std::sqrt(std::max(0.0, 1.0 - na * na)) * node.radialExtent;
+    // |n_⊥| = sin∠(z_H, a) from the cross product: √(1 − (n·a)²) cancels when the axis is
+    // nearly along z_H (a flat face nearly parallel to the plane) and can lose all its digits.
+    const double perp = up_.cross(node.normalAxis).norm() * node.radialExtent;
     const double slabLo = std::min(na * node.axialLo, na * node.axialHi) - perp;
     const double slabHi = std::max(na * node.axialLo, na * node.axialHi) + perp;
     return {std::max(box.lo, cz + slabLo - slack), std::min(box.hi, cz + slabHi + slack)};

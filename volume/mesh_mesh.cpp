@@ -303,7 +303,9 @@ class Intersector {
                               const Vector3d& otherCenter, const Vector3d& otherAxis) {
       // other's vertices: otherCenter + s·otherAxis + radial part (≤ radialExtent, ⟂ axis)
       const double k = slabAxis.dot(otherAxis);
-      const double radial = other.radialExtent * std::sqrt(std::max(0.0, 1.0 - k * k));
+      // sin∠ from the cross product: √(1 − k²) cancels for nearly parallel axes (two flat
+      // patches nearly face to face) and can lose all its digits.
+      const double radial = other.radialExtent * slabAxis.cross(otherAxis).norm();
       const double c = (otherCenter - slabCenter).dot(slabAxis);
       const double lo = c + std::min(k * other.axialLo, k * other.axialHi) - radial;
       const double hi = c + std::max(k * other.axialLo, k * other.axialHi) + radial;
