@@ -59,21 +59,9 @@ int perturbedLineSide(const Vector3d& p, const Vector3d& q, const Vector3d& a,
 }  // namespace
 
 int orient3d(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& d) {
-  // Semi-static filter first (Shewchuk 1997, orient3d errboundA = (7 + 56ε)ε of the
-  // permanent with ε = 2⁻⁵³, here 8·2⁻⁵² for margin): most calls end here, without the
-  // rounding-mode switches of CGAL's interval filter, which then decides exactly.
-  const Vector3d u = b - a, v = c - a, w = d - a;
-  const double x = v.y() * w.z() - v.z() * w.y();
-  const double y = v.z() * w.x() - v.x() * w.z();
-  const double z = v.x() * w.y() - v.y() * w.x();
-  const double det = u.x() * x + u.y() * y + u.z() * z;
-  const double permanent =
-      std::abs(u.x()) * (std::abs(v.y() * w.z()) + std::abs(v.z() * w.y())) +
-      std::abs(u.y()) * (std::abs(v.z() * w.x()) + std::abs(v.x() * w.z())) +
-      std::abs(u.z()) * (std::abs(v.x() * w.y()) + std::abs(v.y() * w.x()));
-  const double bound = 8.0 * std::numeric_limits<double>::epsilon() * permanent;
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
+  // The semi-static filter first: most calls end there, without the rounding-mode switches
+  // of CGAL's interval filter, which then decides exactly.
+  if (const int s = orient3dFiltered(a, b, c, d); s != 0) return s;
   return static_cast<int>(CGAL::orientation(point(a), point(b), point(c), point(d)));
 }
 

@@ -71,10 +71,20 @@ class StampSet {
   std::uint32_t epoch_ = 0;
 };
 
+/// A face placed in W for one query, with what the face-pair tests use of it.
+struct PlacedFace {
+  Vector3d corner[3];  ///< W
+  Vector3d n;          ///< (c1 − c0) × (c2 − c0), unnormalised
+  double nBound;       ///< kOrientBound·‖c1 − c0‖₁‖c2 − c0‖₁ (planeSides)
+  Vector3d lo, hi;     ///< axis-aligned box in W
+};
+
 /// Per-mesh memory reused by the queries of one thread, so a query costs what it touches.
 struct SideScratch {
   StampSet placed;  ///< vertices already placed in W
   std::vector<Vector3d> p_W;
+  StampSet faceReady;  ///< faces already placed in W
+  std::vector<PlacedFace> faces;
   StampSet inside;  ///< vertices inside the other body
   std::vector<int> insideList;
   StampSet cut;  ///< faces with at least one intersection segment
@@ -121,8 +131,16 @@ struct WholeFace {
   int face;
 };
 
+/// A node of A's tree in B's frame: box centre, the half-sizes of the axis-aligned box
+/// around A's placed box (|R_BA|·h), normal-cone axis.
+struct PlacedNode {
+  Vector3d center, halfExtent, normalAxis;
+};
+
 struct Scratch {
   SideScratch sides[2];
+  StampSet nodeAReady;  ///< nodes of A's tree already placed in B's frame
+  std::vector<PlacedNode> nodesA;
   std::vector<Crossing> crossings;
   std::vector<int> order;
   std::vector<Endpoint> endpoints;
@@ -147,6 +165,18 @@ struct Body {
     return s.p_W[static_cast<std::size_t>(v)];
   }
   const Vector3d& corner(int f, int k) { return p(mesh().triangles(f, k)); }
+  /// Face f placed in W, on first use.
+  const PlacedFace& face(int f) {
+    PlacedFace& F = s.faces[static_cast<std::size_t>(f)];
+    if (!s.faceReady.insert(f)) return F;
+    for (int k = 0; k < 3; ++k) F.corner[k] = corner(f, k);
+    const Vector3d u = F.corner[1] - F.corner[0], v = F.corner[2] - F.corner[0];
+    F.n = u.cross(v);
+    F.nBound = kOrientBound * u.lpNorm<1>() * v.lpNorm<1>();
+    F.lo = F.corner[0].cwiseMin(F.corner[1]).cwiseMin(F.corner[2]);
+    F.hi = F.corner[0].cwiseMax(F.corner[1]).cwiseMax(F.corner[2]);
+    return F;
+  }
 };
 
 /// The symbolic translation of a segment of mesh `side` relative to the other mesh's faces:
@@ -157,24 +187,20 @@ int perturbationSign(int side) { return side == 0 ? 1 : -1; }
 /// rounding bound of orient3d: +1 or −1 when certain (the exact sign then agrees and no
 /// perturbation is involved), 0 when within rounding of the plane.
 /// @return +1 or −1 when all three are certainly on that side, else 0
-int planeSides(const Vector3d* T, const Vector3d* P, int* side) {
-  const Vector3d u = T[1] - T[0], v = T[2] - T[0];
-  const Vector3d n = u.cross(v);
-  const double uv = kOrientBound * u.lpNorm<1>() * v.lpNorm<1>();
+int planeSides(const PlacedFace& T, const Vector3d* P, int* side) {
   for (int i = 0; i < 3; ++i) {
-    const Vector3d w = P[i] - T[0];
-    const double d = n.dot(w);
-    const double bound = uv * w.lpNorm<1>();
+    const Vector3d w = P[i] - T.corner[0];
+    const double d = T.n.dot(w);
+    const double bound = T.nBound * w.lpNorm<1>();
     side[i] = d > bound ? 1 : (d < -bound ? -1 : 0);
   }
   return side[0] == side[1] && side[1] == side[2] ? side[0] : 0;
 }
 
-/// The triangles' axis-aligned boxes overlap (grown by `margin`)?
-bool triangleBoxesOverlap(const Vector3d* A, const Vector3d* B, double margin) {
-  const Vector3d loA = A[0].cwiseMin(A[1]).cwiseMin(A[2]), hiA = A[0].cwiseMax(A[1]).cwiseMax(A[2]);
-  const Vector3d loB = B[0].cwiseMin(B[1]).cwiseMin(B[2]), hiB = B[0].cwiseMax(B[1]).cwiseMax(B[2]);
-  return (loA.array() <= hiB.array() + margin).all() && (loB.array() <= hiA.array() + margin).all();
+/// The faces' axis-aligned boxes overlap (grown by `margin`)?
+bool faceBoxesOverlap(const PlacedFace& A, const PlacedFace& B, double margin) {
+  return (A.lo.array() <= B.hi.array() + margin).all() &&
+         (B.lo.array() <= A.hi.array() + margin).all();
 }
 
 /// Axis-aligned box of a body-frame box placed by X (conservative), as {centre, half-size}.
@@ -219,6 +245,8 @@ class Intersector {
       const auto nf = static_cast<std::size_t>(m.mesh().triangleCount());
       m.s.placed.reset(nv);
       if (m.s.p_W.size() < nv) m.s.p_W.resize(nv);
+      m.s.faceReady.reset(nf);
+      if (m.s.faces.size() < nf) m.s.faces.resize(nf);
       m.s.inside.reset(nv);
       m.s.insideList.clear();
       m.s.cut.reset(nf);
@@ -228,6 +256,9 @@ class Intersector {
       m.s.coplanarOpposite.reset(nf);
       m.s.seeded.assign(m.topo.components().size(), 0);
     }
+    const auto nodeCount = body_[0].bvh.nodes().size();
+    w_.nodeAReady.reset(nodeCount);
+    if (w_.nodesA.size() < nodeCount) w_.nodesA.resize(nodeCount);
     w_.crossings.clear();
     w_.endpoints.clear();
     w_.pieces.clear();
@@ -276,10 +307,13 @@ class Intersector {
       stack.pop_back();
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
-      const Vector3d c = X_BA * na.center;
-      const Vector3d h = absR * na.halfExtent + nb.halfExtent;
-      if (((c - nb.center).cwiseAbs().array() > h.array() + margin_).any()) continue;
-      if (!slabsOverlap(na, c, X_BA.linear() * na.normalAxis, nb)) continue;
+      const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
+      if (((pa.center - nb.center).cwiseAbs().array() >
+           (pa.halfExtent + nb.halfExtent).array() + margin_)
+              .any()) {
+        continue;
+      }
+      if (!slabsOverlap(na, pa.center, pa.normalAxis, nb)) continue;
       if (na.isLeaf() && nb.isLeaf()) {
         testLeaves(na, nb);
       } else if (nb.isLeaf() ||
@@ -293,26 +327,38 @@ class Intersector {
     }
   }
 
+  /// Node ia of A's tree in B's frame, placed on first use in this query.
+  const PlacedNode& placeNodeOfA(int ia, const BvhNode& na, const Isometry3d& X_BA,
+                                 const Matrix3d& absR) {
+    PlacedNode& P = w_.nodesA[static_cast<std::size_t>(ia)];
+    if (!w_.nodeAReady.insert(ia)) return P;
+    P.center = X_BA * na.center;
+    P.halfExtent = absR * na.halfExtent;
+    P.normalAxis = X_BA.linear() * na.normalAxis;
+    return P;
+  }
+
   /// The slab bounds of two nodes (bvh.hpp: axial range along the normal axis, radius about
   /// it), both in B's frame: each node's vertices projected onto the other's axis must meet
   /// the other's axial range. Tight where boxes are not: two nearly flat, tilted patches.
   bool slabsOverlap(const BvhNode& na, const Vector3d& centerA, const Vector3d& axisA,
                     const BvhNode& nb) const {
-    const auto meets = [this](const BvhNode& slab, const Vector3d& slabCenter,
-                              const Vector3d& slabAxis, const BvhNode& other,
-                              const Vector3d& otherCenter, const Vector3d& otherAxis) {
+    // cos and sin of the angle between the axes, the same seen from either node. sin∠ from
+    // the cross product: √(1 − k²) cancels for nearly parallel axes (two flat patches nearly
+    // face to face) and can lose all its digits.
+    const double k = axisA.dot(nb.normalAxis);
+    const double sine = axisA.cross(nb.normalAxis).norm();
+    const auto meets = [this, k, sine](const BvhNode& slab, const Vector3d& slabCenter,
+                                       const Vector3d& slabAxis, const BvhNode& other,
+                                       const Vector3d& otherCenter) {
       // other's vertices: otherCenter + s·otherAxis + radial part (≤ radialExtent, ⟂ axis)
-      const double k = slabAxis.dot(otherAxis);
-      // sin∠ from the cross product: √(1 − k²) cancels for nearly parallel axes (two flat
-      // patches nearly face to face) and can lose all its digits.
-      const double radial = other.radialExtent * slabAxis.cross(otherAxis).norm();
+      const double radial = other.radialExtent * sine;
       const double c = (otherCenter - slabCenter).dot(slabAxis);
       const double lo = c + std::min(k * other.axialLo, k * other.axialHi) - radial;
       const double hi = c + std::max(k * other.axialLo, k * other.axialHi) + radial;
       return lo <= slab.axialHi + margin_ && hi >= slab.axialLo - margin_;
     };
-    return meets(na, centerA, axisA, nb, nb.center, nb.normalAxis) &&
-           meets(nb, nb.center, nb.normalAxis, na, centerA, axisA);
+    return meets(na, centerA, axisA, nb, nb.center) && meets(nb, nb.center, nb.normalAxis, na, centerA);
   }
 
   void testLeaves(const BvhNode& na, const BvhNode& nb) {
@@ -326,12 +372,14 @@ class Intersector {
   }
 
   void testFaces(int tA, int tB) {
-    const Vector3d A[3] = {body_[0].corner(tA, 0), body_[0].corner(tA, 1), body_[0].corner(tA, 2)};
-    const Vector3d B[3] = {body_[1].corner(tB, 0), body_[1].corner(tB, 1), body_[1].corner(tB, 2)};
-    if (!triangleBoxesOverlap(A, B, margin_)) return;
+    const PlacedFace& FA = body_[0].face(tA);
+    const PlacedFace& FB = body_[1].face(tB);
+    if (!faceBoxesOverlap(FA, FB, margin_)) return;
     int sideA[3], sideB[3];  // corners of each face against the other's plane
-    if (planeSides(B, A, sideA) != 0 || planeSides(A, B, sideB) != 0) return;
-    if (sideA[0] == 0 && sideA[1] == 0 && sideA[2] == 0) flagIfCoplanar(tA, A, tB, B);
+    if (planeSides(FB, FA.corner, sideA) != 0 || planeSides(FA, FB.corner, sideB) != 0) return;
+    if (sideA[0] == 0 && sideA[1] == 0 && sideA[2] == 0) {
+      flagIfCoplanar(tA, FA.corner, tB, FB.corner);
+    }
     // Each edge is tested by its owner face only: one decision per (edge, face) pair. An
     // edge with both ends certainly on one side of the plane cannot cross (the exact test
     // would say so too).
@@ -376,14 +424,18 @@ class Intersector {
     const MeshEdge& E = m.topo.edges()[static_cast<std::size_t>(e)];
     const Vector3d& p = m.p(E.v0);
     const Vector3d& q = m.p(E.v1);
-    const Vector3d& a = o.corner(face, 0);
-    const Vector3d& b = o.corner(face, 1);
-    const Vector3d& c = o.corner(face, 2);
-    const int sigma = perturbedSegmentCrossing(p, q, a, b, c, perturbationSign(side), s0, s1);
+    const PlacedFace& F = o.face(face);
+    const Vector3d& a = F.corner[0];
+    const Vector3d& b = F.corner[1];
+    const Vector3d& c = F.corner[2];
+    const int s = perturbationSign(side);
+    const int sigma = s0 != 0 && s1 == -s0
+                          ? perturbedSegmentCrossingStraddling(p, q, a, b, c, s, s0)
+                          : perturbedSegmentCrossing(p, q, a, b, c, s, s0, s1);
     if (sigma == 0) return;
     // x where the segment meets the plane: λ = d_p / (d_p − d_q), d = n·(· − a). The exact
     // predicate has decided that it crosses; λ is clamped against rounding.
-    const Vector3d n = (b - a).cross(c - a);
+    const Vector3d& n = F.n;
     const double dp = n.dot(p - a), dq = n.dot(q - a);
     const double denom = dp - dq;
     const double lambda = denom != 0.0 ? std::clamp(dp / denom, 0.0, 1.0) : 0.5;
