@@ -85,6 +85,8 @@ struct SideScratch {
   std::vector<Vector3d> p_W;
   StampSet faceReady;  ///< faces already placed in W
   std::vector<PlacedFace> faces;
+  StampSet normalReady;  ///< faces whose unit normal is known
+  std::vector<Vector3d> unitNormals;
   StampSet inside;  ///< vertices inside the other body
   std::vector<int> insideList;
   StampSet cut;  ///< faces with at least one intersection segment
@@ -151,6 +153,45 @@ struct Scratch {
   std::vector<Patch> patches;
 };
 
+/// The moments of a fan of tetrahedra (0, u, v, w) about their common apex, summed with the
+/// constant factors applied once at the end. With D = u·(v × w) (6 × signed volume) and
+/// s = u + v + w:
+///   ∫ 1 dV = D/6,   ∫ x dV = (D/24) s,   ∫ x xᵀ dV = (D/120)(u uᵀ + v vᵀ + w wᵀ + s sᵀ).
+class FanSum {
+ public:
+  /// Adds the tetrahedron (0, u, v, w); returns its D.
+  double add(const Vector3d& u, const Vector3d& v, const Vector3d& w) {
+    const double D = u.dot(v.cross(w));
+    const Vector3d s = u + v + w;
+    d_ += D;
+    ds_ += D * s;
+    for (int k = 0; k < 3; ++k) {
+      const int l = (k + 1) % 3;
+      diag_[k] += D * (u[k] * u[k] + v[k] * v[k] + w[k] * w[k] + s[k] * s[k]);
+      off_[k] += D * (u[k] * u[l] + v[k] * v[l] + w[k] * w[l] + s[k] * s[l]);
+    }
+    return D;
+  }
+  /// The summed moments about the apex.
+  geometry::Moments moments() const {
+    geometry::Moments M;
+    M.m0 = d_ / 6.0;
+    M.m1 = ds_ / 24.0;
+    for (int k = 0; k < 3; ++k) {
+      const int l = (k + 1) % 3;
+      M.m2(k, k) = diag_[k] / 120.0;
+      M.m2(k, l) = M.m2(l, k) = off_[k] / 120.0;
+    }
+    return M;
+  }
+
+ private:
+  double d_ = 0.0;
+  Vector3d ds_ = Vector3d::Zero();
+  double diag_[3] = {0.0, 0.0, 0.0};
+  double off_[3] = {0.0, 0.0, 0.0};  ///< (x, y), (y, z), (z, x)
+};
+
 /// A mesh placed in W for one query.
 struct Body {
   const MeshBvh& bvh;
@@ -165,6 +206,14 @@ struct Body {
     return s.p_W[static_cast<std::size_t>(v)];
   }
   const Vector3d& corner(int f, int k) { return p(mesh().triangles(f, k)); }
+  /// Unit outward normal of face f in W, on first use.
+  const Vector3d& unitNormal(int f) {
+    Vector3d& n = s.unitNormals[static_cast<std::size_t>(f)];
+    if (!s.normalReady.insert(f)) return n;
+    const Vector3d& a = corner(f, 0);
+    n = (corner(f, 1) - a).cross(corner(f, 2) - a).normalized();
+    return n;
+  }
   /// Face f placed in W, on first use.
   const PlacedFace& face(int f) {
     PlacedFace& F = s.faces[static_cast<std::size_t>(f)];
@@ -247,6 +296,8 @@ class Intersector {
       if (m.s.p_W.size() < nv) m.s.p_W.resize(nv);
       m.s.faceReady.reset(nf);
       if (m.s.faces.size() < nf) m.s.faces.resize(nf);
+      m.s.normalReady.reset(nf);
+      if (m.s.unitNormals.size() < nf) m.s.unitNormals.resize(nf);
       m.s.inside.reset(nv);
       m.s.insideList.clear();
       m.s.cut.reset(nf);
@@ -689,17 +740,14 @@ class Intersector {
     // its signed area (area and depth are evaluated once n is known).
     auto& patches = w_.patches;
     patches.clear();
-    geometry::Moments M;
+    FanSum fan;
     double termSum = 0.0;  // Σ |fan term volumes|
     double areaSum = 0.0;  // Σ |patch areas|
     double scale = o.cwiseAbs().maxCoeff();
     Vector3d nSum = Vector3d::Zero();  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1)
     const auto add = [&](int side, int face, const Vector3d& c, const Vector3d& p,
                          const Vector3d& q, const Vector3d& nrm, double area) {
-      const geometry::Moments t =
-          geometry::tetrahedronMoments(Vector3d::Zero(), c - o, p - o, q - o);
-      M += t;
-      termSum += std::abs(t.m0);
+      termSum += std::abs(fan.add(c - o, p - o, q - o)) / 6.0;
       areaSum += std::abs(area);
       scale = std::max({scale, p.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
       if (inNormal(side, face)) nSum += (side == 1 ? area : -area) * nrm;
@@ -708,7 +756,7 @@ class Intersector {
     for (const Piece& pc : w_.pieces) {
       Body& m = body_[pc.side];
       const Vector3d& a = m.corner(pc.face, 0);
-      const Vector3d nrm = (m.corner(pc.face, 1) - a).cross(m.corner(pc.face, 2) - a).normalized();
+      const Vector3d& nrm = m.unitNormal(pc.face);
       const Vector3d c = o - nrm * nrm.dot(o - a);  // o projected onto the face's plane
       add(pc.side, pc.face, c, pc.p, pc.q, nrm, 0.5 * nrm.dot((pc.p - c).cross(pc.q - c)));
     }
@@ -720,6 +768,7 @@ class Intersector {
       add(wf.side, wf.face, a, b, c, N / twiceArea, 0.5 * twiceArea);
       if (inArea(wf.side, wf.face)) patches.push_back({N / twiceArea, 0.0, a, a});  // for depth
     }
+    const geometry::Moments M = fan.moments();
     if (!(M.m0 > kVolumeNoise * kEps * (scale * areaSum + termSum))) return none;
     const Vector3d c_o = M.m1 / M.m0;
     const Vector3d n = contactNormal(nSum, areaSum, o + c_o);
