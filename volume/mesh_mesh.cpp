@@ -246,6 +246,40 @@ int planeSides(const PlacedFace& T, const Vector3d* P, int* side) {
   return side[0] == side[1] && side[1] == side[2] ? side[0] : 0;
 }
 
+bool allCertain(const int* side) { return side[0] != 0 && side[1] != 0 && side[2] != 0; }
+
+/// Index of the corner whose side differs from the other two's. @pre not all three equal
+int loneCorner(const int* side) {
+  return side[0] == side[1] ? 2 : (side[0] == side[2] ? 1 : 0);
+}
+
+/// Are two triangles, each with corners certainly on both sides of the other's plane, certainly
+/// disjoint? Guigue & Devillers 2003 ("Fast and robust triangle-triangle overlap test using
+/// orientation predicates"): with the corners named so that p1 is alone on the positive side of
+/// (p2, q2, r2) and p2 alone on the positive side of (p1, q1, r1) (a cyclic shift keeps a
+/// triangle's plane, swapping its last two corners flips it), the triangles meet iff
+/// orient3d(q1, p2, p1, q2) ≤ 0 and orient3d(p1, p2, r1, r2) ≤ 0: the two segments
+/// tᵢ ∩ plane(tⱼ) overlap on the planes' common line. Only a certain positive sign (the double
+/// filter) rejects, so a rejected pair is disjoint exactly and, every sign used being non-zero,
+/// also under the perturbation: none of its edge–face tests could report a crossing.
+/// @param sideA, sideB  certain sides (±1, none 0, not all equal) of A's corners against B's
+///   plane and of B's against A's
+bool certainlyDisjoint(const Vector3d* A, const int* sideA, const Vector3d* B,
+                       const int* sideB) {
+  const int i = loneCorner(sideA);
+  const Vector3d* T1[3] = {&A[i], &A[(i + 1) % 3], &A[(i + 2) % 3]};
+  int b[3] = {0, 1, 2};  // B's corners in T2's order
+  if (sideA[i] < 0) std::swap(b[1], b[2]);  // flip T2 so that p1 is on its positive side
+  const int sideT2[3] = {sideB[b[0]], sideB[b[1]], sideB[b[2]]};
+  const int j = loneCorner(sideT2);
+  const Vector3d& p2 = B[b[j]];
+  const Vector3d& q2 = B[b[(j + 1) % 3]];
+  const Vector3d& r2 = B[b[(j + 2) % 3]];
+  if (sideT2[j] < 0) std::swap(T1[1], T1[2]);  // flip T1 so that p2 is on its positive side
+  const Vector3d &p1 = *T1[0], &q1 = *T1[1], &r1 = *T1[2];
+  return orient3dFiltered(q1, p2, p1, q2) > 0 || orient3dFiltered(p1, p2, r1, r2) > 0;
+}
+
 /// The faces' axis-aligned boxes overlap (grown by `margin`)?
 bool faceBoxesOverlap(const PlacedFace& A, const PlacedFace& B, double margin) {
   return (A.lo.array() <= B.hi.array() + margin).all() &&
@@ -430,6 +464,10 @@ class Intersector {
     if (planeSides(FB, FA.corner, sideA) != 0 || planeSides(FA, FB.corner, sideB) != 0) return;
     if (sideA[0] == 0 && sideA[1] == 0 && sideA[2] == 0) {
       flagIfCoplanar(tA, FA.corner, tB, FB.corner);
+    }
+    if (allCertain(sideA) && allCertain(sideB) &&
+        certainlyDisjoint(FA.corner, sideA, FB.corner, sideB)) {
+      return;
     }
     // Each edge is tested by its owner face only: one decision per (edge, face) pair. An
     // edge with both ends certainly on one side of the plane cannot cross (the exact test
