@@ -137,6 +137,26 @@ TEST(FastMeshMesh, AgreesWithCgalOnNonConvexPairs) {
   for (const Case& c : cases()) expectAgree(*c.a, c.X_WA, *c.b, c.X_WB, c.name);
 }
 
+// The benchmark's pair (benchmarks/volume_bench.cpp, sphere_pair_10k): two 10k-triangle UV
+// spheres 0.2 mm deep, B's pole fan of slivers inside the contact, where nearly parallel
+// faces straddle each other's planes without meeting and the face-pair rejection
+// (certainlyDisjoint) and the filtered edge tests decide most pairs. The same pair under
+// random rigid motions of both bodies and with A turned about its centre (new face pairs,
+// same depth): any crossing wrongly dropped breaks the segments or moves V by far more than
+// kVolumeTol.
+TEST(FastMeshMesh, FinelyFacetedShallowPairUnderRigidMotion) {
+  const Body s(geometry::tessellateSphere(0.01, 100, 51));
+  const Isometry3d X_WA = pose({1, 2, 0}, 0.3, {0.0013, -0.0007, 0.0198});
+  expectAgree(s, X_WA, s, Isometry3d::Identity(), "10k spheres, benchmark pose");
+  for (unsigned seed = 31; seed < 34; ++seed) {
+    const Isometry3d P = test::randomPose(seed);
+    expectAgree(s, P * X_WA, s, P, "10k spheres, moved " + std::to_string(seed));
+    Isometry3d turned = X_WA;
+    turned.linear() = X_WA.linear() * test::randomPose(seed + 100).linear();
+    expectAgree(s, turned, s, Isometry3d::Identity(), "10k spheres, A turned " + std::to_string(seed));
+  }
+}
+
 // Moving both bodies by one rigid motion moves the region with them. The placed vertices
 // round differently (ε times the 0.37 m translation), which moves V by about that over the
 // region's depth (≥ 0.1 mm here): ~1e-12; 1e-10 bounds it with room.
