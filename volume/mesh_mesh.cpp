@@ -501,6 +501,7 @@ class Intersector {
     }
     const bool same = (A[1] - A[0]).cross(A[2] - A[0]).dot((B[1] - B[0]).cross(B[2] - B[0])) > 0.0;
     StampSet SideScratch::*flag = same ? &SideScratch::coplanarSame : &SideScratch::coplanarOpposite;
+    anyCoplanar_ = true;
     (body_[0].s.*flag).insert(tA);
     (body_[1].s.*flag).insert(tB);
   }
@@ -759,10 +760,12 @@ class Intersector {
 
   /// What a face's pieces add to n, and to area and depth (flagIfCoplanar).
   bool inNormal(int side, int face) const {
-    return !body_[side].s.coplanarSame.contains(face) &&
-           !body_[side].s.coplanarOpposite.contains(face);
+    return !anyCoplanar_ || (!body_[side].s.coplanarSame.contains(face) &&
+                             !body_[side].s.coplanarOpposite.contains(face));
   }
-  bool inArea(int side, int face) const { return !body_[side].s.coplanarOpposite.contains(face); }
+  bool inArea(int side, int face) const {
+    return !anyCoplanar_ || !body_[side].s.coplanarOpposite.contains(face);
+  }
 
   ContactVolume integrate() {
     const ContactVolume none{.method = Method::kFast};
@@ -779,15 +782,15 @@ class Intersector {
     auto& patches = w_.patches;
     patches.clear();
     FanSum fan;
-    double termSum = 0.0;  // Σ |fan term volumes|
-    double areaSum = 0.0;  // Σ |patch areas|
-    double scale = o.cwiseAbs().maxCoeff();
+    double termSum6 = 0.0;  // 6 Σ |fan term volumes|
+    double areaSum = 0.0;   // Σ |patch areas|
+    Vector3d scale3 = o.cwiseAbs();  // largest |coordinate| of the patches' points, per axis
     Vector3d nSum = Vector3d::Zero();  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1)
     const auto add = [&](int side, int face, const Vector3d& c, const Vector3d& p,
                          const Vector3d& q, const Vector3d& nrm, double area) {
-      termSum += std::abs(fan.add(c - o, p - o, q - o)) / 6.0;
+      termSum6 += std::abs(fan.add(c - o, p - o, q - o));
       areaSum += std::abs(area);
-      scale = std::max({scale, p.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
+      scale3 = scale3.cwiseMax(p.cwiseAbs()).cwiseMax(q.cwiseAbs());
       if (inNormal(side, face)) nSum += (side == 1 ? area : -area) * nrm;
       if (inArea(side, face)) patches.push_back({nrm, area, p, q});
     };
@@ -803,10 +806,12 @@ class Intersector {
       const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
       const Vector3d N = (b - a).cross(c - a);
       const double twiceArea = N.norm();
-      add(wf.side, wf.face, a, b, c, N / twiceArea, 0.5 * twiceArea);
-      if (inArea(wf.side, wf.face)) patches.push_back({N / twiceArea, 0.0, a, a});  // for depth
+      const Vector3d nrm = N / twiceArea;
+      add(wf.side, wf.face, a, b, c, nrm, 0.5 * twiceArea);
+      if (inArea(wf.side, wf.face)) patches.push_back({nrm, 0.0, a, a});  // for depth
     }
     const geometry::Moments M = fan.moments();
+    const double scale = scale3.maxCoeff(), termSum = termSum6 / 6.0;
     if (!(M.m0 > kVolumeNoise * kEps * (scale * areaSum + termSum))) return none;
     const Vector3d c_o = M.m1 / M.m0;
     const Vector3d n = contactNormal(nSum, areaSum, o + c_o);
@@ -836,6 +841,7 @@ class Intersector {
   Body body_[2];
   Scratch& w_;
   double margin_ = 0.0;
+  bool anyCoplanar_ = false;  ///< flagIfCoplanar has flagged a face pair in this query
 };
 
 }  // namespace
