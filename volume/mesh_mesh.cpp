@@ -428,20 +428,25 @@ class Intersector {
   /// the other's axial range. Tight where boxes are not: two nearly flat, tilted patches.
   bool slabsOverlap(const BvhNode& na, const Vector3d& centerA, const Vector3d& axisA,
                     const BvhNode& nb) const {
-    // cos and sin of the angle between the axes, the same seen from either node. sin∠ from
+    // cos and sin² of the angle between the axes, the same seen from either node. sin∠ from
     // the cross product: √(1 − k²) cancels for nearly parallel axes (two flat patches nearly
     // face to face) and can lose all its digits.
     const double k = axisA.dot(nb.normalAxis);
-    const double sine = axisA.cross(nb.normalAxis).norm();
-    const auto meets = [this, k, sine](const BvhNode& slab, const Vector3d& slabCenter,
-                                       const Vector3d& slabAxis, const BvhNode& other,
-                                       const Vector3d& otherCenter) {
-      // other's vertices: otherCenter + s·otherAxis + radial part (≤ radialExtent, ⟂ axis)
-      const double radial = other.radialExtent * sine;
+    const double sine2 = axisA.cross(nb.normalAxis).squaredNorm();
+    // The gap between other's axial range (projected on slab's axis) and slab's own, before
+    // other's radial part (≤ radialExtent·sin∠) is added: it must not exceed that part,
+    // compared squared so that the descent needs no square root.
+    const auto meets = [this, k, sine2](const BvhNode& slab, const Vector3d& slabCenter,
+                                        const Vector3d& slabAxis, const BvhNode& other,
+                                        const Vector3d& otherCenter) {
+      // other's vertices: otherCenter + s·otherAxis + radial part (⟂ axis)
       const double c = (otherCenter - slabCenter).dot(slabAxis);
-      const double lo = c + std::min(k * other.axialLo, k * other.axialHi) - radial;
-      const double hi = c + std::max(k * other.axialLo, k * other.axialHi) + radial;
-      return lo <= slab.axialHi + margin_ && hi >= slab.axialLo - margin_;
+      const double below = c + std::min(k * other.axialLo, k * other.axialHi) -
+                           (slab.axialHi + margin_);
+      const double above = (slab.axialLo - margin_) -
+                           (c + std::max(k * other.axialLo, k * other.axialHi));
+      const double gap = std::max(below, above);
+      return gap <= 0.0 || gap * gap <= other.radialExtent * other.radialExtent * sine2;
     };
     return meets(na, centerA, axisA, nb, nb.center) && meets(nb, nb.center, nb.normalAxis, na, centerA);
   }
