@@ -79,14 +79,20 @@ struct PlacedFace {
   Vector3d lo, hi;     ///< axis-aligned box in W
 };
 
+/// A face's plane as the integration uses it.
+struct FaceFoot {
+  Vector3d normal;  ///< unit, outward, W
+  Vector3d foot;    ///< the fan apex o projected onto the plane, W
+};
+
 /// Per-mesh memory reused by the queries of one thread, so a query costs what it touches.
 struct SideScratch {
   StampSet placed;  ///< vertices already placed in W
   std::vector<Vector3d> p_W;
   StampSet faceReady;  ///< faces already placed in W
   std::vector<PlacedFace> faces;
-  StampSet normalReady;  ///< faces whose unit normal is known
-  std::vector<Vector3d> unitNormals;
+  StampSet footReady;  ///< faces whose FaceFoot is known
+  std::vector<FaceFoot> feet;
   StampSet inside;  ///< vertices inside the other body
   std::vector<int> insideList;
   StampSet cut;  ///< faces with at least one intersection segment
@@ -206,13 +212,15 @@ struct Body {
     return s.p_W[static_cast<std::size_t>(v)];
   }
   const Vector3d& corner(int f, int k) { return p(mesh().triangles(f, k)); }
-  /// Unit outward normal of face f in W, on first use.
-  const Vector3d& unitNormal(int f) {
-    Vector3d& n = s.unitNormals[static_cast<std::size_t>(f)];
-    if (!s.normalReady.insert(f)) return n;
+  /// Face f's unit outward normal and the foot of the fan apex o on its plane (W), on first
+  /// use; o is the same for the whole query.
+  const FaceFoot& foot(int f, const Vector3d& o) {
+    FaceFoot& F = s.feet[static_cast<std::size_t>(f)];
+    if (!s.footReady.insert(f)) return F;
     const Vector3d& a = corner(f, 0);
-    n = (corner(f, 1) - a).cross(corner(f, 2) - a).normalized();
-    return n;
+    F.normal = (corner(f, 1) - a).cross(corner(f, 2) - a).normalized();
+    F.foot = o - F.normal * F.normal.dot(o - a);  // o projected onto the face's plane
+    return F;
   }
   /// Face f placed in W, on first use.
   const PlacedFace& face(int f) {
@@ -330,8 +338,8 @@ class Intersector {
       if (m.s.p_W.size() < nv) m.s.p_W.resize(nv);
       m.s.faceReady.reset(nf);
       if (m.s.faces.size() < nf) m.s.faces.resize(nf);
-      m.s.normalReady.reset(nf);
-      if (m.s.unitNormals.size() < nf) m.s.unitNormals.resize(nf);
+      m.s.footReady.reset(nf);
+      if (m.s.feet.size() < nf) m.s.feet.resize(nf);
       m.s.inside.reset(nv);
       m.s.insideList.clear();
       m.s.cut.reset(nf);
@@ -800,11 +808,9 @@ class Intersector {
       if (inArea(side, face)) patches.push_back({nrm, area, p, q});
     };
     for (const Piece& pc : w_.pieces) {
-      Body& m = body_[pc.side];
-      const Vector3d& a = m.corner(pc.face, 0);
-      const Vector3d& nrm = m.unitNormal(pc.face);
-      const Vector3d c = o - nrm * nrm.dot(o - a);  // o projected onto the face's plane
-      add(pc.side, pc.face, c, pc.p, pc.q, nrm, 0.5 * nrm.dot((pc.p - c).cross(pc.q - c)));
+      const FaceFoot& F = body_[pc.side].foot(pc.face, o);
+      const Vector3d& c = F.foot;
+      add(pc.side, pc.face, c, pc.p, pc.q, F.normal, 0.5 * F.normal.dot((pc.p - c).cross(pc.q - c)));
     }
     for (const WholeFace& wf : w_.wholes) {
       Body& m = body_[wf.side];
