@@ -211,6 +211,12 @@ struct Body {
     if (s.placed.insert(v)) s.p_W[static_cast<std::size_t>(v)] = X_WM * mesh().vertex(v);
     return s.p_W[static_cast<std::size_t>(v)];
   }
+  /// Face f placed in W, on first use (the look-up inline, the placement not: the descent
+  /// asks for each face many times).
+  const PlacedFace& face(int f) {
+    if (s.faceReady.contains(f)) return s.faces[static_cast<std::size_t>(f)];
+    return placeFace(f);
+  }
   const Vector3d& corner(int f, int k) { return p(mesh().triangles(f, k)); }
   /// Face f's unit outward normal and the foot of the fan apex o on its plane (W), on first
   /// use; o is the same for the whole query.
@@ -222,10 +228,9 @@ struct Body {
     F.foot = o - F.normal * F.normal.dot(o - a);  // o projected onto the face's plane
     return F;
   }
-  /// Face f placed in W, on first use.
-  const PlacedFace& face(int f) {
+  [[gnu::noinline]] const PlacedFace& placeFace(int f) {
     PlacedFace& F = s.faces[static_cast<std::size_t>(f)];
-    if (!s.faceReady.insert(f)) return F;
+    s.faceReady.insert(f);
     for (int k = 0; k < 3; ++k) F.corner[k] = corner(f, k);
     const Vector3d u = F.corner[1] - F.corner[0], v = F.corner[2] - F.corner[0];
     F.n = u.cross(v);
