@@ -171,11 +171,13 @@ class FanSum {
     const Vector3d s = u + v + w;
     d_ += D;
     ds_ += D * s;
-    for (int k = 0; k < 3; ++k) {
-      const int l = (k + 1) % 3;
-      diag_[k] += D * (u[k] * u[k] + v[k] * v[k] + w[k] * w[k] + s[k] * s[k]);
-      off_[k] += D * (u[k] * u[l] + v[k] * v[l] + w[k] * w[l] + s[k] * s[l]);
-    }
+    const Vector3d sq = u.cwiseProduct(u) + v.cwiseProduct(v) + w.cwiseProduct(w) + s.cwiseProduct(s);
+    // the products of each coordinate with the next one: (x y, y z, z x)
+    const auto next = [](const Vector3d& a) { return Vector3d(a.y(), a.z(), a.x()); };
+    const Vector3d mixed = u.cwiseProduct(next(u)) + v.cwiseProduct(next(v)) +
+                           w.cwiseProduct(next(w)) + s.cwiseProduct(next(s));
+    diag_ += D * sq;
+    off_ += D * mixed;
     return D;
   }
   /// The summed moments about the apex.
@@ -194,8 +196,8 @@ class FanSum {
  private:
   double d_ = 0.0;
   Vector3d ds_ = Vector3d::Zero();
-  double diag_[3] = {0.0, 0.0, 0.0};
-  double off_[3] = {0.0, 0.0, 0.0};  ///< (x, y), (y, z), (z, x)
+  Vector3d diag_ = Vector3d::Zero();  ///< D(u uᵀ + v vᵀ + w wᵀ + s sᵀ) summed: (xx, yy, zz)
+  Vector3d off_ = Vector3d::Zero();   ///< ... (xy, yz, zx)
 };
 
 /// A mesh placed in W for one query.
