@@ -230,6 +230,7 @@ struct Body {
     F.foot = o - F.normal * F.normal.dot(o - a);  // o projected onto the face's plane
     return F;
   }
+  /// Places face f in W (face()'s first use).
   [[gnu::noinline]] const PlacedFace& placeFace(int f) {
     PlacedFace& F = s.faces[static_cast<std::size_t>(f)];
     s.faceReady.insert(f);

@@ -5,12 +5,15 @@
 //
 // Steps:
 //  1. Broad phase: the two bounding-volume trees are descended together (A's boxes taken into
-//     B's frame); overlapping leaves give candidate face pairs, and a face pair survives a
-//     conservative plane-side test.
+//     B's frame, each node once per query); overlapping leaves give candidate face pairs,
+//     and a face pair survives a conservative plane-side test and, when each face certainly
+//     straddles the other's plane, the Guigue–Devillers interval test (two filtered
+//     orientations: a pair is dropped only when it certainly misses).
 //  2. Crossings: every edge of one mesh is tested against every candidate face of the other
 //     with exact orientation predicates and a symbolic perturbation (exact_predicates.hpp),
 //     each (edge, face) pair exactly once, so every face that uses the decision sees the same
-//     one. A crossing records its direction (entering or leaving the other body).
+//     one (the double filter decides when it is certain, the exact predicate otherwise). A
+//     crossing records its direction (entering or leaving the other body).
 //  3. Boundary pieces: for a face t of one mesh, the region R_t = t ∩ (other body) is bounded
 //     by (i) the segments t ∩ t' for the faces t' of the other mesh, whose two ends are two of
 //     the crossings above and whose direction follows from theirs, and (ii) the parts of t's
