@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -121,6 +122,46 @@ void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Placemen
   clipTriangle(v, out);
 }
 
+/// Vertices placed in H during one query, by vertex index: a generation stamp per vertex
+/// says whether its slot holds this query's coordinates. Reused across queries on a thread,
+/// so a query allocates nothing once the largest mesh has been seen.
+class PlacedVertices {
+ public:
+  /// The thread's cache, emptied for a new query on a mesh of `vertexCount` vertices.
+  static PlacedVertices& forQuery(Eigen::Index vertexCount) {
+    thread_local PlacedVertices cache;
+    cache.begin(static_cast<std::size_t>(vertexCount));
+    return cache;
+  }
+
+  /// Vertex i of `mesh` in H, placed now unless already placed in this query.
+  const Vector3d& get(const geometry::TriangleMesh& mesh, int i, const Placement& X_HM) {
+    const auto slot = static_cast<std::size_t>(i);
+    if (stamp_[slot] != generation_) {
+      const Vector3d p = mesh.vertex(i);
+      p_H_[slot] = Vector3d(X_HM.coordinate(0, p), X_HM.coordinate(1, p), X_HM.coordinate(2, p));
+      stamp_[slot] = generation_;
+    }
+    return p_H_[slot];
+  }
+
+ private:
+  void begin(std::size_t vertexCount) {
+    if (stamp_.size() < vertexCount) {
+      stamp_.resize(vertexCount, 0);
+      p_H_.resize(vertexCount);
+    }
+    if (++generation_ == 0) {  // wrapped: old stamps could alias the new generation
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      generation_ = 1;
+    }
+  }
+
+  std::vector<std::uint32_t> stamp_;
+  std::vector<Vector3d> p_H_;
+  std::uint32_t generation_ = 0;
+};
+
 /// o: the deepest vertex (given in H) dropped onto the plane, in H and in M.
 struct Apex {
   Vector3d o_H, o_M;
@@ -183,9 +224,10 @@ class BvhClip {
     if (!(best < 0.0)) return ClippedMoments{};
     const Apex apex(X_HM_, deepest_);
     FanSum clipped;
+    PlacedVertices& placed = PlacedVertices::forQuery(mesh_.vertexCount());
     for (const BvhNode* node : straddling) {
       for (int i = node->first; i < node->first + node->count; ++i) {
-        clipFace(mesh_, bvh_.order()[i], placement_, apex.o_H, clipped);
+        clipPlacedFace(bvh_.order()[i], placed, apex.o_H, clipped);
       }
     }
     // Wholly-below subtrees are summed about o in M axes and rotated into H once.
@@ -202,6 +244,18 @@ class BvhClip {
   struct ZRange {
     double lo, hi;
   };
+
+  /// Clips triangle f as clipFace does, each corner placed in H once per query: the ~6
+  /// triangles around a vertex of a straddling leaf share its coordinates. The numbers are
+  /// the same as clipFace's (same sums, same order), so the clip stays bit-identical.
+  void clipPlacedFace(int f, PlacedVertices& placed, const Vector3d& o_H, FanSum& out) const {
+    const Vector3d* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = &placed.get(mesh_, mesh_.triangles(f, k), placement_);
+    if (p[0]->z() >= 0.0 && p[1]->z() >= 0.0 && p[2]->z() >= 0.0) return;
+    Vector3d v[3];
+    for (int k = 0; k < 3; ++k) v[k] = Vector3d(p[k]->x() - o_H.x(), p[k]->y() - o_H.y(), p[k]->z());
+    clipTriangle(v, out);
+  }
 
   /// Bounds of z_H over the node's vertices: the tighter of its box and its normal slab.
   /// With n = the plane normal in M, split into a part along the slab axis a and the rest:

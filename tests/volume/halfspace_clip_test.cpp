@@ -238,6 +238,35 @@ TEST(BvhClip, InvariantUnderCommonMotion) {
   EXPECT_LE((moved.normal - X_WH.linear().col(2)).norm(), 1e-15);
 }
 
+// Queries on one thread share a cache of vertices placed in H, indexed by vertex. Alternating
+// two meshes of different sizes and poses under random rigid motion, every query must give
+// exactly what a fresh reference clip gives (stale coordinates from the other mesh or pose
+// would change the sums) and a repeated query the very same numbers. Same tolerance and
+// reasoning as AgreesWithReferenceClip; the repeat is bit-for-bit.
+TEST(BvhClip, PlacedVertexCacheAcrossMeshesAndPoses) {
+  const std::vector<ClipCase> cases = clipCases();
+  ASSERT_GE(cases.size(), 2u);
+  const MeshBvh a(cases[0].mesh), b(cases[1].mesh);
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    for (const auto* c : {&cases[0], &cases[1]}) {
+      const MeshBvh& bvh = c == &cases[0] ? a : b;
+      SCOPED_TRACE(c->name + " seed " + std::to_string(seed));
+      const Isometry3d X_HM =
+          poseAtDepth(c->mesh, test::randomPose(seed).linear(), 0.01 * c->size);
+      const ClippedMoments ref = clipMeshByHalfspace(c->mesh, X_HM);
+      const ClippedMoments fast = clipMeshByHalfspace(bvh, X_HM);
+      const ClippedMoments again = clipMeshByHalfspace(bvh, X_HM);
+      ASSERT_GT(ref.moments.m0, 0.0);
+      const double tol = 1e-12 + 64.0 * kEps * std::sqrt(ref.area) / ref.depth;
+      EXPECT_NEAR(fast.moments.m0, ref.moments.m0, tol * ref.moments.m0);
+      EXPECT_LE(relativeDifference(fast.moments.m2, ref.moments.m2), tol);
+      EXPECT_EQ(again.moments.m0, fast.moments.m0);
+      EXPECT_EQ(again.moments.m1, fast.moments.m1);
+      EXPECT_EQ(again.moments.m2, fast.moments.m2);
+    }
+  }
+}
+
 // Apart, touching at a vertex, and a face lying exactly on the plane: no contact, no NaN.
 TEST(BvhClip, NoContactCasesGiveZeroWithoutNaN) {
   const double s = 0.01;
