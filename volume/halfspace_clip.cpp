@@ -13,41 +13,13 @@ using Eigen::Vector3d;
 using geometry::BvhNode;
 using geometry::MeshBvh;
 
-/// Running sums over the fan pieces (o, a, b, c), corners relative to o in H axes: with
-/// D = a·(b × c) and s = a + b + c, the moments about o are m0 = ΣD/6, m1 = Σ D s/24 and
-/// m2 = Σ D (a aᵀ + b bᵀ + c cᵀ + s sᵀ)/120 (as tetrahedronMoments, kept as plain sums, m2 as
-/// its six distinct entries, because this is the inner loop of the clip).
+/// The fan pieces (o, a, b, c) of a clip, corners relative to o in H axes, and their shadow.
 struct FanSum {
-  double D = 0.0;
-  Vector3d Ds = Vector3d::Zero();
-  double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, xz = 0.0, yz = 0.0;
+  geometry::TetrahedronSum tetrahedra;
   double area = 0.0;  ///< projected area of the downward-facing clipped faces, m²
 
-  /// Adds the tetrahedron (o, a, b, c).
-  void add(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-    const double d = a.x() * (b.y() * c.z() - b.z() * c.y()) +
-                     a.y() * (b.z() * c.x() - b.x() * c.z()) +
-                     a.z() * (b.x() * c.y() - b.y() * c.x());
-    const double sx = a.x() + b.x() + c.x(), sy = a.y() + b.y() + c.y(),
-                 sz = a.z() + b.z() + c.z();
-    D += d;
-    Ds += d * Vector3d(sx, sy, sz);
-    xx += d * (a.x() * a.x() + b.x() * b.x() + c.x() * c.x() + sx * sx);
-    yy += d * (a.y() * a.y() + b.y() * b.y() + c.y() * c.y() + sy * sy);
-    zz += d * (a.z() * a.z() + b.z() * b.z() + c.z() * c.z() + sz * sz);
-    xy += d * (a.x() * a.y() + b.x() * b.y() + c.x() * c.y() + sx * sy);
-    xz += d * (a.x() * a.z() + b.x() * b.z() + c.x() * c.z() + sx * sz);
-    yz += d * (a.y() * a.z() + b.y() * b.z() + c.y() * c.z() + sy * sz);
-  }
-
-  geometry::Moments moments() const {
-    geometry::Moments m;
-    m.m0 = D / 6.0;
-    m.m1 = Ds / 24.0;
-    m.m2 << xx, xy, xz, xy, yy, yz, xz, yz, zz;
-    m.m2 /= 120.0;
-    return m;
-  }
+  void add(const Vector3d& a, const Vector3d& b, const Vector3d& c) { tetrahedra.add(a, b, c); }
+  geometry::Moments moments() const { return tetrahedra.moments(); }
 };
 
 /// Adds the part below the plane z = 0 of the triangle v (corners relative to o, H axes) as

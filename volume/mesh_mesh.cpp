@@ -159,47 +159,6 @@ struct Scratch {
   std::vector<Patch> patches;
 };
 
-/// The moments of a fan of tetrahedra (0, u, v, w) about their common apex, summed with the
-/// constant factors applied once at the end. With D = u·(v × w) (6 × signed volume) and
-/// s = u + v + w:
-///   ∫ 1 dV = D/6,   ∫ x dV = (D/24) s,   ∫ x xᵀ dV = (D/120)(u uᵀ + v vᵀ + w wᵀ + s sᵀ).
-class FanSum {
- public:
-  /// Adds the tetrahedron (0, u, v, w); returns its D.
-  double add(const Vector3d& u, const Vector3d& v, const Vector3d& w) {
-    const double D = u.dot(v.cross(w));
-    const Vector3d s = u + v + w;
-    d_ += D;
-    ds_ += D * s;
-    const Vector3d sq = u.cwiseProduct(u) + v.cwiseProduct(v) + w.cwiseProduct(w) + s.cwiseProduct(s);
-    // the products of each coordinate with the next one: (x y, y z, z x)
-    const auto next = [](const Vector3d& a) { return Vector3d(a.y(), a.z(), a.x()); };
-    const Vector3d mixed = u.cwiseProduct(next(u)) + v.cwiseProduct(next(v)) +
-                           w.cwiseProduct(next(w)) + s.cwiseProduct(next(s));
-    diag_ += D * sq;
-    off_ += D * mixed;
-    return D;
-  }
-  /// The summed moments about the apex.
-  geometry::Moments moments() const {
-    geometry::Moments M;
-    M.m0 = d_ / 6.0;
-    M.m1 = ds_ / 24.0;
-    for (int k = 0; k < 3; ++k) {
-      const int l = (k + 1) % 3;
-      M.m2(k, k) = diag_[k] / 120.0;
-      M.m2(k, l) = M.m2(l, k) = off_[k] / 120.0;
-    }
-    return M;
-  }
-
- private:
-  double d_ = 0.0;
-  Vector3d ds_ = Vector3d::Zero();
-  Vector3d diag_ = Vector3d::Zero();  ///< D(u uᵀ + v vᵀ + w wᵀ + s sᵀ) summed: (xx, yy, zz)
-  Vector3d off_ = Vector3d::Zero();   ///< ... (xy, yz, zx)
-};
-
 /// A mesh placed in W for one query.
 struct Body {
   const MeshBvh& bvh;
@@ -802,7 +761,7 @@ class Intersector {
     // its signed area (area and depth are evaluated once n is known).
     auto& patches = w_.patches;
     patches.clear();
-    FanSum fan;
+    geometry::TetrahedronSum fan;
     double termSum6 = 0.0;  // 6 Σ |fan term volumes|
     double areaSum = 0.0;   // Σ |patch areas|
     Vector3d scale3 = o.cwiseAbs();  // largest |coordinate| of the patches' points, per axis
