@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <vector>
+
+#include "volume/stamp_set.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -74,6 +75,9 @@ struct Placement {
     return R(i, 0) * p.x() + R(i, 1) * p.y() + R(i, 2) * p.z() + t(i);
   }
   double z(const Vector3d& p) const { return coordinate(2, p); }
+  Vector3d place(const Vector3d& p) const {
+    return Vector3d(coordinate(0, p), coordinate(1, p), coordinate(2, p));
+  }
   /// z_H in M axes: the plane's upward normal seen from the mesh.
   Vector3d up() const { return R.row(2).transpose(); }
 
@@ -81,57 +85,50 @@ struct Placement {
   Vector3d t;
 };
 
-/// Clips triangle f of `mesh` (placed by X_HM) about o_H into `out`.
-void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Placement& X_HM,
-              const Vector3d& o_H, FanSum& out) {
-  const Vector3d p[3] = {mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2)};
-  const double z[3] = {X_HM.z(p[0]), X_HM.z(p[1]), X_HM.z(p[2])};
-  if (z[0] >= 0.0 && z[1] >= 0.0 && z[2] >= 0.0) return;
+/// Clips the triangle with corners p_H (placed in H) about o_H into `out`.
+void clipPlacedTriangle(const Vector3d* const (&p_H)[3], const Vector3d& o_H, FanSum& out) {
+  if (p_H[0]->z() >= 0.0 && p_H[1]->z() >= 0.0 && p_H[2]->z() >= 0.0) return;
   Vector3d v[3];
   for (int k = 0; k < 3; ++k) {
-    v[k] = Vector3d(X_HM.coordinate(0, p[k]) - o_H.x(), X_HM.coordinate(1, p[k]) - o_H.y(), z[k]);
+    v[k] = Vector3d(p_H[k]->x() - o_H.x(), p_H[k]->y() - o_H.y(), p_H[k]->z());
   }
   clipTriangle(v, out);
 }
 
-/// Vertices placed in H during one query, by vertex index: a generation stamp per vertex
-/// says whether its slot holds this query's coordinates. Reused across queries on a thread,
-/// so a query allocates nothing once the largest mesh has been seen.
+/// Clips triangle f of `mesh` (placed by X_HM) about o_H into `out`.
+void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Placement& X_HM,
+              const Vector3d& o_H, FanSum& out) {
+  const Vector3d p[3] = {X_HM.place(mesh.corner(f, 0)), X_HM.place(mesh.corner(f, 1)),
+                         X_HM.place(mesh.corner(f, 2))};
+  clipPlacedTriangle({&p[0], &p[1], &p[2]}, o_H, out);
+}
+
+/// Vertices placed in H during one query, by vertex index (StampSet says which slots hold
+/// this query's coordinates). Reused across queries on a thread, so a query allocates nothing
+/// once the largest mesh has been seen.
 class PlacedVertices {
  public:
   /// The thread's cache, emptied for a new query on a mesh of `vertexCount` vertices.
   static PlacedVertices& forQuery(Eigen::Index vertexCount) {
     thread_local PlacedVertices cache;
-    cache.begin(static_cast<std::size_t>(vertexCount));
+    const auto n = static_cast<std::size_t>(vertexCount);
+    cache.placed_.reset(n);
+    if (cache.p_H_.size() < n) cache.p_H_.resize(n);
     return cache;
   }
 
   /// Vertex i of `mesh` in H, placed now unless already placed in this query.
   const Vector3d& get(const geometry::TriangleMesh& mesh, int i, const Placement& X_HM) {
-    const auto slot = static_cast<std::size_t>(i);
-    if (stamp_[slot] != generation_) {
-      const Vector3d p = mesh.vertex(i);
-      p_H_[slot] = Vector3d(X_HM.coordinate(0, p), X_HM.coordinate(1, p), X_HM.coordinate(2, p));
-      stamp_[slot] = generation_;
+    Vector3d& p_H = p_H_[static_cast<std::size_t>(i)];
+    if (placed_.insert(i)) {
+      p_H = X_HM.place(mesh.vertex(i));
     }
-    return p_H_[slot];
+    return p_H;
   }
 
  private:
-  void begin(std::size_t vertexCount) {
-    if (stamp_.size() < vertexCount) {
-      stamp_.resize(vertexCount, 0);
-      p_H_.resize(vertexCount);
-    }
-    if (++generation_ == 0) {  // wrapped: old stamps could alias the new generation
-      std::fill(stamp_.begin(), stamp_.end(), 0u);
-      generation_ = 1;
-    }
-  }
-
-  std::vector<std::uint32_t> stamp_;
+  StampSet placed_;
   std::vector<Vector3d> p_H_;
-  std::uint32_t generation_ = 0;
 };
 
 /// o: the deepest vertex (given in H) dropped onto the plane, in H and in M.
@@ -217,16 +214,13 @@ class BvhClip {
     double lo, hi;
   };
 
-  /// Clips triangle f as clipFace does, each corner placed in H once per query: the ~6
-  /// triangles around a vertex of a straddling leaf share its coordinates. The numbers are
-  /// the same as clipFace's (same sums, same order), so the clip stays bit-identical.
+  /// Clips triangle f with each corner placed in H once per query: the ~6 triangles around a
+  /// vertex of a straddling leaf share its coordinates. They are the numbers clipFace places
+  /// (same sums, same order), so the clip stays bit-identical to the reference.
   void clipPlacedFace(int f, PlacedVertices& placed, const Vector3d& o_H, FanSum& out) const {
     const Vector3d* p[3];
     for (int k = 0; k < 3; ++k) p[k] = &placed.get(mesh_, mesh_.triangles(f, k), placement_);
-    if (p[0]->z() >= 0.0 && p[1]->z() >= 0.0 && p[2]->z() >= 0.0) return;
-    Vector3d v[3];
-    for (int k = 0; k < 3; ++k) v[k] = Vector3d(p[k]->x() - o_H.x(), p[k]->y() - o_H.y(), p[k]->z());
-    clipTriangle(v, out);
+    clipPlacedTriangle(p, o_H, out);
   }
 
   /// Bounds of z_H over the node's vertices: the tighter of its box and its normal slab.

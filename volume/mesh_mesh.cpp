@@ -10,6 +10,7 @@
 
 #include "geometry/moments.hpp"
 #include "volume/exact_predicates.hpp"
+#include "volume/stamp_set.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -46,30 +47,6 @@ constexpr double kNormalNoise = 1e-9;
 /// (orderAlongEdge). λ = d_p/(d_p − d_q) is good to a few ε unless the edge is within about
 /// 1e-7 rad of the face's plane; a false alarm costs one exact parity test.
 constexpr double kLambdaTie = 1e-9;
-
-/// A set of small integers that clears in O(1) between queries (epoch stamps).
-class StampSet {
- public:
-  void reset(std::size_t n) {
-    if (stamp_.size() < n) stamp_.resize(n, 0);
-    if (++epoch_ == 0) {  // wrapped: forget every old stamp
-      std::fill(stamp_.begin(), stamp_.end(), 0u);
-      epoch_ = 1;
-    }
-  }
-  bool contains(int i) const { return stamp_[static_cast<std::size_t>(i)] == epoch_; }
-  /// True when i was not in the set.
-  bool insert(int i) {
-    auto& s = stamp_[static_cast<std::size_t>(i)];
-    if (s == epoch_) return false;
-    s = epoch_;
-    return true;
-  }
-
- private:
-  std::vector<std::uint32_t> stamp_;
-  std::uint32_t epoch_ = 0;
-};
 
 /// A face placed in W for one query, with what the face-pair tests use of it.
 struct PlacedFace {
