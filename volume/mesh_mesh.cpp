@@ -133,6 +133,7 @@ struct Scratch {
   std::vector<WholeFace> wholes;
   std::vector<std::pair<int, int>> nodeStack;
   std::vector<int> stack;
+  std::vector<int> columns;  ///< faces of B's leaf that meet A's leaf slab (testLeaves)
   std::vector<Patch> patches;
 };
 
@@ -193,12 +194,12 @@ int planeSides(const PlacedFace& T, const Vector3d* P, int* side) {
     const Vector3d w = P[i] - T.corner[0];
     const double d = T.n.dot(w);
     const double bound = T.nBound * w.lpNorm<1>();
-    side[i] = d > bound ? 1 : (d < -bound ? -1 : 0);
+    side[i] = int(d > bound) - int(d < -bound);  // without branches: the sign is data
   }
-  return side[0] == side[1] && side[1] == side[2] ? side[0] : 0;
+  return (side[0] == side[1]) & (side[1] == side[2]) ? side[0] : 0;
 }
 
-bool allCertain(const int* side) { return side[0] != 0 && side[1] != 0 && side[2] != 0; }
+bool allCertain(const int* side) { return side[0] * side[1] * side[2] != 0; }
 
 /// Index of the corner whose side differs from the other two's. @pre not all three equal
 int loneCorner(const int* side) {
@@ -232,10 +233,16 @@ bool certainlyDisjoint(const Vector3d* A, const int* sideA, const Vector3d* B,
   return orient3dFiltered(q1, p2, p1, q2) > 0 || orient3dFiltered(p1, p2, r1, r2) > 0;
 }
 
+/// Are all three of a ≤ b? Evaluated without short-circuit branches: in the descent the
+/// outcome is data, and one branch on the combined flag mispredicts less than three.
+bool allLessEqual(const Vector3d& a, const Vector3d& b) {
+  return (a.x() <= b.x()) & (a.y() <= b.y()) & (a.z() <= b.z());
+}
+
 /// The faces' axis-aligned boxes overlap (grown by `margin`)?
 bool faceBoxesOverlap(const PlacedFace& A, const PlacedFace& B, double margin) {
-  return (A.lo.array() <= B.hi.array() + margin).all() &&
-         (B.lo.array() <= A.hi.array() + margin).all();
+  const Vector3d grow = Vector3d::Constant(margin);
+  return allLessEqual(A.lo, B.hi + grow) & allLessEqual(B.lo, A.hi + grow);
 }
 
 /// Axis-aligned box of a body-frame box placed by X (conservative), as {centre, half-size}.
@@ -345,9 +352,8 @@ class Intersector {
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
       const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
-      if (((pa.center - nb.center).cwiseAbs().array() >
-           (pa.halfExtent + nb.halfExtent).array() + margin_)
-              .any()) {
+      if (!allLessEqual((pa.center - nb.center).cwiseAbs(),
+                        pa.halfExtent + nb.halfExtent + Vector3d::Constant(margin_))) {
         continue;
       }
       if (!slabsOverlap(na, pa.center, pa.normalAxis, nb)) continue;
@@ -398,18 +404,50 @@ class Intersector {
       const double above = (slab.axialLo - margin_) -
                            (c + std::max(k * other.axialLo, k * other.axialHi));
       const double gap = std::max(below, above);
-      return gap <= 0.0 || gap * gap <= other.radialExtent * other.radialExtent * sine2;
+      return (gap <= 0.0) | (gap * gap <= other.radialExtent * other.radialExtent * sine2);
     };
-    return meets(na, centerA, axisA, nb, nb.center) && meets(nb, nb.center, nb.normalAxis, na, centerA);
+    return meets(na, centerA, axisA, nb, nb.center) & meets(nb, nb.center, nb.normalAxis, na, centerA);
   }
 
+  /// A node's slab (bvh.hpp) placed in W, its axial range grown by the box margin.
+  struct PlacedSlab {
+    Vector3d center, axis;
+    double lo, hi;
+  };
+  PlacedSlab placedSlab(const Body& m, const BvhNode& n) const {
+    return {m.X_WM * n.center, m.X_WM.linear() * n.normalAxis, n.axialLo - margin_,
+            n.axialHi + margin_};
+  }
+
+  /// Does face F reach the axial range of slab S? Its axial coordinate is linear over the
+  /// face, so the corners bound it; a face wholly beyond the range meets none of the slab's
+  /// faces (the margin exceeds the rounding of both placements many times over).
+  static bool faceMeetsSlab(const PlacedFace& F, const PlacedSlab& S) {
+    const double s0 = (F.corner[0] - S.center).dot(S.axis);
+    const double s1 = (F.corner[1] - S.center).dot(S.axis);
+    const double s2 = (F.corner[2] - S.center).dot(S.axis);
+    return std::max({s0, s1, s2}) >= S.lo && std::min({s0, s1, s2}) <= S.hi;
+  }
+
+  /// Every face pair of two leaves whose boxes overlap; a face that misses the other leaf's
+  /// slab skips its row (column) at once. In shallow contact most faces of one leaf lie just
+  /// inside the other body, beyond the thin slab of a nearly flat leaf of the other mesh.
   void testLeaves(const BvhNode& na, const BvhNode& nb) {
     const auto& orderA = body_[0].bvh.order();
     const auto& orderB = body_[1].bvh.order();
+    const PlacedSlab slabA = placedSlab(body_[0], na);
+    const PlacedSlab slabB = placedSlab(body_[1], nb);
+    auto& columns = w_.columns;
+    columns.clear();
+    for (int j = nb.first; j < nb.first + nb.count; ++j) {
+      const int tB = orderB[static_cast<std::size_t>(j)];
+      if (faceMeetsSlab(body_[1].face(tB), slabA)) columns.push_back(tB);
+    }
+    if (columns.empty()) return;
     for (int i = na.first; i < na.first + na.count; ++i) {
-      for (int j = nb.first; j < nb.first + nb.count; ++j) {
-        testFaces(orderA[static_cast<std::size_t>(i)], orderB[static_cast<std::size_t>(j)]);
-      }
+      const int tA = orderA[static_cast<std::size_t>(i)];
+      if (!faceMeetsSlab(body_[0].face(tA), slabB)) continue;
+      for (const int tB : columns) testFaces(tA, tB);
     }
   }
 
