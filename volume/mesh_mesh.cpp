@@ -163,7 +163,8 @@ struct Body {
     FaceFoot& F = s.feet[static_cast<std::size_t>(f)];
     if (!s.footReady.insert(f)) return F;
     const Vector3d& a = corner(f, 0);
-    F.normal = (corner(f, 1) - a).cross(corner(f, 2) - a).normalized();
+    const Vector3d N = (corner(f, 1) - a).cross(corner(f, 2) - a);
+    F.normal = N * (1.0 / N.norm());  // one division, not three
     F.foot = o - F.normal * F.normal.dot(o - a);  // o projected onto the face's plane
     return F;
   }
@@ -344,28 +345,32 @@ class Intersector {
     const Matrix3d absR = X_BA.linear().cwiseAbs();
     const auto& nodesA = body_[0].bvh.nodes();
     const auto& nodesB = body_[1].bvh.nodes();
+    const auto overlap = [&](int ia, int ib) {
+      const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
+      const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
+      const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
+      return allLessEqual((pa.center - nb.center).cwiseAbs(),
+                          pa.halfExtent + nb.halfExtent + Vector3d::Constant(margin_)) &&
+             slabsOverlap(na, pa.center, pa.normalAxis, nb);
+    };
     auto& stack = w_.nodeStack;
-    stack.assign(1, {0, 0});
+    stack.clear();
+    if (overlap(0, 0)) stack.emplace_back(0, 0);
     while (!stack.empty()) {
       const auto [ia, ib] = stack.back();
       stack.pop_back();
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
-      const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
-      if (!allLessEqual((pa.center - nb.center).cwiseAbs(),
-                        pa.halfExtent + nb.halfExtent + Vector3d::Constant(margin_))) {
-        continue;
-      }
-      if (!slabsOverlap(na, pa.center, pa.normalAxis, nb)) continue;
       if (na.isLeaf() && nb.isLeaf()) {
         testLeaves(na, nb);
-      } else if (nb.isLeaf() ||
-                 (!na.isLeaf() && na.halfExtent.squaredNorm() >= nb.halfExtent.squaredNorm())) {
-        stack.emplace_back(na.left, ib);
-        stack.emplace_back(na.right, ib);
-      } else {
-        stack.emplace_back(ia, nb.left);
-        stack.emplace_back(ia, nb.right);
+        continue;
+      }
+      const int childrenA[2] = {na.isLeaf() ? ia : na.left, na.right};
+      const int childrenB[2] = {nb.isLeaf() ? ib : nb.left, nb.right};
+      for (int i = 0; i < (na.isLeaf() ? 1 : 2); ++i) {
+        for (int j = 0; j < (nb.isLeaf() ? 1 : 2); ++j) {
+          if (overlap(childrenA[i], childrenB[j])) stack.emplace_back(childrenA[i], childrenB[j]);
+        }
       }
     }
   }
@@ -789,6 +794,11 @@ class Intersector {
       if (inNormal(side, face)) nSum += (side == 1 ? area : -area) * nrm;
       if (inArea(side, face)) patches.push_back({nrm, area, p, q});
     };
+    // Every piece lies on a cut face: their feet first, in one loop whose square roots and
+    // divisions do not wait on each other.
+    for (int side = 0; side < 2; ++side) {
+      for (const int f : body_[side].s.cutList) body_[side].foot(f, o);
+    }
     for (const Piece& pc : w_.pieces) {
       const FaceFoot& F = body_[pc.side].foot(pc.face, o);
       const Vector3d& c = F.foot;
@@ -799,7 +809,7 @@ class Intersector {
       const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
       const Vector3d N = (b - a).cross(c - a);
       const double twiceArea = N.norm();
-      const Vector3d nrm = N / twiceArea;
+      const Vector3d nrm = N * (1.0 / twiceArea);
       add(wf.side, wf.face, a, b, c, nrm, 0.5 * twiceArea);
       if (inArea(wf.side, wf.face)) patches.push_back({nrm, 0.0, a, a});  // for depth
     }
