@@ -133,7 +133,8 @@ struct Scratch {
   std::vector<WholeFace> wholes;
   std::vector<std::pair<int, int>> nodeStack;
   std::vector<int> stack;
-  std::vector<int> columns;  ///< faces of B's leaf that meet A's leaf slab (testLeaves)
+  /// Faces of B's leaf that meet A's leaf slab (testLeaves), with their placement.
+  std::vector<std::pair<int, const PlacedFace*>> columns;
   std::vector<Patch> patches;
 };
 
@@ -345,7 +346,8 @@ class Intersector {
     const Matrix3d absR = X_BA.linear().cwiseAbs();
     const auto& nodesA = body_[0].bvh.nodes();
     const auto& nodesB = body_[1].bvh.nodes();
-    const auto overlap = [&](int ia, int ib) {
+    // Inlined: called from two places, it is the descent's inner loop.
+    const auto overlap = [&](int ia, int ib) __attribute__((always_inline)) {
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
       const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
@@ -446,19 +448,19 @@ class Intersector {
     columns.clear();
     for (int j = nb.first; j < nb.first + nb.count; ++j) {
       const int tB = orderB[static_cast<std::size_t>(j)];
-      if (faceMeetsSlab(body_[1].face(tB), slabA)) columns.push_back(tB);
+      const PlacedFace& FB = body_[1].face(tB);
+      if (faceMeetsSlab(FB, slabA)) columns.push_back({tB, &FB});
     }
     if (columns.empty()) return;
     for (int i = na.first; i < na.first + na.count; ++i) {
       const int tA = orderA[static_cast<std::size_t>(i)];
-      if (!faceMeetsSlab(body_[0].face(tA), slabB)) continue;
-      for (const int tB : columns) testFaces(tA, tB);
+      const PlacedFace& FA = body_[0].face(tA);
+      if (!faceMeetsSlab(FA, slabB)) continue;
+      for (const auto& [tB, FB] : columns) testFaces(tA, FA, tB, *FB);
     }
   }
 
-  void testFaces(int tA, int tB) {
-    const PlacedFace& FA = body_[0].face(tA);
-    const PlacedFace& FB = body_[1].face(tB);
+  void testFaces(int tA, const PlacedFace& FA, int tB, const PlacedFace& FB) {
     if (!faceBoxesOverlap(FA, FB, margin_)) return;
     int sideA[3], sideB[3];  // corners of each face against the other's plane
     if (planeSides(FB, FA.corner, sideA) != 0 || planeSides(FA, FB.corner, sideB) != 0) return;
