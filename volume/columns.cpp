@@ -288,8 +288,10 @@ GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
       [](GridSums x, const GridSums& y) { return x += y; });
 }
 
-/// Union of the world boxes of the leaves of `body` that meet `box` and (for a half-space
-/// other) reach below its plane, clipped to `box`: a tight bound of the region.
+/// Union of the world boxes of the triangles of `body` that meet `box` and (for a half-space
+/// other) reach below its plane, clipped to `box`: a tight bound of the region. Triangles,
+/// not leaves, so that the grid (placed on this bound) does not depend on the tree's leaf
+/// size.
 WorldBox tighten(const ColumnBody& body, const WorldBox& box, const ColumnBody& other) {
   if (!body.bvh) return box;
   WorldBox out{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};
@@ -304,8 +306,18 @@ WorldBox tighten(const ColumnBody& body, const WorldBox& box, const ColumnBody& 
     const WorldBox wb = worldBox(node, body.X_WB);
     if (!meets(wb)) return;
     if (node.isLeaf()) {
-      const WorldBox clipped = wb.intersected(box);
-      out = {out.lo.cwiseMin(clipped.lo), out.hi.cwiseMax(clipped.hi)};
+      const geometry::TriangleMesh& mesh = body.bvh->mesh();
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        const int f = body.bvh->order()[static_cast<std::size_t>(i)];
+        WorldBox tb{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};
+        for (int k = 0; k < 3; ++k) {
+          const Vector3d p_W = body.X_WB * mesh.corner(f, k);
+          tb = {tb.lo.cwiseMin(p_W), tb.hi.cwiseMax(p_W)};
+        }
+        if (!meets(tb)) continue;
+        const WorldBox clipped = tb.intersected(box);
+        out = {out.lo.cwiseMin(clipped.lo), out.hi.cwiseMax(clipped.hi)};
+      }
       return;
     }
     self(self, body.bvh->nodes()[node.left]);
