@@ -36,8 +36,14 @@ struct BvhNode {
 
 class MeshBvh {
  public:
+  /// Triangles per leaf at most, by default. 8 rather than 4 since the fast mesh–mesh
+  /// method rejects a leaf's faces against the other leaf's slab before its face pairs
+  /// (sphere_pair_10k 103 → 97 µs, 100k 680 → 615 µs; the half-space clip and the CAD
+  /// drop unchanged or slightly faster), with half the nodes.
+  static constexpr int kDefaultLeafSize = 8;
+
   /// Builds the hierarchy; keeps a copy of the mesh. @pre the mesh has at least one triangle.
-  explicit MeshBvh(TriangleMesh mesh, int maxLeafSize = 4);
+  explicit MeshBvh(TriangleMesh mesh, int maxLeafSize = kDefaultLeafSize);
 
   const TriangleMesh& mesh() const { return mesh_; }
   const std::vector<BvhNode>& nodes() const { return nodes_; }

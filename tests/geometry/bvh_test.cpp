@@ -91,7 +91,10 @@ TEST(MeshBvh, StructureOfUniformSphere) {
   }
 }
 
-TEST(MeshBvh, StructureOfMixedSizes) { expectStructure(MeshBvh(plateWithBead()), 4); }
+TEST(MeshBvh, StructureOfMixedSizes) {
+  expectStructure(MeshBvh(plateWithBead()), MeshBvh::kDefaultLeafSize);
+  expectStructure(MeshBvh(plateWithBead(), 4), 4);
+}
 
 TEST(MeshBvh, CoincidentCentroidsStillSplit) {
   // Eight coincident copies of one sphere: every centroid occurs eight times, so a node of
@@ -109,20 +112,23 @@ TEST(MeshBvh, FlatFaceIsNotMixedIntoFeatureLeaves) {
   // triangles at every one of the bead's leaves. A median split does this (the widest
   // centroid axis runs across the plate and the median falls inside the bead).
   const TriangleMesh mesh = plateWithBead();
-  const MeshBvh bvh(mesh);
   const int plateTriangles = 12;
-  int mixedLeaves = 0, beadLeaves = 0;
-  for (const BvhNode& node : bvh.nodes()) {
-    if (!node.isLeaf()) continue;
-    int plate = 0;
-    for (int j = node.first; j < node.first + node.count; ++j) {
-      plate += bvh.order()[static_cast<std::size_t>(j)] < plateTriangles ? 1 : 0;
+  for (const int leaf : {4, MeshBvh::kDefaultLeafSize}) {
+    SCOPED_TRACE("maxLeafSize " + std::to_string(leaf));
+    const MeshBvh bvh(mesh, leaf);
+    int mixedLeaves = 0, beadLeaves = 0;
+    for (const BvhNode& node : bvh.nodes()) {
+      if (!node.isLeaf()) continue;
+      int plate = 0;
+      for (int j = node.first; j < node.first + node.count; ++j) {
+        plate += bvh.order()[static_cast<std::size_t>(j)] < plateTriangles ? 1 : 0;
+      }
+      mixedLeaves += (plate > 0 && plate < node.count) ? 1 : 0;
+      beadLeaves += plate == 0 ? 1 : 0;
     }
-    mixedLeaves += (plate > 0 && plate < node.count) ? 1 : 0;
-    beadLeaves += plate == 0 ? 1 : 0;
+    EXPECT_GT(beadLeaves, 800 / leaf);
+    EXPECT_EQ(mixedLeaves, 0);
   }
-  EXPECT_GT(beadLeaves, 100);
-  EXPECT_EQ(mixedLeaves, 0);
 }
 
 }  // namespace
