@@ -12,12 +12,21 @@
 
 namespace vcontact::dynamics {
 
+/// How a pair's friction force and spin torque are formed (dynamics/SCENARIO.md).
+enum class FrictionMode {
+  kLumped,       ///< MODEL.md §3: at the centroid, shared by the Contensou factors
+  kDistributed,  ///< pointwise Coulomb friction over the columns δ map (DISTRIBUTED_FRICTION.md)
+};
+
 struct ContactPair {
   std::string name;                     ///< for output ("ball-plate")
   std::size_t a = 0;                    ///< index of B1 (payload) in Scenario::bodies
   std::size_t b = 0;                    ///< index of B2 (plate)
   Model model;
   std::optional<volume::Method> method; ///< default: volume::defaultMethod
+  /// kDistributed needs method columns and a model that passes
+  /// Model::checkDistributedFriction (the scenario reader checks both).
+  FrictionMode friction = FrictionMode::kLumped;
 };
 
 /// The time integrator (dynamics/SCENARIO.md "Integrators").

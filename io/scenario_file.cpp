@@ -279,7 +279,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   if (!r.has("pairs") || !r["pairs"].is_array()) r.fail("pairs", "expected an array of pairs");
   for (std::size_t i = 0; i < r["pairs"].size(); ++i) {
     const Reader p(r["pairs"][i], source, "pairs[" + std::to_string(i) + "]");
-    p.allowOnly({"name", "a", "b", "model", "method"});
+    p.allowOnly({"name", "a", "b", "model", "method", "friction"});
     dynamics::ContactPair pair;
     pair.a = bodyIndex(p, "a", sc.bodies);
     pair.b = bodyIndex(p, "b", sc.bodies);
@@ -291,6 +291,27 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
         pair.method = volume::parseMethod(p.text("method"));
       } catch (const InputError& e) {
         p.fail("method", e.message());
+      }
+    }
+    if (p.has("friction")) {
+      const std::string friction = p.text("friction");
+      if (friction == "distributed") {
+        pair.friction = dynamics::FrictionMode::kDistributed;
+      } else if (friction != "lumped") {
+        p.fail("friction", "expected \"lumped\" or \"distributed\", got \"" + friction + "\"");
+      }
+    }
+    if (pair.friction == dynamics::FrictionMode::kDistributed) {
+      // The δ map comes from the columns backend only.
+      if (!pair.method) pair.method = volume::Method::kColumns;
+      if (*pair.method != volume::Method::kColumns) {
+        p.fail("friction", "distributed friction integrates over the columns method's δ map; "
+                           "set \"method\": \"columns\" (or leave it out)");
+      }
+      try {
+        pair.model.checkDistributedFriction();
+      } catch (const InputError& e) {
+        p.fail("friction", e.message());
       }
     }
     sc.pairs.push_back(std::move(pair));
