@@ -68,6 +68,27 @@ void checkBody(const RigidBody& b) {
   }
 }
 
+/// A distributed-friction pair integrates over the columns δ map with a model that can be
+/// distributed (Model::checkDistributedFriction), on a grid of a resolution in range.
+void checkDistributedPair(const ContactPair& p) {
+  if (p.friction != FrictionMode::kDistributed) return;
+  const std::string where = "pair '" + p.name + "'";
+  if (p.method && *p.method != volume::Method::kColumns) {
+    throw InputError(where, "distributed friction needs the columns method, not " +
+                                volume::methodName(*p.method));
+  }
+  if (p.column_resolution < kMinColumnResolution || p.column_resolution > kMaxColumnResolution) {
+    throw InputError(where, "column resolution " + std::to_string(p.column_resolution) +
+                                " is outside [" + std::to_string(kMinColumnResolution) + ", " +
+                                std::to_string(kMaxColumnResolution) + "]");
+  }
+  try {
+    p.model.checkDistributedFriction();
+  } catch (const InputError& e) {
+    throw InputError(where, e.message());
+  }
+}
+
 }  // namespace
 
 Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
@@ -84,6 +105,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     if (p.a >= scenario_.bodies.size() || p.b >= scenario_.bodies.size() || p.a == p.b) {
       throw InputError("pair '" + p.name + "'", "needs two different bodies of the scenario");
     }
+    checkDistributedPair(p);
     pair_offset_.push_back(n);
     n += PairState::kSize;
   }
@@ -142,7 +164,8 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
     const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
     const bool distributed = pair.friction == FrictionMode::kDistributed;
-    out.cv = distributed ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k])
+    out.cv = distributed ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
+                                                  volume::ColumnOptions::fixed(pair.column_resolution))
                          : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method);
     ++contact_count_;
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);

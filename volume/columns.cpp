@@ -382,6 +382,11 @@ std::pair<Vector3d, WorldBox> normalAndBox(const ColumnBody& a, const ColumnBody
   return {Vector3d::Zero(), box};
 }
 
+/// The normal out of B2 into B1 when one of them is a half-space: its own, or opposite.
+Vector3d halfspaceNormal(const ColumnBody& a, const ColumnBody& b) {
+  return b.bvh ? Vector3d(-a.X_WB.linear().col(2)) : Vector3d(b.X_WB.linear().col(2));
+}
+
 struct Refined {
   GridSums sums;              ///< of the finest level
   int resolution = 0;         ///< its lines per side
@@ -433,7 +438,9 @@ ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const Col
   const ContactVolume none{.method = Method::kColumns};
   const WorldBox overlap = overlapBox(a, b);
   if (overlap.empty()) return none;
-  const auto [n, box] = normalAndBox(a, b, overlap, options);
+  const auto [n, box] = options.isFixed() && (!a.bvh || !b.bvh)
+                            ? std::pair{halfspaceNormal(a, b), overlap}
+                            : normalAndBox(a, b, overlap, options);
   if (n.isZero()) return none;
   const Refined r = refine(a, b, box, n, options, field != nullptr);
   if (!(r.sums.M.m0 > 0.0)) return none;

@@ -32,6 +32,13 @@ struct ColumnOptions {
   double relativeTolerance = 1e-3;  ///< stop when two grid levels agree on V to this
   int initialResolution = 16;       ///< lines per side of the first grid
   int maxResolution = 512;          ///< lines per side at most
+
+  /// One grid of `lines` per side, never refined: the same cost at every call (a simulation's
+  /// right-hand side) and no error estimate (relative_error is inf). Against a half-space the
+  /// grid spans the tree's bound of the region (the leaves that reach below the plane) and the
+  /// normal is the plane's, without the axis passes; two meshes keep the passes.
+  static ColumnOptions fixed(int lines) { return {0.0, lines, lines}; }
+  bool isFixed() const { return initialResolution >= maxResolution; }
 };
 
 /// The penetration depth map of the finest grid: δ at each line with δ > 0.
