@@ -35,8 +35,10 @@ struct ColumnOptions {
 
   /// One grid of `lines` per side, never refined: the same cost at every call (a simulation's
   /// right-hand side) and no error estimate (relative_error is inf). Against a half-space the
-  /// grid spans the tree's bound of the region (the leaves that reach below the plane) and the
-  /// normal is the plane's, without the axis passes; two meshes keep the passes.
+  /// normal is the plane's, without the axis passes, and the grid is laid in the mesh's own
+  /// frame over the bound (in that frame) of the tree's leaves that reach below the plane: it
+  /// moves with the body, so a face sliding or spinning on the plate keeps its columns and V
+  /// is smooth in the pose. Two meshes keep the axis passes and the overlap box.
   static ColumnOptions fixed(int lines) { return {0.0, lines, lines}; }
   bool isFixed() const { return initialResolution >= maxResolution; }
 };
