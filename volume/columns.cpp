@@ -97,11 +97,16 @@ struct Grid {
 /// vertex crosses the surface exactly once.
 class GridCrossings {
  public:
-  /// @param other  the other body: when it is a half-space, nodes wholly above its plane are
-  ///   not rasterised (a crossing outside the other body bounds no overlap and is no surface
-  ///   of the region, so every sum is unchanged)
+  /// @param other  the other body. When it is a half-space and the lines run out of it
+  ///   (u·z_H ≥ 0), nodes wholly above its plane are not rasterised: their crossings come
+  ///   after every point of the overlap along the line (or, for u·z_H = 0, lie on lines that
+  ///   miss it), so they change neither the winding inside it nor any sum. Lines running into
+  ///   the half-space meet those crossings first, and they set the winding: no cull then.
   GridCrossings(const Grid& g, const ColumnBody& body, const ColumnBody& other)
-      : g_(g), start_(g.n * g.n + 1, 0), cullAbove_(!other.bvh), X_WH_(other.X_WB) {
+      : g_(g),
+        start_(g.n * g.n + 1, 0),
+        cullAbove_(!other.bvh && other.X_WB.linear().col(2).dot(g.u) >= 0.0),
+        X_WH_(other.X_WB) {
     std::vector<std::pair<int, Crossing>> hits;
     if (body.bvh) {
       rasterize(*body.bvh, body.X_WB, body.bvh->root(), hits);
@@ -210,8 +215,8 @@ class GridCrossings {
 
   const Grid& g_;
   std::vector<int> start_;
-  bool cullAbove_;         ///< the other body is a half-space: skip nodes above its plane
-  Isometry3d X_WH_;        ///< the other body's pose
+  bool cullAbove_;   ///< skip nodes above the other body's plane (see the constructor)
+  Isometry3d X_WH_;  ///< the other body's pose
   std::vector<Crossing> crossings_;
 };
 
@@ -442,7 +447,7 @@ ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
 
 /// The fixed grid of a mesh M against a half-space H (ColumnOptions::fixed), laid in M's own
 /// frame so that it moves with the body: e1 is M's x axis projected onto the plate (its y axis
-/// when x is within 60° of n), and the rectangle bounds, along e1 and e2, the boxes (in M) of
+/// when x is within 30° of n), and the rectangle bounds, along e1 and e2, the boxes (in M) of
 /// the tree's leaves that reach below the plane. The bound is therefore the same in any world
 /// frame, tight for a face lying in M's axes, and constant while a face slides or spins on the
 /// plate: no rim column enters or leaves, and V and the δ map are smooth in the pose. The
@@ -454,7 +459,9 @@ Grid fixedHalfspaceGrid(const MeshBvh& bvh, const Isometry3d& X_WM, const Isomet
   const Vector3d z_H = X_WH.linear().col(2);
   const Matrix3d P = Matrix3d::Identity() - n * n.transpose();
   const Vector3d x = P * R_WM.col(0);
-  constexpr double kInPlate = 0.5;  // |P x| > cos 60°
+  // |P x| = sin∠(x, n) > 1/2: x more than 30° from n. The switch to y happens only for a
+  // body turned far from lying on its x-y face, never in the small rocking of a face.
+  constexpr double kInPlate = 0.5;
   const Vector3d e1 = (x.norm() > kInPlate ? x : Vector3d(P * R_WM.col(1))).normalized();
   const Vector3d e2 = n.cross(e1);
   // Axes in M, and the plane's height z_H(p_M) = z_M · p_M + z0 for a point of M.

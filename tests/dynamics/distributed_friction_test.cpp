@@ -529,6 +529,38 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
   }
 }
 
+// The column backend skips tree nodes above the plane only where the lines run out of the
+// half-space; lines running into it (the plate as body A: n = −z_H) meet the punch's top
+// face first, which sets their winding. Both orders must give the same contact, on the fixed
+// grid and on the adaptive one, with the plate in random poses.
+TEST(FixedColumnGrid, PlateAsEitherBody) {
+  const geometry::Mesh punch{std::make_shared<geometry::TriangleMesh>(
+                                 geometry::tessellateCylinder(kRadius, 0.02, 64)),
+                             "punch"};
+  for (unsigned seed = 21; seed <= 23; ++seed) {
+    const Eigen::Isometry3d X_WH = test::randomPose(seed);
+    Eigen::Isometry3d X_WP = X_WH;
+    X_WP.translation() = X_WH * Vector3d(0.0, 0.0, 0.01 - kDepth);
+    for (const volume::ColumnOptions& o : {volume::ColumnOptions::fixed(64), volume::ColumnOptions{}}) {
+      volume::ColumnField fieldAB, fieldBA;
+      const volume::ContactVolume ab =
+          volume::columnsContact(punch, X_WP, geometry::HalfSpace{}, X_WH, &fieldAB, o);
+      const volume::ContactVolume ba =
+          volume::columnsContact(geometry::HalfSpace{}, X_WH, punch, X_WP, &fieldBA, o);
+      ASSERT_TRUE(ab.inContact() && ba.inContact()) << seed;
+      // The fixed grid is the same lattice both ways (round-off); the adaptive one is laid
+      // along ∓n, so the two differ within their estimates.
+      const double tolerance =
+          o.isFixed() ? 1e-12 : ab.relative_error + ba.relative_error;
+      EXPECT_NEAR(ba.volume / ab.volume, 1.0, tolerance) << seed << " fixed " << o.isFixed();
+      EXPECT_LT((ab.normal + ba.normal).norm(), 1e-15) << seed;  // the plane's, both ways
+      EXPECT_NEAR(double(fieldBA.depth.size()) / fieldAB.depth.size(), 1.0,
+                  o.isFixed() ? 0.0 : 0.05)
+          << seed;
+    }
+  }
+}
+
 TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
   const PunchContact& ref = punchContact();
   const geometry::Mesh punch{std::make_shared<geometry::TriangleMesh>(
@@ -545,6 +577,14 @@ TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
   // At most 64 × 64 columns, the disc filling π/4 of its bounding square less the rim.
   EXPECT_LE(field.depth.size(), 64u * 64u);
   EXPECT_GT(field.depth.size(), 0.7 * 64 * 64);
+  // The plate as body A: the same columns, the normal out of B2 (the punch) into B1.
+  volume::ColumnField swappedField;
+  const volume::ContactVolume swapped = volume::columnsContact(
+      geometry::HalfSpace{}, ref.X_WH, punch, X_WP, &swappedField, volume::ColumnOptions::fixed(64));
+  EXPECT_NEAR(swapped.volume / cv.volume, 1.0, 1e-12);
+  EXPECT_LT((swapped.normal + cv.normal).norm(), 1e-15);
+  EXPECT_LT((swapped.centroid - cv.centroid).norm(), 1e-12 * kRadius);
+  EXPECT_EQ(swappedField.depth.size(), field.depth.size());
 }
 
 }  // namespace
