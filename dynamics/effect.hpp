@@ -30,6 +30,10 @@
 #include "dynamics/wrench.hpp"
 #include "volume/contact_volume.hpp"
 
+namespace vcontact::volume {
+struct ColumnField;
+}
+
 namespace vcontact::dynamics {
 
 /// One named, bounded model parameter.
@@ -72,6 +76,10 @@ enum class FrictionLaw { kCoulomb, kBristle };
 struct ContactContext {
   // ---- inputs ----
   const volume::ContactVolume* cv = nullptr;
+  /// The δ map of cv (columns backend) when the pair's friction is distributed
+  /// (dynamics/DISTRIBUTED_FRICTION.md): coulomb then integrates pointwise Coulomb friction
+  /// over it, force and spin torque together, and spin adds nothing. Null: lumped friction.
+  const volume::ColumnField* field = nullptr;
   PairState state;         ///< with z projected onto the contact plane
   ModelSettings settings;
 

@@ -194,20 +194,33 @@ ContactContext Model::makeContext(const volume::ContactVolume& cv, const Relativ
 }
 
 ContactResult Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                              const PairState& state) const {
+                              const PairState& state, const volume::ColumnField* field) const {
   ContactResult r;
-  evaluate(cv, motion, state, r);
+  evaluate(cv, motion, state, r, field);
   return r;
 }
 
+void Model::checkDistributedFriction() const {
+  if (!has("coulomb")) {
+    throw InputError(kSource, "distributed friction integrates coulomb's friction pointwise; "
+                              "add the coulomb effect");
+  }
+  if (has("bristle")) {
+    throw InputError(kSource, "distributed friction is pointwise Coulomb friction and cannot "
+                              "replace the bristle law; remove bristle or use lumped friction");
+  }
+}
+
 void Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                     const PairState& state, ContactResult& r) const {
+                     const PairState& state, ContactResult& r,
+                     const volume::ColumnField* field) const {
   r.shares.assign(effects_.size(), Wrench{});
   r.wrench = Wrench{};
   r.rates = PairStateRates{};
   r.f_n = r.s = r.mu_max = 0.0;
   if (!cv.inContact()) return;
   ContactContext ctx = makeContext(cv, motion, state);
+  ctx.field = field;
   for (std::size_t i = 0; i < effects_.size(); ++i) {
     r.shares[i] = effects_[i]->apply(ctx);  // pass 2, in Stage order
     r.wrench += r.shares[i];

@@ -74,11 +74,22 @@ class Model {
 
   /// Wrench on B1 at cv.centroid, state rates and per-effect shares. No contact (V = 0)
   /// gives zero wrench and zero rates.
+  /// @param field  the δ map of cv for distributed friction (ContactContext::field), or null
+  ///   for the lumped friction of MODEL.md §3; with a field the model must pass
+  ///   checkDistributedFriction()
   ContactResult evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                         const PairState& state) const;
+                         const PairState& state,
+                         const volume::ColumnField* field = nullptr) const;
   /// The same, into `out` (reuses its storage: no allocation in the integrator's loop).
   void evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                const PairState& state, ContactResult& out) const;
+                const PairState& state, ContactResult& out,
+                const volume::ColumnField* field = nullptr) const;
+
+  /// Distributed friction replaces the lumped Coulomb force and spin torque (coulomb, spin,
+  /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs coulomb,
+  /// and it cannot stand in for the bristle law (bristle states have no pointwise form here).
+  /// @throws InputError (source "model") naming the reason
+  void checkDistributedFriction() const;
 
   /// Discrete state updates after an accepted step (MODEL.md §3 "State handling"): z is
   /// projected onto the contact plane; without contact all states reset to zero; effects

@@ -68,6 +68,27 @@ void checkBody(const RigidBody& b) {
   }
 }
 
+/// A distributed-friction pair integrates over the columns δ map with a model that can be
+/// distributed (Model::checkDistributedFriction), on a grid of a resolution in range.
+void checkDistributedPair(const ContactPair& p) {
+  if (p.friction != FrictionMode::kDistributed) return;
+  const std::string where = "pair '" + p.name + "'";
+  if (p.method && *p.method != volume::Method::kColumns) {
+    throw InputError(where, "distributed friction needs the columns method, not " +
+                                volume::methodName(*p.method));
+  }
+  if (p.column_resolution < kMinColumnResolution || p.column_resolution > kMaxColumnResolution) {
+    throw InputError(where, "column resolution " + std::to_string(p.column_resolution) +
+                                " is outside [" + std::to_string(kMinColumnResolution) + ", " +
+                                std::to_string(kMaxColumnResolution) + "]");
+  }
+  try {
+    p.model.checkDistributedFriction();
+  } catch (const InputError& e) {
+    throw InputError(where, e.message());
+  }
+}
+
 }  // namespace
 
 Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
@@ -84,6 +105,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     if (p.a >= scenario_.bodies.size() || p.b >= scenario_.bodies.size() || p.a == p.b) {
       throw InputError("pair '" + p.name + "'", "needs two different bodies of the scenario");
     }
+    checkDistributedPair(p);
     pair_offset_.push_back(n);
     n += PairState::kSize;
   }
@@ -101,6 +123,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     std::copy(init, init + kBodyStates, s);
   }
   last_pairs_.resize(scenario_.pairs.size());
+  fields_.resize(scenario_.pairs.size());
   kin_.resize(scenario_.bodies.size());
   force_.resize(scenario_.bodies.size());
   torque_.resize(scenario_.bodies.size());
@@ -138,13 +161,18 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     const BodyKinematics& B = kin[pair.b];
     const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
     PairOutput& out = last_pairs_[k];
-    out.cv = volume::computeContact(scenario_.bodies[pair.a].shape, X_WA,
-                                    scenario_.bodies[pair.b].shape, B.X_WB, pair.method);
+    const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
+    const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
+    const bool distributed = pair.friction == FrictionMode::kDistributed;
+    out.cv = distributed ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
+                                                  volume::ColumnOptions::fixed(pair.column_resolution))
+                         : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method);
     ++contact_count_;
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
     const Eigen::Vector3d& p_c = out.cv.centroid;
     const RelativeMotion motion{A.pointVelocity(p_c) - B.pointVelocity(p_c), A.w_WB - B.w_WB};
-    pair.model.evaluate(out.cv, motion, out.state, out.result);
+    pair.model.evaluate(out.cv, motion, out.state, out.result,
+                        distributed && out.cv.inContact() ? &fields_[k] : nullptr);
     const Wrench& w = out.result.wrench;  // on A at p_c; B gets the opposite
     force[pair.a] += w.f_W;
     torque[pair.a] += w.tau_W + (p_c - A.p_WBcm).cross(w.f_W);

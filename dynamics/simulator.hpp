@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "dynamics/scenario.hpp"
+#include "volume/columns.hpp"
 
 namespace vcontact::dynamics {
 
@@ -113,6 +114,7 @@ class Simulator {
   State last_x_;  ///< the state of the latest right-hand-side evaluation
   // The per-pair contacts of the latest right-hand-side evaluation (at last_x_).
   std::vector<PairOutput> last_pairs_;
+  std::vector<volume::ColumnField> fields_;  ///< δ maps of the distributed-friction pairs
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
   std::string non_finite_;  ///< the state whose rate was last found not finite
   long rhs_count_ = 0;

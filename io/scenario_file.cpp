@@ -243,6 +243,52 @@ dynamics::SimulationSettings readSettings(const Reader& r) {
   return s;
 }
 
+/// "friction" ("lumped" or "distributed") and, for distributed, "columns" (lines per side of
+/// the fixed grid). Distributed friction integrates over the columns method's δ map: the
+/// method defaults to columns and may not be another, and the model must allow it.
+void readFriction(const Reader& p, dynamics::ContactPair& pair) {
+  if (p.has("friction")) {
+    const std::string friction = p.text("friction");
+    if (friction == "distributed") {
+      pair.friction = dynamics::FrictionMode::kDistributed;
+    } else if (friction != "lumped") {
+      p.fail("friction", "expected \"lumped\" or \"distributed\", got \"" + friction + "\"");
+    }
+  }
+  const std::string pairName = "pair '" + pair.name + "': ";
+  if (pair.friction != dynamics::FrictionMode::kDistributed) {
+    if (p.has("columns")) {
+      p.fail("columns", pairName + "the column grid applies to \"friction\": \"distributed\" "
+                                   "only");
+    }
+    return;
+  }
+  if (!pair.method) pair.method = volume::Method::kColumns;
+  if (*pair.method != volume::Method::kColumns) {
+    p.fail("friction", pairName + "distributed friction integrates over the columns method's "
+                                  "δ map; set \"method\": \"columns\" (or leave it out), not \"" +
+                           volume::methodName(*pair.method) + "\"");
+  }
+  if (p.has("columns")) {
+    const auto& v = p["columns"];
+    const bool integer = v.is_number_integer() || v.is_number_unsigned();
+    const auto lines = integer ? v.get<long long>() : 0;
+    if (!integer || lines < dynamics::kMinColumnResolution ||
+        lines > dynamics::kMaxColumnResolution) {
+      p.fail("columns", pairName + "expected an integer number of grid lines per side in [" +
+                            std::to_string(dynamics::kMinColumnResolution) + ", " +
+                            std::to_string(dynamics::kMaxColumnResolution) + "], got " +
+                            v.dump());
+    }
+    pair.column_resolution = static_cast<int>(lines);
+  }
+  try {
+    pair.model.checkDistributedFriction();
+  } catch (const InputError& e) {
+    p.fail("friction", pairName + e.message());
+  }
+}
+
 }  // namespace
 
 ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source,
@@ -279,7 +325,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   if (!r.has("pairs") || !r["pairs"].is_array()) r.fail("pairs", "expected an array of pairs");
   for (std::size_t i = 0; i < r["pairs"].size(); ++i) {
     const Reader p(r["pairs"][i], source, "pairs[" + std::to_string(i) + "]");
-    p.allowOnly({"name", "a", "b", "model", "method"});
+    p.allowOnly({"name", "a", "b", "model", "method", "friction", "columns"});
     dynamics::ContactPair pair;
     pair.a = bodyIndex(p, "a", sc.bodies);
     pair.b = bodyIndex(p, "b", sc.bodies);
@@ -293,6 +339,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
         p.fail("method", e.message());
       }
     }
+    readFriction(p, pair);
     sc.pairs.push_back(std::move(pair));
   }
   if (r.has("outputs")) {

@@ -79,6 +79,10 @@ struct Grid {
     r1 = e1.cwiseAbs().dot(h);
     r2 = e2.cwiseAbs().dot(h);
   }
+  /// Lines along `dir` through the rectangle o ± r1 e1 ± r2 e2 (e1 ⟂ dir, unit).
+  Grid(const Vector3d& origin, const Vector3d& dir, const Vector3d& axis1, double half1,
+       double half2, int resolution)
+      : o(origin), u(dir), e1(axis1), e2(dir.cross(axis1)), r1(half1), r2(half2), n(resolution) {}
   double cellArea() const { return 4.0 * r1 * r2 / (double(n) * n); }
   /// In-plate offset from o of line (i, j), at the cell centre.
   Vector3d offset(int i, int j) const {
@@ -93,7 +97,16 @@ struct Grid {
 /// vertex crosses the surface exactly once.
 class GridCrossings {
  public:
-  GridCrossings(const Grid& g, const ColumnBody& body) : g_(g), start_(g.n * g.n + 1, 0) {
+  /// @param other  the other body. When it is a half-space and the lines run out of it
+  ///   (u·z_H ≥ 0), nodes wholly above its plane are not rasterised: their crossings come
+  ///   after every point of the overlap along the line (or, for u·z_H = 0, lie on lines that
+  ///   miss it), so they change neither the winding inside it nor any sum. Lines running into
+  ///   the half-space meet those crossings first, and they set the winding: no cull then.
+  GridCrossings(const Grid& g, const ColumnBody& body, const ColumnBody& other)
+      : g_(g),
+        start_(g.n * g.n + 1, 0),
+        cullAbove_(!other.bvh && other.X_WB.linear().col(2).dot(g.u) >= 0.0),
+        X_WH_(other.X_WB) {
     std::vector<std::pair<int, Crossing>> hits;
     if (body.bvh) {
       rasterize(*body.bvh, body.X_WB, body.bvh->root(), hits);
@@ -133,6 +146,11 @@ class GridCrossings {
     const WorldBox wb = worldBox(node, X_WM);
     const Vector3d c = 0.5 * (wb.lo + wb.hi) - g_.o, h = 0.5 * (wb.hi - wb.lo);
     const double slack = kBoxInflation * (h.norm() + c.norm());
+    if (cullAbove_) {
+      const Vector3d z_H = X_WH_.linear().col(2);
+      const Vector3d c_H = 0.5 * (wb.lo + wb.hi) - X_WH_.translation();
+      if (z_H.dot(c_H) - z_H.cwiseAbs().dot(h) > slack) return;
+    }
     if (std::abs(c.dot(g_.e1)) > g_.r1 + g_.e1.cwiseAbs().dot(h) + slack ||
         std::abs(c.dot(g_.e2)) > g_.r2 + g_.e2.cwiseAbs().dot(h) + slack) {
       return;
@@ -197,6 +215,8 @@ class GridCrossings {
 
   const Grid& g_;
   std::vector<int> start_;
+  bool cullAbove_;   ///< skip nodes above the other body's plane (see the constructor)
+  Isometry3d X_WH_;  ///< the other body's pose
   std::vector<Crossing> crossings_;
 };
 
@@ -272,7 +292,7 @@ struct GridSums {
 GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
                    std::vector<double>* depth) {
   if (depth) depth->assign(static_cast<std::size_t>(g.n) * g.n, 0.0);
-  const GridCrossings crossA(g, a), crossB(g, b);
+  const GridCrossings crossA(g, a, b), crossB(g, b, a);
   return tbb::parallel_reduce(
       tbb::blocked_range<int>(0, g.n), GridSums{},
       [&](const tbb::blocked_range<int>& rows, GridSums sums) {
@@ -437,11 +457,87 @@ ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
   return field;
 }
 
+/// The fixed grid of a mesh M against a half-space H (ColumnOptions::fixed), laid in M's own
+/// frame so that it moves with the body: e1 is M's x axis projected onto the plate (its y axis
+/// when x is within 30° of n), and the rectangle bounds, along e1 and e2, the boxes (in M) of
+/// the tree's leaves that reach below the plane. The bound is therefore the same in any world
+/// frame, tight for a face lying in M's axes, and constant while a face slides or spins on the
+/// plate: no rim column enters or leaves, and V and the δ map are smooth in the pose. The
+/// grid's origin lies in the plane.
+/// @return the grid, or one with n = 0 when no leaf reaches below the plane
+Grid fixedHalfspaceGrid(const MeshBvh& bvh, const Isometry3d& X_WM, const Isometry3d& X_WH,
+                        const Vector3d& n, int resolution) {
+  const Matrix3d& R_WM = X_WM.linear();
+  const Vector3d z_H = X_WH.linear().col(2);
+  const Matrix3d P = Matrix3d::Identity() - n * n.transpose();
+  const Vector3d x = P * R_WM.col(0);
+  // |P x| = sin∠(x, n) > 1/2: x more than 30° from n. The switch to y happens only for a
+  // body turned far from lying on its x-y face, never in the small rocking of a face.
+  constexpr double kInPlate = 0.5;
+  const Vector3d e1 = (x.norm() > kInPlate ? x : Vector3d(P * R_WM.col(1))).normalized();
+  const Vector3d e2 = n.cross(e1);
+  // Axes in M, and the plane's height z_H(p_M) = z_M · p_M + z0 for a point of M.
+  const Vector3d e1_M = R_WM.transpose() * e1, e2_M = R_WM.transpose() * e2;
+  const Vector3d z_M = R_WM.transpose() * z_H;
+  const double z0 = z_H.dot(X_WM.translation() - X_WH.translation());
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf), hi = Eigen::Vector2d::Constant(-kInf);
+  auto visit = [&](auto&& self, const BvhNode& node) -> void {
+    if (z_M.dot(node.center) + z0 - z_M.cwiseAbs().dot(node.halfExtent) >= 0.0) return;
+    if (!node.isLeaf()) {
+      self(self, bvh.nodes()[node.left]);
+      self(self, bvh.nodes()[node.right]);
+      return;
+    }
+    const Eigen::Vector2d c(e1_M.dot(node.center), e2_M.dot(node.center));
+    const Eigen::Vector2d h(e1_M.cwiseAbs().dot(node.halfExtent),
+                            e2_M.cwiseAbs().dot(node.halfExtent));
+    lo = lo.cwiseMin(c - h);
+    hi = hi.cwiseMax(c + h);
+  };
+  visit(visit, bvh.root());
+  if (!(lo.array() < hi.array()).all()) return Grid(Vector3d::Zero(), n, e1, 0.0, 0.0, 0);
+  // Centre of the rectangle in W: M's origin plus the offsets along e1, e2, moved along n
+  // into the plane.
+  const Eigen::Vector2d mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  Vector3d o = X_WM.translation() + mid.x() * e1 + mid.y() * e2;
+  o -= n * (n.dot(o - X_WH.translation()));
+  return Grid(o, n, e1, half.x(), half.y(), resolution);
+}
+
+/// The contact of the sums over grid g: moments about g.o moved to the centroid.
+ContactVolume assemble(const Grid& g, const GridSums& s, const Vector3d& n) {
+  const geometry::Moments& M = s.M;
+  const Vector3d c_o = M.m1 / M.m0;
+  return assembleContactVolume(M.m0, g.o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
+                               s.wetLines * g.cellArea(), s.maxDepth, Method::kColumns);
+}
+
+/// ColumnOptions::fixed against a half-space: one grid (fixedHalfspaceGrid), the plane's normal
+/// (out of B2 into B1), no axis passes, no estimate.
+ContactVolume fixedHalfspaceContact(const ColumnBody& a, const ColumnBody& b, int resolution,
+                                    ColumnField* field) {
+  const ColumnBody& mesh = a.bvh ? a : b;
+  const ColumnBody& plane = a.bvh ? b : a;
+  const Vector3d n = a.bvh ? Vector3d(b.X_WB.linear().col(2)) : Vector3d(-a.X_WB.linear().col(2));
+  const Grid g = fixedHalfspaceGrid(*mesh.bvh, mesh.X_WB, plane.X_WB, n, resolution);
+  if (g.n == 0) return {.method = Method::kColumns};
+  std::vector<double> depth;
+  const GridSums sums = integrate(a, b, g, field ? &depth : nullptr);
+  if (!(sums.M.m0 > 0.0)) return {.method = Method::kColumns};
+  if (field) *field = fieldOf(g, depth);
+  ContactVolume cv = assemble(g, sums, n);
+  cv.relative_error = kInf;
+  return cv;
+}
+
 }  // namespace
 
 ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const ColumnOptions& options,
                              ColumnField* field) {
   if (!a.bvh && !b.bvh) throw std::invalid_argument("columnsContact: two half-spaces");
+  if (options.isFixed() && (!a.bvh || !b.bvh)) {
+    return fixedHalfspaceContact(a, b, options.initialResolution, field);
+  }
   const ContactVolume none{.method = Method::kColumns};
   const WorldBox overlap = overlapBox(a, b);
   if (overlap.empty()) return none;
@@ -451,11 +547,7 @@ ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const Col
   if (!(r.sums.M.m0 > 0.0)) return none;
   const Grid g(box, n, r.resolution);
   if (field) *field = fieldOf(g, r.depth);
-  const geometry::Moments& M = r.sums.M;
-  const Vector3d c_o = M.m1 / M.m0;
-  ContactVolume cv =
-      assembleContactVolume(M.m0, g.o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
-                            r.sums.wetLines * g.cellArea(), r.sums.maxDepth, Method::kColumns);
+  ContactVolume cv = assemble(g, r.sums, n);
   cv.relative_error = r.error;
   return cv;
 }

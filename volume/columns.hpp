@@ -32,6 +32,15 @@ struct ColumnOptions {
   double relativeTolerance = 1e-3;  ///< stop when two grid levels agree on V to this
   int initialResolution = 16;       ///< lines per side of the first grid
   int maxResolution = 512;          ///< lines per side at most
+
+  /// One grid of `lines` per side, never refined: the same cost at every call (a simulation's
+  /// right-hand side) and no error estimate (relative_error is inf). Against a half-space the
+  /// normal is the plane's, without the axis passes, and the grid is laid in the mesh's own
+  /// frame over the bound (in that frame) of the tree's leaves that reach below the plane: it
+  /// moves with the body, so a face sliding or spinning on the plate keeps its columns and V
+  /// is smooth in the pose. Two meshes keep the axis passes and the overlap box.
+  static ColumnOptions fixed(int lines) { return {0.0, lines, lines}; }
+  bool isFixed() const { return initialResolution >= maxResolution; }
 };
 
 /// The penetration depth map of the finest grid: δ at each line with δ > 0.

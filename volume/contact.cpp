@@ -70,7 +70,7 @@ std::optional<ColumnBody> columnBody(const geometry::Shape& s, const Eigen::Isom
 
 ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             ColumnField* field) {
+                             ColumnField* field, const ColumnOptions& options) {
   std::shared_ptr<const geometry::MeshBvh> bvhA, bvhB;
   const auto ca = columnBody(a, X_WA, bvhA);
   const auto cb = columnBody(b, X_WB, bvhB);
@@ -78,7 +78,7 @@ ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& 
     unsupported(Method::kColumns, a, b,
                 "it integrates columns through two meshes, or a mesh and a half-space");
   }
-  return columnsContact(*ca, *cb, ColumnOptions{}, field);
+  return columnsContact(*ca, *cb, options, field);
 }
 
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {

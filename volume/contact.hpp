@@ -29,9 +29,10 @@ ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& 
 /// The column method with its δ map (MODEL.md §1): A and B each a mesh or a half-space, at
 /// least one a mesh.
 /// @param[out] field  the δ map of the finest grid
+/// @param options      grid and tolerance (default: refined to 1e-3)
 /// @throws InputError when the pair is not handled, naming both shapes
 ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             ColumnField* field);
+                             ColumnField* field, const ColumnOptions& options = {});
 
 }  // namespace vcontact::volume

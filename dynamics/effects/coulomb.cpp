@@ -1,6 +1,10 @@
 // coulomb: f_t = −μ_max C_v |f_n| dir_ε(v_t) (MODEL.md §3). Also provides μ_C and the
 // stick–slip speed v_s that every friction effect uses. With bristle in the model the bristle
 // form replaces this one and the share is zero.
+// Distributed friction (ContactContext::field set): the traction −μ_max p(s) dir_ε(v(s))
+// integrated over the δ map instead, force and torque about p_c together
+// (dynamics/distributed_friction.hpp); spin and the Contensou factors are then not used.
+#include "dynamics/distributed_friction.hpp"
 #include "dynamics/effects/registry.hpp"
 
 namespace vcontact::dynamics {
@@ -25,6 +29,14 @@ class Coulomb final : public EffectBase<Coulomb> {
 
   Wrench apply(ContactContext& ctx) const override {
     if (ctx.law == FrictionLaw::kBristle) return {};
+    if (ctx.field != nullptr) {
+      // The relative motion at p_c back from the context: v_c = v_t − δ̇ n; only ω_n acts
+      // in the plate.
+      const RelativeMotion motion{ctx.v_t - ctx.delta_dot * ctx.n, ctx.omega_n * ctx.n};
+      return distributedFriction(*ctx.cv, *ctx.field, {ctx.kv, ctx.a}, motion, ctx.mu_max,
+                                 ctx.settings.v_eps)
+          .wrench;
+    }
     return {-ctx.mu_max * ctx.C_v * ctx.f_n * dirEps(ctx.v_t, ctx.settings.v_eps),
             Eigen::Vector3d::Zero()};
   }

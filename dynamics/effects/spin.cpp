@@ -2,6 +2,7 @@
 //   Coulomb form: τ_s = −μ_max C_ω r_gyr |f_n| sgn_ε(ω_n) n
 //   bristle form: τ_s = −r_gyr² |f_n| sat(σ0 θ_n + σ1 θ̇_n, μ_max / r_gyr) n
 // (the σ2 ω_n term of the bristle form belongs to the viscous effect).
+// With distributed friction the coulomb share carries the spin torque, and this one is zero.
 #include "dynamics/effects/registry.hpp"
 
 namespace vcontact::dynamics {
@@ -19,7 +20,7 @@ class Spin final : public EffectBase<Spin> {
 
   Wrench apply(ContactContext& ctx) const override {
     const double r = ctx.r_gyr;
-    if (r <= 0.0) return {};
+    if (r <= 0.0 || ctx.field != nullptr) return {};
     double torque = 0.0;  // N·m along n
     if (ctx.law == FrictionLaw::kBristle) {
       const double m = ctx.sigma0 * ctx.state.theta_n + ctx.sigma1 * ctx.theta_dot;

@@ -80,6 +80,120 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
             std::string::npos);
 }
 
+// "friction": "distributed" (DISTRIBUTED_FRICTION.md): the method defaults to columns and may
+// be no other; "columns" sets the fixed grid (default 64 lines per side) and is refused with
+// lumped friction or out of [8, 512]; the model needs coulomb and cannot have bristle. Each
+// message names the file, the pair's place and key, the pair and what was expected.
+nlohmann::json distributedBall() {
+  nlohmann::json j = ballOnPlate();
+  j["bodies"][1]["shape"] = "box:0.02,0.02,0.02";
+  j["pairs"][0]["name"] = "box-plate";
+  j["pairs"][0]["friction"] = "distributed";
+  j["pairs"][0]["model"]["effects"]["coulomb"] = {{"mu", 0.2}};
+  return j;
+}
+
+TEST(ScenarioFile, DistributedFrictionDefaultsToColumnsAndAGridOf64) {
+  const ScenarioFile f = scenarioFromJson(distributedBall(), "s.json", kScenarios);
+  const dynamics::ContactPair& pair = f.scenario.pairs[0];
+  EXPECT_EQ(pair.friction, dynamics::FrictionMode::kDistributed);
+  ASSERT_TRUE(pair.method.has_value());
+  EXPECT_EQ(*pair.method, volume::Method::kColumns);
+  EXPECT_EQ(pair.column_resolution, dynamics::kDefaultColumnResolution);
+  EXPECT_EQ(pair.column_resolution, 64);
+  nlohmann::json j = distributedBall();
+  j["pairs"][0]["columns"] = 96;
+  j["pairs"][0]["method"] = "columns";
+  EXPECT_EQ(scenarioFromJson(j, "s.json", kScenarios).scenario.pairs[0].column_resolution, 96);
+  // Lumped is the default and "lumped" says so.
+  nlohmann::json lumped = ballOnPlate();
+  lumped["pairs"][0]["friction"] = "lumped";
+  EXPECT_EQ(scenarioFromJson(lumped, "s.json", kScenarios).scenario.pairs[0].friction,
+            dynamics::FrictionMode::kLumped);
+}
+
+TEST(ScenarioFile, DistributedFrictionErrorsNameThePairAndKey) {
+  struct Case {
+    const char* name;
+    const char* pointer;
+    nlohmann::json value;
+    const char* fragment;
+  };
+  const nlohmann::json bristle = {{"sigma0", 4500}, {"sigma1", 300}};
+  const std::vector<Case> cases = {
+      {"unknown law", "/pairs/0/friction", "pointwise",
+       "s.json: pairs[0].friction: expected \"lumped\" or \"distributed\", got \"pointwise\""},
+      {"another method", "/pairs/0/method", "halfspace",
+       "s.json: pairs[0].friction: pair 'box-plate': distributed friction integrates over the "
+       "columns method's δ map; set \"method\": \"columns\" (or leave it out), not "
+       "\"halfspace\""},
+      {"too coarse", "/pairs/0/columns", 4,
+       "s.json: pairs[0].columns: pair 'box-plate': expected an integer number of grid lines "
+       "per side in [8, 512], got 4"},
+      {"too fine", "/pairs/0/columns", 1024, "pairs[0].columns: pair 'box-plate': expected an"},
+      {"not an integer", "/pairs/0/columns", 64.5, "in [8, 512], got 64.5"},
+      {"a string", "/pairs/0/columns", "64", "in [8, 512], got \"64\""},
+      {"negative", "/pairs/0/columns", -64, "in [8, 512], got -64"},
+      {"bristle", "/pairs/0/model/effects/bristle", bristle,
+       "s.json: pairs[0].friction: pair 'box-plate': distributed friction is pointwise Coulomb "
+       "friction and cannot replace the bristle law"},
+  };
+  for (const auto& c : cases) {
+    nlohmann::json j = distributedBall();
+    j[nlohmann::json::json_pointer(c.pointer)] = c.value;
+    if (std::string(c.name) == "bristle") j["pairs"][0]["model"]["effects"]["stribeck"] = nlohmann::json::object();
+    const std::string message = errorOf(j);
+    EXPECT_NE(message.find(c.fragment), std::string::npos)
+        << c.name << ": got \"" << message << "\"";
+  }
+  nlohmann::json no_coulomb = distributedBall();
+  no_coulomb["pairs"][0]["model"]["effects"].erase("coulomb");
+  EXPECT_NE(errorOf(no_coulomb).find("pairs[0].friction: pair 'box-plate': distributed friction "
+                                     "integrates coulomb's friction pointwise; add the coulomb "
+                                     "effect"),
+            std::string::npos)
+      << errorOf(no_coulomb);
+  nlohmann::json lumped_grid = distributedBall();
+  lumped_grid["pairs"][0]["friction"] = "lumped";
+  lumped_grid["pairs"][0]["columns"] = 64;
+  EXPECT_NE(errorOf(lumped_grid).find("pairs[0].columns: pair 'box-plate': the column grid "
+                                      "applies to \"friction\": \"distributed\" only"),
+            std::string::npos)
+      << errorOf(lumped_grid);
+}
+
+// The Simulator checks pairs built in code the same way (no reader in between).
+TEST(ScenarioFile, SimulatorRefusesADistributedPairItCannotRun) {
+  const auto distributed = [] {
+    return scenarioFromJson(distributedBall(), "s.json", kScenarios).scenario;
+  };
+  EXPECT_NO_THROW(dynamics::Simulator{distributed()});
+  const auto messageOf = [](const dynamics::Scenario& s) -> std::string {
+    try {
+      dynamics::Simulator sim(s);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  dynamics::Scenario method = distributed();
+  method.pairs[0].method = volume::Method::kHalfspace;
+  EXPECT_NE(messageOf(method).find("pair 'box-plate': distributed friction needs the columns "
+                                   "method, not halfspace"),
+            std::string::npos)
+      << messageOf(method);
+  dynamics::Scenario grid = distributed();
+  grid.pairs[0].column_resolution = 2;
+  EXPECT_NE(messageOf(grid).find("pair 'box-plate': column resolution 2 is outside [8, 512]"),
+            std::string::npos)
+      << messageOf(grid);
+  dynamics::Scenario model = distributed();
+  model.pairs[0].model = dynamics::Model::withEffects({"stiffness"});
+  EXPECT_NE(messageOf(model).find("pair 'box-plate': distributed friction integrates coulomb"),
+            std::string::npos)
+      << messageOf(model);
+}
+
 // A contact far too soft for the ball: it sinks past 10 % of its size and the run stops with
 // the time, the pair and the quantity, after delivering every output before the stop.
 TEST(ScenarioFile, FailingRunStopsWithTimePairAndQuantity) {

@@ -1,11 +1,13 @@
 // `vcontact simulate`: the files it writes, and its exit status when a run stops.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -41,6 +43,103 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
+}
+
+/// The values of one column of a CSV file with a header row.
+std::vector<double> column(const fs::path& csv, const std::string& name) {
+  std::istringstream lines(readAll(csv));
+  std::string line;
+  std::getline(lines, line);
+  std::vector<std::string> header;
+  std::istringstream h(line);
+  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  const auto at = std::find(header.begin(), header.end(), name);
+  if (at == header.end()) {
+    ADD_FAILURE() << csv << " has no column " << name;
+    return {};
+  }
+  const auto index = static_cast<std::size_t>(at - header.begin());
+  std::vector<double> out;
+  while (std::getline(lines, line)) {
+    std::istringstream row(line);
+    std::string cell;
+    for (std::size_t i = 0; i <= index && std::getline(row, cell, ','); ++i) {
+    }
+    out.push_back(std::stod(cell));
+  }
+  return out;
+}
+
+double largest(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+/// The bundled lumped-against-distributed scenario, shortened to `duration` s, in `dir`.
+fs::path shortPunchScenario(const fs::path& dir, const std::string& duration) {
+  const fs::path assets = fs::path(VCONTACT_ASSETS_DIR) / "scenarios";
+  std::string text = readAll(assets / "punch_lumped_vs_distributed.json");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  };
+  replace("\"duration\": 0.06", "\"duration\": " + duration);
+  std::ostringstream mesh;  // the absolute path, quoted
+  mesh << '"' << (assets / "meshes" / "punch.stl").string() << '"';
+  for (int i = 0; i < 2; ++i) replace("\"meshes/punch.stl\"", mesh.str());
+  const fs::path out = dir / "punch.json";
+  std::ofstream(out) << text;
+  return out;
+}
+
+// "friction": "distributed" end to end: the distributed pair's spin torque is carried by the
+// coulomb share (spin and contensou zero), the lumped pair's by spin.
+TEST(SimulateCli, DistributedPairPutsTheSpinTorqueInCoulomb) {
+  const fs::path dir = scratch("distributed");
+  const fs::path scenario = shortPunchScenario(dir, "0.003");
+  ASSERT_EQ(runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() +
+                       "\" --quiet",
+                   dir / "err"),
+            0)
+      << readAll(dir / "err");
+  const fs::path distributed = dir / "out" / "pair_distributed-plate.csv";
+  const fs::path lumped = dir / "out" / "pair_lumped-plate.csv";
+  EXPECT_EQ(lineCount(distributed), 1 + 4);  // t = 0, 1, 2, 3 ms
+  EXPECT_EQ(largest(column(distributed, "spin.tauz")), 0.0);
+  EXPECT_EQ(largest(column(distributed, "contensou.tauz")), 0.0);
+  EXPECT_GT(largest(column(distributed, "coulomb.tauz")), 0.0);
+  EXPECT_GT(largest(column(lumped, "spin.tauz")), 0.0);
+  EXPECT_EQ(largest(column(lumped, "coulomb.tauz")), 0.0);
+  // Sliding dominates (ε = 5): the lumped spin torque is about twice the pointwise one.
+  const double ratio =
+      column(lumped, "spin.tauz").front() / column(distributed, "coulomb.tauz").front();
+  EXPECT_GT(ratio, 1.8);
+  EXPECT_LT(ratio, 2.1);
+  fs::remove_all(dir);
+}
+
+TEST(SimulateCli, BadColumnGridExitsWithTwoNamingPairAndKey) {
+  const fs::path dir = scratch("columns");
+  const fs::path scenario = shortPunchScenario(dir, "0.003");
+  std::string text = readAll(scenario);
+  const std::string grid = "\"columns\": 64";
+  const auto at = text.find(grid);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, grid.size(), "\"columns\": 4");
+  std::ofstream(scenario) << text;
+  EXPECT_EQ(runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() +
+                       "\"",
+                   dir / "err"),
+            2);
+  const std::string err = readAll(dir / "err");
+  EXPECT_NE(err.find("pairs[1].columns: pair 'distributed-plate': expected an integer number "
+                     "of grid lines per side in [8, 512], got 4"),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "bodies.csv"));
+  fs::remove_all(dir);
 }
 
 TEST(SimulateCli, WritesBodiesPairsAndSummary) {
