@@ -459,8 +459,9 @@ ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
 
 /// The fixed grid of a mesh M against a half-space H (ColumnOptions::fixed), laid in M's own
 /// frame so that it moves with the body: e1 is M's x axis projected onto the plate (its y axis
-/// when x is within 30° of n), and the rectangle bounds, along e1 and e2, the boxes (in M) of
-/// the tree's leaves that reach below the plane. The bound is therefore the same in any world
+/// when x is within 30° of n), and the rectangle bounds, along e1 and e2, the triangles of M
+/// that reach below the plane (triangles, not leaves, so that the grid does not depend on the
+/// tree's leaf size). The bound is therefore the same in any world
 /// frame, tight for a face lying in M's axes, and constant while a face slides or spins on the
 /// plate: no rim column enters or leaves, and V and the δ map are smooth in the pose. The
 /// grid's origin lies in the plane.
@@ -488,11 +489,18 @@ Grid fixedHalfspaceGrid(const MeshBvh& bvh, const Isometry3d& X_WM, const Isomet
       self(self, bvh.nodes()[node.right]);
       return;
     }
-    const Eigen::Vector2d c(e1_M.dot(node.center), e2_M.dot(node.center));
-    const Eigen::Vector2d h(e1_M.cwiseAbs().dot(node.halfExtent),
-                            e2_M.cwiseAbs().dot(node.halfExtent));
-    lo = lo.cwiseMin(c - h);
-    hi = hi.cwiseMax(c + h);
+    const geometry::TriangleMesh& mesh = bvh.mesh();
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const int f = bvh.order()[static_cast<std::size_t>(i)];
+      double lowest = kInf;
+      for (int k = 0; k < 3; ++k) lowest = std::min(lowest, z_M.dot(mesh.corner(f, k)) + z0);
+      if (lowest >= 0.0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d p(e1_M.dot(mesh.corner(f, k)), e2_M.dot(mesh.corner(f, k)));
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    }
   };
   visit(visit, bvh.root());
   if (!(lo.array() < hi.array()).all()) return Grid(Vector3d::Zero(), n, e1, 0.0, 0.0, 0);
