@@ -25,9 +25,10 @@ namespace {
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
 
-/// A mesh with its tree and topology, as the dispatcher caches them.
+/// A mesh with its tree and topology, as the dispatcher caches them (by default with the
+/// tree the engine builds).
 struct Body {
-  explicit Body(geometry::TriangleMesh m, int maxLeafSize = 4)
+  explicit Body(geometry::TriangleMesh m, int maxLeafSize = geometry::MeshBvh::kDefaultLeafSize)
       : bvh(std::move(m), maxLeafSize), topo(bvh.mesh()) {}
   const geometry::TriangleMesh& mesh() const { return bvh.mesh(); }
   geometry::MeshBvh bvh;
