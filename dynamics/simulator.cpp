@@ -124,6 +124,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   }
   last_pairs_.resize(scenario_.pairs.size());
   fields_.resize(scenario_.pairs.size());
+  caches_.resize(scenario_.pairs.size());
   kin_.resize(scenario_.bodies.size());
   force_.resize(scenario_.bodies.size());
   torque_.resize(scenario_.bodies.size());
@@ -166,7 +167,8 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     const bool distributed = pair.friction == FrictionMode::kDistributed;
     out.cv = distributed ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
                                                   volume::ColumnOptions::fixed(pair.column_resolution))
-                         : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method);
+                         : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
+                                                  &caches_[k]);
     ++contact_count_;
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
     const Eigen::Vector3d& p_c = out.cv.centroid;

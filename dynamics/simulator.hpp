@@ -23,6 +23,7 @@
 
 #include "dynamics/scenario.hpp"
 #include "volume/columns.hpp"
+#include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
 
@@ -115,6 +116,9 @@ class Simulator {
   // The per-pair contacts of the latest right-hand-side evaluation (at last_x_).
   std::vector<PairOutput> last_pairs_;
   std::vector<volume::ColumnField> fields_;  ///< δ maps of the distributed-friction pairs
+  /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
+  /// the fast method's leaf pairs while the bodies move less than its reach).
+  std::vector<volume::ContactCache> caches_;
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
   std::string non_finite_;  ///< the state whose rate was last found not finite
   long rhs_count_ = 0;

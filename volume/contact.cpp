@@ -45,7 +45,8 @@ ContactVolume cgalReference(const geometry::Shape& a, const Eigen::Isometry3d& X
 }
 
 ContactVolume fastMeshMesh(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                           const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+                           const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                           MeshMeshCache* cache) {
   const auto* ma = meshOf(a);
   const auto* mb = meshOf(b);
   if (!ma || !mb) {
@@ -53,7 +54,7 @@ ContactVolume fastMeshMesh(const geometry::Shape& a, const Eigen::Isometry3d& X_
                 "it intersects two meshes (for a mesh against a half-space use halfspace)");
   }
   return meshMeshContact(*bvhOf(ma->mesh), *topologyOf(ma->mesh), X_WA, *bvhOf(mb->mesh),
-                         *topologyOf(mb->mesh), X_WB);
+                         *topologyOf(mb->mesh), X_WB, cache);
 }
 
 /// A mesh (with its cached tree) or a half-space as a column-method body; null otherwise.
@@ -91,13 +92,13 @@ Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
 
 ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             std::optional<Method> method) {
+                             std::optional<Method> method, ContactCache* cache) {
   const Method m = method ? *method : defaultMethod(a, b);  // value_or would evaluate eagerly
   switch (m) {
     case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
     case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);
     case Method::kCgal: return cgalReference(a, X_WA, b, X_WB);
-    case Method::kFast: return fastMeshMesh(a, X_WA, b, X_WB);
+    case Method::kFast: return fastMeshMesh(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr);
     case Method::kColumns: return columnsContact(a, X_WA, b, X_WB, nullptr);
   }
   unsupported(m, a, b, "unknown method");

@@ -9,6 +9,7 @@
 #include "geometry/primitives.hpp"
 #include "volume/columns.hpp"
 #include "volume/contact_volume.hpp"
+#include "volume/mesh_mesh.hpp"
 
 namespace vcontact::volume {
 
@@ -18,13 +19,21 @@ namespace vcontact::volume {
 /// @throws InputError when no backend in this build handles the pair
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 
+/// What a pair of shapes keeps between queries at nearby poses (one per pair and thread;
+/// used by the methods that gain from it: `fast`, MeshMeshCache).
+struct ContactCache {
+  MeshMeshCache meshMesh;
+};
+
 /// ContactVolume of A (B1) and B (B2) by `method` (default: defaultMethod). `fast` takes
 /// two meshes only: a mesh against a half-space is refused (the halfspace clip is the exact
 /// method for it).
+/// @param cache  if not null, the pair's memory between queries (ContactCache)
 /// @throws InputError when the method does not handle the pair, naming both shapes
 ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             std::optional<Method> method = std::nullopt);
+                             std::optional<Method> method = std::nullopt,
+                             ContactCache* cache = nullptr);
 
 /// The column method with its δ map (MODEL.md §1): A and B each a mesh or a half-space, at
 /// least one a mesh.

@@ -316,8 +316,8 @@ class Intersector {
     margin_ = kBoxMargin * (extent(body_[0]) + extent(body_[1]));
   }
 
-  ContactVolume run() {
-    findCrossings();
+  ContactVolume run(MeshMeshCache* cache) {
+    findCrossings(cache);
     walkEdges();
     buildSegments();
     for (int side = 0; side < 2; ++side) {
@@ -341,12 +341,12 @@ class Intersector {
  private:
   // --- 1, 2: candidate face pairs and their crossings --------------------------------------
 
-  void findCrossings() {
+  void findCrossings(MeshMeshCache* cache) {
     const Isometry3d X_BA = body_[1].X_WM.inverse() * body_[0].X_WM;
     const Matrix3d absR = X_BA.linear().cwiseAbs();
     const auto& nodesA = body_[0].bvh.nodes();
     const auto& nodesB = body_[1].bvh.nodes();
-    // Inlined: called from two places, it is the descent's inner loop.
+    // Inlined: it is the descent's inner loop.
     const auto overlap = [&](int ia, int ib) __attribute__((always_inline)) {
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
@@ -355,6 +355,27 @@ class Intersector {
                           pa.halfExtent + nb.halfExtent + Vector3d::Constant(margin_)) &&
              slabsOverlap(na, pa.center, pa.normalAxis, nb);
     };
+    const auto atLeaves = [&](int ia, int ib) __attribute__((always_inline)) {
+      testLeaves(nodesA[static_cast<std::size_t>(ia)], nodesB[static_cast<std::size_t>(ib)]);
+    };
+    if (cache == nullptr) {
+      descend(overlap, atLeaves);
+      return;
+    }
+    if (!cache->covers(body_[0].bvh, body_[1].bvh, X_BA)) record(*cache, X_BA, absR);
+    else ++cache->reuses;
+    for (const auto& [ia, ib] : cache->leafPairs) {
+      if (overlap(ia, ib)) atLeaves(ia, ib);
+    }
+  }
+
+  /// Descends both trees together from the roots: the up to four child pairs of a pair that
+  /// `overlap`s are tested before they are pushed (both nodes are split at once, skipping the
+  /// intermediate (child, parent) tests); `atLeaves` gets every overlapping pair of leaves.
+  template <typename Overlap, typename AtLeaves>
+  void descend(const Overlap& overlap, const AtLeaves& atLeaves) {
+    const auto& nodesA = body_[0].bvh.nodes();
+    const auto& nodesB = body_[1].bvh.nodes();
     auto& stack = w_.nodeStack;
     stack.clear();
     if (overlap(0, 0)) stack.emplace_back(0, 0);
@@ -364,7 +385,7 @@ class Intersector {
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
       if (na.isLeaf() && nb.isLeaf()) {
-        testLeaves(na, nb);
+        atLeaves(ia, ib);
         continue;
       }
       const int childrenA[2] = {na.isLeaf() ? ia : na.left, na.right};
@@ -375,6 +396,34 @@ class Intersector {
         }
       }
     }
+  }
+
+  /// Records in `cache` the leaf pairs whose boxes, A's placed in B's frame at X_BA, overlap
+  /// when grown by the cache's reach m (MeshMeshCache): boxes only, since the slab bound of a
+  /// turned node is not a grown copy of the old one. A node's placed box at a pose reached by
+  /// moving A's points at most m lies within its box here grown by m, so any leaf pair that
+  /// overlaps there is among those recorded.
+  void record(MeshMeshCache& cache, const Isometry3d& X_BA, const Matrix3d& absR) {
+    const auto& nodesA = body_[0].bvh.nodes();
+    const auto& nodesB = body_[1].bvh.nodes();
+    const BvhNode& rootA = body_[0].bvh.root();
+    const BvhNode& rootB = body_[1].bvh.root();
+    const double reach =
+        MeshMeshCache::kReach * (rootA.halfExtent.norm() + rootB.halfExtent.norm());
+    const Vector3d grow = Vector3d::Constant(margin_ + reach);
+    const auto grownOverlap = [&](int ia, int ib) {
+      const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
+      const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
+      const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
+      return allLessEqual((pa.center - nb.center).cwiseAbs(), pa.halfExtent + nb.halfExtent + grow);
+    };
+    cache.leafPairs.clear();
+    descend(grownOverlap, [&](int ia, int ib) { cache.leafPairs.emplace_back(ia, ib); });
+    cache.a = &body_[0].bvh;
+    cache.b = &body_[1].bvh;
+    cache.X_BA = X_BA;
+    cache.reach = reach;
+    ++cache.refreshes;
   }
 
   /// Node ia of A's tree in B's frame, placed on first use in this query.
@@ -851,13 +900,24 @@ class Intersector {
 
 }  // namespace
 
+bool MeshMeshCache::covers(const MeshBvh& treeA, const MeshBvh& treeB,
+                           const Isometry3d& X_BA_now) const {
+  if (a != &treeA || b != &treeB) return false;
+  // Every point of A's root box is c + r with |r| ≤ ρ; it moved (in B's frame) by
+  // |X_now c − X c + (R_now − R) r| ≤ |X_now c − X c| + ‖R_now − R‖_F ρ.
+  const BvhNode& root = treeA.root();
+  const double moved = (X_BA_now * root.center - X_BA * root.center).norm() +
+                       (X_BA_now.linear() - X_BA.linear()).norm() * root.halfExtent.norm();
+  return moved <= reach;
+}
+
 ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
                               const MeshBvh& b, const MeshTopology& topoB,
-                              const Isometry3d& X_WB) {
+                              const Isometry3d& X_WB, MeshMeshCache* cache) {
   thread_local Scratch scratch;
   Intersector query(Body{a, topoA, X_WA, scratch.sides[0]}, Body{b, topoB, X_WB, scratch.sides[1]},
                     scratch);
-  return query.run();
+  return query.run(cache);
 }
 
 }  // namespace vcontact::volume

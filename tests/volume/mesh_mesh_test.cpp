@@ -158,6 +158,67 @@ TEST(FastMeshMesh, FinelyFacetedShallowPairUnderRigidMotion) {
   }
 }
 
+// The leaf pairs kept between queries (MeshMeshCache) along a path of poses as a
+// simulation visits them: steps of a tenth of the cache's reach (reused), and now and then a
+// jump of several reaches (re-recorded). Each query must give what a query without the cache
+// gives: the same polyhedron from the same placed vertices, only the crossings found in
+// another order (another integration apex), so the agreement is that of two summation
+// orders, far inside the tolerances held against CGAL.
+TEST(FastMeshMesh, CachedLeafPairsGiveTheFreshResultAlongAPath) {
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    MeshMeshCache cache;
+    const double reach = MeshMeshCache::kReach * (c.a->bvh.root().halfExtent.norm() +
+                                                  c.b->bvh.root().halfExtent.norm());
+    Isometry3d X_WA = c.X_WA;
+    int jumps = 0, inContact = 0;
+    for (int k = 0; k < 60; ++k) {
+      const bool jump = k % 20 == 19;
+      const double step = (jump ? 3.0 : 0.1) * reach;
+      const Isometry3d P = test::randomPose(1000 + k);
+      // A small rigid motion of A about its pose: translation `step` along a random
+      // direction (bounded so that A stays near the contact), rotation of step / 0.05 m.
+      const Vector3d t = P.linear().col(0) * step;
+      X_WA.translation() = c.X_WA.translation() + 0.5 * (X_WA.translation() - c.X_WA.translation()) + t;
+      X_WA.linear() = Eigen::AngleAxisd(step / 0.05, P.linear().col(1)).toRotationMatrix() *
+                      X_WA.linear();
+      jumps += jump ? 1 : 0;
+      const ContactVolume fresh = fast(*c.a, X_WA, *c.b, c.X_WB);
+      const ContactVolume cached =
+          meshMeshContact(c.a->bvh, c.a->topo, X_WA, c.b->bvh, c.b->topo, c.X_WB, &cache);
+      ASSERT_EQ(cached.inContact(), fresh.inContact()) << "step " << k;
+      if (!fresh.inContact()) continue;
+      ++inContact;
+      const Errors e = compare(cached, fresh);
+      EXPECT_LE(e.V, kVolumeTol) << "step " << k;
+      EXPECT_LE(e.centroid, kMomentTol) << "step " << k;
+      EXPECT_LE(e.J_v, kMomentTol) << "step " << k;
+      EXPECT_LE(e.J_s, kMomentTol) << "step " << k;
+      EXPECT_LE(e.normal, kMomentTol) << "step " << k;
+    }
+    EXPECT_GT(inContact, 30);
+    // Recorded at the first query and after every jump (each moves A by more than the reach).
+    EXPECT_GE(cache.refreshes, 1 + jumps);
+    EXPECT_GT(cache.reuses, 40);
+  }
+}
+
+// Another pair of trees, or the same trees swapped, is never answered from the cache.
+TEST(FastMeshMesh, CacheIsForItsOwnTrees) {
+  const std::vector<Case> all = cases();
+  const Case& c = all.front();
+  const Case& d = all[1];
+  MeshMeshCache cache;
+  meshMeshContact(c.a->bvh, c.a->topo, c.X_WA, c.b->bvh, c.b->topo, c.X_WB, &cache);
+  const ContactVolume other =
+      meshMeshContact(d.a->bvh, d.a->topo, d.X_WA, d.b->bvh, d.b->topo, d.X_WB, &cache);
+  EXPECT_EQ(cache.refreshes, 2);
+  EXPECT_EQ(cache.reuses, 0);
+  EXPECT_NEAR(other.volume, fast(*d.a, d.X_WA, *d.b, d.X_WB).volume,
+              kVolumeTol * other.volume);
+  EXPECT_FALSE(cache.covers(d.b->bvh, d.a->bvh, cache.X_BA));
+}
+
 // Moving both bodies by one rigid motion moves the region with them. The placed vertices
 // round differently (ε times the 0.37 m translation), which moves V by about that over the
 // region's depth (≥ 0.1 mm here): ~1e-12; 1e-10 bounds it with room.
