@@ -4,11 +4,14 @@
 // ∂(A ∩ B) = (∂A ∩ B) ∪ (∂B ∩ A), without building the region as a mesh.
 //
 // Steps:
-//  1. Broad phase: the two bounding-volume trees are descended together (A's boxes taken into
-//     B's frame, each node once per query); overlapping leaves give candidate face pairs,
-//     and a face pair survives a conservative plane-side test and, when each face certainly
-//     straddles the other's plane, the Guigue–Devillers interval test (two filtered
-//     orientations: a pair is dropped only when it certainly misses).
+//  1. Broad phase: the two bounding-volume trees are descended together, both nodes of a
+//     pair split at once (A's boxes taken into B's frame, each node once per query; box and
+//     normal-slab bounds); or, with a MeshMeshCache, the leaf pairs recorded at a nearby pose
+//     are retested instead. In an overlapping leaf pair, a face that misses the other leaf's
+//     slab skips its row (column); a face pair then survives a box test, a conservative
+//     plane-side test and, when each face certainly straddles the other's plane, the
+//     Guigue–Devillers interval test (two filtered orientations: a pair is dropped only when
+//     it certainly misses).
 //  2. Crossings: every edge of one mesh is tested against every candidate face of the other
 //     with exact orientation predicates and a symbolic perturbation (exact_predicates.hpp),
 //     each (edge, face) pair exactly once, so every face that uses the decision sees the same
