@@ -362,8 +362,11 @@ class Intersector {
       descend(overlap, atLeaves);
       return;
     }
-    if (!cache->covers(body_[0].bvh, body_[1].bvh, X_BA)) record(*cache, X_BA, absR);
-    else ++cache->reuses;
+    if (cache->covers(body_[0].bvh, body_[1].bvh, X_BA)) {
+      ++cache->reuses;
+    } else {
+      record(*cache, X_BA, absR);
+    }
     for (const auto& [ia, ib] : cache->leafPairs) {
       if (overlap(ia, ib)) atLeaves(ia, ib);
     }
