@@ -465,7 +465,7 @@ ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
 /// frame, tight for a face lying in M's axes, and constant while a face slides or spins on the
 /// plate: no rim column enters or leaves, and V and the δ map are smooth in the pose. The
 /// grid's origin lies in the plane.
-/// @return the grid, or one with n = 0 when no leaf reaches below the plane
+/// @return the grid, or one with n = 0 when no triangle reaches below the plane
 Grid fixedHalfspaceGrid(const MeshBvh& bvh, const Isometry3d& X_WM, const Isometry3d& X_WH,
                         const Vector3d& n, int resolution) {
   const Matrix3d& R_WM = X_WM.linear();

@@ -253,11 +253,12 @@ std::pair<Vector3d, Vector3d> placedBox(const Isometry3d& X, const Vector3d& cen
   return {X * center, X.linear().cwiseAbs() * half};
 }
 
-bool boxesOverlap(const std::pair<Vector3d, Vector3d>& a, const std::pair<Vector3d, Vector3d>& b,
-                  double margin) {
-  return ((a.first - b.first).cwiseAbs().array() <=
-          (a.second + b.second).array() + margin)
-      .all();
+/// Do two boxes {centre, half-sizes} of one frame overlap when grown by `grow` on every side?
+/// Forced inline: the descent's node test (out of line it costs 2–3 % of a query).
+[[gnu::always_inline]] inline bool boxesOverlap(const Vector3d& centerA, const Vector3d& halfA,
+                                                const Vector3d& centerB, const Vector3d& halfB,
+                                                double grow) {
+  return allLessEqual((centerA - centerB).cwiseAbs(), halfA + halfB + Vector3d::Constant(grow));
 }
 
 /// Segment p0 + t (p1 − p0), t ∈ [0, 1], meets the box (centre c, half-sizes h)?
@@ -351,8 +352,7 @@ class Intersector {
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
       const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
-      return allLessEqual((pa.center - nb.center).cwiseAbs(),
-                          pa.halfExtent + nb.halfExtent + Vector3d::Constant(margin_)) &&
+      return boxesOverlap(pa.center, pa.halfExtent, nb.center, nb.halfExtent, margin_) &&
              slabsOverlap(na, pa.center, pa.normalAxis, nb);
     };
     const auto atLeaves = [&](int ia, int ib) __attribute__((always_inline)) {
@@ -413,12 +413,11 @@ class Intersector {
     const BvhNode& rootB = body_[1].bvh.root();
     const double reach =
         MeshMeshCache::kReach * (rootA.halfExtent.norm() + rootB.halfExtent.norm());
-    const Vector3d grow = Vector3d::Constant(margin_ + reach);
     const auto grownOverlap = [&](int ia, int ib) {
       const BvhNode& na = nodesA[static_cast<std::size_t>(ia)];
       const BvhNode& nb = nodesB[static_cast<std::size_t>(ib)];
       const PlacedNode& pa = placeNodeOfA(ia, na, X_BA, absR);
-      return allLessEqual((pa.center - nb.center).cwiseAbs(), pa.halfExtent + nb.halfExtent + grow);
+      return boxesOverlap(pa.center, pa.halfExtent, nb.center, nb.halfExtent, margin_ + reach);
     };
     cache.leafPairs.clear();
     descend(grownOverlap, [&](int ia, int ib) { cache.leafPairs.emplace_back(ia, ib); });
@@ -741,7 +740,9 @@ class Intersector {
       if (m.s.seeded[c]) continue;
       const geometry::Aabb& bb = comps[c].bounds;
       const auto box = placedBox(m.X_WM, 0.5 * (bb.min + bb.max), 0.5 * bb.size());
-      if (!boxesOverlap(box, otherBox, margin_)) continue;
+      if (!boxesOverlap(box.first, box.second, otherBox.first, otherBox.second, margin_)) {
+        continue;
+      }
       if (!contains(1 - side, m.p(comps[c].vertices.front()), perturbationSign(side))) continue;
       for (const int v : comps[c].vertices) markInside(side, v);
     }
