@@ -103,8 +103,7 @@ void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Placemen
   clipPlacedTriangle({&p[0], &p[1], &p[2]}, o_H, out);
 }
 
-/// Vertices placed in H during one query, by vertex index (StampSet says which slots hold
-/// this query's coordinates). Reused across queries on a thread, so a query allocates nothing
+/// Vertices placed in H during one query, by vertex index (StampedValues). Reused across queries on a thread, so a query allocates nothing
 /// once the largest mesh has been seen.
 class PlacedVertices {
  public:
@@ -112,23 +111,20 @@ class PlacedVertices {
   static PlacedVertices& forQuery(Eigen::Index vertexCount) {
     thread_local PlacedVertices cache;
     const auto n = static_cast<std::size_t>(vertexCount);
-    cache.placed_.reset(n);
-    if (cache.p_H_.size() < n) cache.p_H_.resize(n);
+    cache.p_H_.reset(n);
     return cache;
   }
 
   /// Vertex i of `mesh` in H, placed now unless already placed in this query.
   const Vector3d& get(const geometry::TriangleMesh& mesh, int i, const Placement& X_HM) {
-    Vector3d& p_H = p_H_[static_cast<std::size_t>(i)];
-    if (placed_.insert(i)) {
-      p_H = X_HM.place(mesh.vertex(i));
-    }
+    bool fresh;
+    Vector3d& p_H = p_H_.slot(i, fresh);
+    if (fresh) p_H = X_HM.place(mesh.vertex(i));
     return p_H;
   }
 
  private:
-  StampSet placed_;
-  std::vector<Vector3d> p_H_;
+  StampedValues<Vector3d> p_H_;
 };
 
 /// o: the deepest vertex (given in H) dropped onto the plane, in H and in M.

@@ -64,12 +64,9 @@ struct FaceFoot {
 
 /// Per-mesh memory reused by the queries of one thread, so a query costs what it touches.
 struct SideScratch {
-  StampSet placed;  ///< vertices already placed in W
-  std::vector<Vector3d> p_W;
-  StampSet faceReady;  ///< faces already placed in W
-  std::vector<PlacedFace> faces;
-  StampSet footReady;  ///< faces whose FaceFoot is known
-  std::vector<FaceFoot> feet;
+  StampedValues<Vector3d> p_W;       ///< vertices placed in W
+  StampedValues<PlacedFace> faces;   ///< faces placed in W
+  StampedValues<FaceFoot> feet;      ///< faces' planes for the integration
   StampSet inside;  ///< vertices inside the other body
   std::vector<int> insideList;
   StampSet cut;  ///< faces with at least one intersection segment
@@ -124,8 +121,7 @@ struct PlacedNode {
 
 struct Scratch {
   SideScratch sides[2];
-  StampSet nodeAReady;  ///< nodes of A's tree already placed in B's frame
-  std::vector<PlacedNode> nodesA;
+  StampedValues<PlacedNode> nodesA;  ///< nodes of A's tree placed in B's frame
   std::vector<Crossing> crossings;
   std::vector<int> order;
   std::vector<Endpoint> endpoints;
@@ -148,21 +144,24 @@ struct Body {
   const geometry::TriangleMesh& mesh() const { return bvh.mesh(); }
   /// p_W of vertex v, placed on first use.
   const Vector3d& p(int v) {
-    if (s.placed.insert(v)) s.p_W[static_cast<std::size_t>(v)] = X_WM * mesh().vertex(v);
-    return s.p_W[static_cast<std::size_t>(v)];
+    bool fresh;
+    Vector3d& p_W = s.p_W.slot(v, fresh);
+    if (fresh) p_W = X_WM * mesh().vertex(v);
+    return p_W;
   }
   /// Face f placed in W, on first use (the look-up inline, the placement not: the descent
   /// asks for each face many times).
   const PlacedFace& face(int f) {
-    if (s.faceReady.contains(f)) return s.faces[static_cast<std::size_t>(f)];
+    if (s.faces.contains(f)) return s.faces[f];
     return placeFace(f);
   }
   const Vector3d& corner(int f, int k) { return p(mesh().triangles(f, k)); }
   /// Face f's unit outward normal and the foot of the fan apex o on its plane (W), on first
   /// use; o is the same for the whole query.
   const FaceFoot& foot(int f, const Vector3d& o) {
-    FaceFoot& F = s.feet[static_cast<std::size_t>(f)];
-    if (!s.footReady.insert(f)) return F;
+    bool fresh;
+    FaceFoot& F = s.feet.slot(f, fresh);
+    if (!fresh) return F;
     const Vector3d& a = corner(f, 0);
     const Vector3d N = (corner(f, 1) - a).cross(corner(f, 2) - a);
     F.normal = N * (1.0 / N.norm());  // one division, not three
@@ -171,8 +170,8 @@ struct Body {
   }
   /// Places face f in W (face()'s first use).
   [[gnu::noinline]] const PlacedFace& placeFace(int f) {
-    PlacedFace& F = s.faces[static_cast<std::size_t>(f)];
-    s.faceReady.insert(f);
+    bool fresh;  // always: face() has looked
+    PlacedFace& F = s.faces.slot(f, fresh);
     for (int k = 0; k < 3; ++k) F.corner[k] = corner(f, k);
     const Vector3d u = F.corner[1] - F.corner[0], v = F.corner[2] - F.corner[0];
     F.n = u.cross(v);
@@ -288,12 +287,9 @@ class Intersector {
       Body& m = body_[side];
       const auto nv = static_cast<std::size_t>(m.mesh().vertexCount());
       const auto nf = static_cast<std::size_t>(m.mesh().triangleCount());
-      m.s.placed.reset(nv);
-      if (m.s.p_W.size() < nv) m.s.p_W.resize(nv);
-      m.s.faceReady.reset(nf);
-      if (m.s.faces.size() < nf) m.s.faces.resize(nf);
-      m.s.footReady.reset(nf);
-      if (m.s.feet.size() < nf) m.s.feet.resize(nf);
+      m.s.p_W.reset(nv);
+      m.s.faces.reset(nf);
+      m.s.feet.reset(nf);
       m.s.inside.reset(nv);
       m.s.insideList.clear();
       m.s.cut.reset(nf);
@@ -304,8 +300,7 @@ class Intersector {
       m.s.seeded.assign(m.topo.components().size(), 0);
     }
     const auto nodeCount = body_[0].bvh.nodes().size();
-    w_.nodeAReady.reset(nodeCount);
-    if (w_.nodesA.size() < nodeCount) w_.nodesA.resize(nodeCount);
+    w_.nodesA.reset(nodeCount);
     w_.crossings.clear();
     w_.endpoints.clear();
     w_.pieces.clear();
@@ -431,8 +426,9 @@ class Intersector {
   /// Node ia of A's tree in B's frame, placed on first use in this query.
   const PlacedNode& placeNodeOfA(int ia, const BvhNode& na, const Isometry3d& X_BA,
                                  const Matrix3d& absR) {
-    PlacedNode& P = w_.nodesA[static_cast<std::size_t>(ia)];
-    if (!w_.nodeAReady.insert(ia)) return P;
+    bool fresh;
+    PlacedNode& P = w_.nodesA.slot(ia, fresh);
+    if (!fresh) return P;
     P.center = X_BA * na.center;
     P.halfExtent = absR * na.halfExtent;
     P.normalAxis = X_BA.linear() * na.normalAxis;
