@@ -68,6 +68,8 @@ class Model {
 
   ModelSettings settings;
 
+  /// Does some effect move B1's pose for the geometry (adjustPayloadPose not the identity)?
+  bool adjustsPayloadPose() const { return adjusts_pose_; }
   /// The pose of B1 actually used for the geometry (misalignment), given X_W1 and X_W2.
   Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_W1,
                                       const Eigen::Isometry3d& X_W2) const;

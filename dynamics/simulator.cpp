@@ -126,6 +126,29 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   fields_.resize(scenario_.pairs.size());
   caches_.resize(scenario_.pairs.size());
   kin_.resize(scenario_.bodies.size());
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
+    const RigidBody& b = scenario_.bodies[i];
+    const std::optional<geometry::Aabb> box = geometry::localBounds(b.shape);
+    local_bounds_.push_back(
+        box.value_or(geometry::Aabb{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}));
+    broad_id_.push_back(-1);
+    if (!box) continue;
+    broad_id_.back() = broad_phase_.add(geometry::placedBounds(*box, b.X_WB0));
+    body_of_id_.push_back(static_cast<int>(i));
+  }
+  for (const ContactPair& p : scenario_.pairs) {
+    const bool screened = broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 &&
+                          !p.model.adjustsPayloadPose();
+    screened_.push_back(screened ? 1 : 0);
+    const geometry::Shape& a = scenario_.bodies[p.a].shape;
+    const geometry::Shape& b = scenario_.bodies[p.b].shape;
+    apart_.push_back(volume::ContactVolume{});
+    apart_.back().method = p.friction == FrictionMode::kDistributed ? volume::Method::kColumns
+                           : p.method                              ? *p.method
+                                                                   : volume::defaultMethod(a, b);
+    any_screened_ = any_screened_ || screened;
+  }
+  queried_.assign(scenario_.pairs.size(), 1);
   force_.resize(scenario_.bodies.size());
   torque_.resize(scenario_.bodies.size());
 }
@@ -143,6 +166,29 @@ BodyKinematics Simulator::kinematics(const State& x, std::size_t i, double t) co
   return k;
 }
 
+// queried_ for the current kin_: the screened pairs whose bodies' placed bounds overlap, and
+// every other pair. Bodies that move are re-placed; fixed ones keep the bounds of their pose.
+void Simulator::screenPairs() {
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
+    if (broad_id_[i] < 0 || scenario_.bodies[i].motion == BodyMotion::kFixed) continue;
+    broad_phase_.update(broad_id_[i], geometry::placedBounds(local_bounds_[i], kin_[i].X_WB));
+  }
+  overlapping_.clear();
+  for (const auto& [u, v] : broad_phase_.overlappingPairs()) {
+    const int i = body_of_id_[static_cast<std::size_t>(u)];
+    const int j = body_of_id_[static_cast<std::size_t>(v)];
+    overlapping_.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  std::sort(overlapping_.begin(), overlapping_.end());
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    if (!screened_[k]) continue;
+    const auto a = static_cast<int>(scenario_.pairs[k].a);
+    const auto b = static_cast<int>(scenario_.pairs[k].b);
+    queried_[k] = std::binary_search(overlapping_.begin(), overlapping_.end(),
+                                     std::make_pair(std::min(a, b), std::max(a, b)));
+  }
+}
+
 // ẋ for the bodies (Newton–Euler in W) and the pair states (the models' rates).
 void Simulator::rhs(const State& x, State& dxdt, double t) {
   ++rhs_count_;
@@ -156,20 +202,26 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     torque[i].setZero();
   }
 
+  if (any_screened_) screenPairs();
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const ContactPair& pair = scenario_.pairs[k];
     const BodyKinematics& A = kin[pair.a];
     const BodyKinematics& B = kin[pair.b];
-    const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
     PairOutput& out = last_pairs_[k];
-    const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
-    const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
+    if (queried_[k]) {
+      const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
+      const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
+      const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
+      out.cv = pair.friction == FrictionMode::kDistributed
+                   ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
+                                            volume::ColumnOptions::fixed(pair.column_resolution))
+                   : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
+                                            &caches_[k]);
+      ++contact_count_;
+    } else {
+      out.cv = apart_[k];  // the query's answer for bodies apart
+    }
     const bool distributed = pair.friction == FrictionMode::kDistributed;
-    out.cv = distributed ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
-                                                  volume::ColumnOptions::fixed(pair.column_resolution))
-                         : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
-                                                  &caches_[k]);
-    ++contact_count_;
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
     const Eigen::Vector3d& p_c = out.cv.centroid;
     const RelativeMotion motion{A.pointVelocity(p_c) - B.pointVelocity(p_c), A.w_WB - B.w_WB};

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <variant>
 
 namespace vcontact::geometry {
 
@@ -66,6 +67,36 @@ std::vector<std::pair<int, int>> BroadPhase::overlappingPairs() const {
   impl_->manager.collide(&pairs, recordPair);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+namespace {
+
+struct LocalBounds {
+  std::optional<Aabb> operator()(const Sphere& s) const {
+    return centred(Eigen::Vector3d::Constant(s.radius));
+  }
+  std::optional<Aabb> operator()(const Cylinder& c) const {
+    return centred(Eigen::Vector3d(c.radius, c.radius, 0.5 * c.length));
+  }
+  std::optional<Aabb> operator()(const Box& b) const { return centred(0.5 * b.size); }
+  std::optional<Aabb> operator()(const HalfSpace&) const { return std::nullopt; }
+  std::optional<Aabb> operator()(const Mesh& m) const { return bounds(*m.mesh); }
+  static Aabb centred(const Eigen::Vector3d& half) { return {-half, half}; }
+};
+
+// Relative growth of placedBounds: rounding of X·c and |R|·h is a few ε of the sizes involved.
+constexpr double kPlacedGrowth = 1e-9;
+
+}  // namespace
+
+std::optional<Aabb> localBounds(const Shape& shape) { return std::visit(LocalBounds{}, shape); }
+
+Aabb placedBounds(const Aabb& local, const Eigen::Isometry3d& X_WS) {
+  const Eigen::Vector3d c = X_WS * (0.5 * (local.min + local.max));
+  const Eigen::Vector3d h = X_WS.linear().cwiseAbs() * (0.5 * local.size());
+  const double grow = kPlacedGrowth * (c.cwiseAbs().maxCoeff() + h.maxCoeff());
+  const Eigen::Vector3d half = h + Eigen::Vector3d::Constant(grow);
+  return {c - half, c + half};
 }
 
 Aabb worldBounds(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM) {

@@ -3,9 +3,11 @@
 // tree so that moving a body costs O(log n). FCL types stay in broad_phase.cpp.
 
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "geometry/primitives.hpp"
 #include "geometry/triangle_mesh.hpp"
 
 namespace vcontact::geometry {
@@ -32,5 +34,15 @@ class BroadPhase {
 
 /// World bounds of a mesh placed by X_WM (the vertices, transformed).
 Aabb worldBounds(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM);
+
+/// The shape's bounds in its own frame (a mesh's vertices, a primitive's extent); none for a
+/// half-space, which no box holds.
+std::optional<Aabb> localBounds(const Shape& shape);
+
+/// World bounds of a shape-frame box placed by X_WS: the axis-aligned box around the turned
+/// box (O(1), looser than worldBounds for a turned mesh), grown on every side by 1e-9 of its
+/// size and distance from the origin, which covers the rounding of the placement many times
+/// over: a shape lies inside its placed bounds even as rounded.
+Aabb placedBounds(const Aabb& local, const Eigen::Isometry3d& X_WS);
 
 }  // namespace vcontact::geometry
