@@ -143,9 +143,13 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     const geometry::Shape& a = scenario_.bodies[p.a].shape;
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.push_back(volume::ContactVolume{});
-    apart_.back().method = p.friction == FrictionMode::kDistributed ? volume::Method::kColumns
-                           : p.method                              ? *p.method
-                                                                   : volume::defaultMethod(a, b);
+    try {
+      apart_.back().method = p.friction == FrictionMode::kDistributed ? volume::Method::kColumns
+                             : p.method                              ? *p.method
+                                                                     : volume::defaultMethod(a, b);
+    } catch (const InputError& e) {
+      throw InputError("pair '" + p.name + "'", e.message());
+    }
     any_screened_ = any_screened_ || screened;
   }
   queried_.assign(scenario_.pairs.size(), 1);
@@ -212,11 +216,15 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
       const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
       const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
       const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-      out.cv = pair.friction == FrictionMode::kDistributed
-                   ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
-                                            volume::ColumnOptions::fixed(pair.column_resolution))
-                   : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
-                                            &caches_[k]);
+      try {
+        out.cv = pair.friction == FrictionMode::kDistributed
+                     ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
+                                              volume::ColumnOptions::fixed(pair.column_resolution))
+                     : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
+                                              &caches_[k]);
+      } catch (const InputError& e) {  // a method that does not handle the pair's shapes
+        throw InputError("pair '" + pair.name + "'", e.message());
+      }
       ++contact_count_;
     } else {
       out.cv = apart_[k];  // the query's answer for bodies apart

@@ -1,5 +1,6 @@
 #include "io/scenario_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -9,6 +10,7 @@
 #include "io/json_file.hpp"
 #include "io/model_file.hpp"
 #include "io/shape_spec.hpp"
+#include "volume/contact.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -289,6 +291,59 @@ void readFriction(const Reader& p, dynamics::ContactPair& pair) {
   }
 }
 
+// A pair's model, method and friction keys (a listed pair, or "contacts").
+void readPairContact(const Reader& p, const std::map<std::string, dynamics::Model>& models,
+                     const std::string& base_dir, dynamics::ContactPair& pair) {
+  pair.model = readPairModel(p, models, base_dir);
+  if (p.has("method")) {
+    try {
+      pair.method = volume::parseMethod(p.text("method"));
+    } catch (const InputError& e) {
+      p.fail("method", e.message());
+    }
+  }
+  readFriction(p, pair);
+}
+
+// "contacts": one pair for every two bodies not already a pair, at least one of them free.
+// The later body in "bodies" is the payload a, unless it is not free; the method, if not
+// given, is the best each pair allows, and a pair no method handles is an error.
+void addDefaultContacts(const Reader& c, const std::map<std::string, dynamics::Model>& models,
+                        const std::string& base_dir, dynamics::Scenario& sc) {
+  c.allowOnly({"model", "method", "friction", "columns"});
+  const auto free = [&](std::size_t i) {
+    return sc.bodies[i].motion == dynamics::BodyMotion::kFree;
+  };
+  const std::vector<dynamics::ContactPair> listed = sc.pairs;
+  for (std::size_t j = 1; j < sc.bodies.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      if (!free(i) && !free(j)) continue;
+      if (std::any_of(listed.begin(), listed.end(), [&](const dynamics::ContactPair& q) {
+            return std::minmax(q.a, q.b) == std::minmax(i, j);
+          })) {
+        continue;
+      }
+      dynamics::ContactPair pair;
+      pair.a = free(j) ? j : i;
+      pair.b = free(j) ? i : j;
+      pair.name = sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
+      readPairContact(c, models, base_dir, pair);
+      const geometry::Shape& a = sc.bodies[pair.a].shape;
+      const geometry::Shape& b = sc.bodies[pair.b].shape;
+      if (!pair.method) {
+        try {
+          volume::defaultMethod(a, b);
+        } catch (const InputError& e) {
+          c.fail("", "bodies '" + sc.bodies[pair.a].name + "' and '" + sc.bodies[pair.b].name +
+                         "': " + e.message() + "; give them meshes, or list the pairs that can "
+                         "touch in \"pairs\"");
+        }
+      }
+      sc.pairs.push_back(std::move(pair));
+    }
+  }
+}
+
 }  // namespace
 
 ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source,
@@ -296,7 +351,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
   r.allowOnly({"format", "duration", "output_rate", "integrator", "gravity", "tolerances",
-               "bodies", "models", "pairs", "outputs", "description"});
+               "bodies", "models", "pairs", "contacts", "outputs", "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }
@@ -322,25 +377,36 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                                        : readModelFile(resolve(m.text(name), base_dir));
     }
   }
-  if (!r.has("pairs") || !r["pairs"].is_array()) r.fail("pairs", "expected an array of pairs");
-  for (std::size_t i = 0; i < r["pairs"].size(); ++i) {
+  if (r.has("pairs") ? !r["pairs"].is_array() : !r.has("contacts")) {
+    r.fail("pairs", "expected an array of pairs (it may be left out when \"contacts\" is given)");
+  }
+  const std::size_t listed = r.has("pairs") ? r["pairs"].size() : 0;
+  for (std::size_t i = 0; i < listed; ++i) {
     const Reader p(r["pairs"][i], source, "pairs[" + std::to_string(i) + "]");
     p.allowOnly({"name", "a", "b", "model", "method", "friction", "columns"});
     dynamics::ContactPair pair;
     pair.a = bodyIndex(p, "a", sc.bodies);
     pair.b = bodyIndex(p, "b", sc.bodies);
     if (pair.a == pair.b) p.fail("b", "a body cannot touch itself");
-    pair.name = p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
-    pair.model = readPairModel(p, models, base_dir);
-    if (p.has("method")) {
-      try {
-        pair.method = volume::parseMethod(p.text("method"));
-      } catch (const InputError& e) {
-        p.fail("method", e.message());
+    for (const dynamics::ContactPair& q : sc.pairs) {
+      if (std::minmax(q.a, q.b) == std::minmax(pair.a, pair.b)) {
+        p.fail("b", "bodies '" + sc.bodies[pair.a].name + "' and '" + sc.bodies[pair.b].name +
+                        "' are already a pair ('" + q.name + "')");
       }
     }
-    readFriction(p, pair);
+    pair.name = p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
+    readPairContact(p, models, base_dir, pair);
     sc.pairs.push_back(std::move(pair));
+  }
+  if (r.has("contacts")) addDefaultContacts(r.child("contacts"), models, base_dir, sc);
+  for (std::size_t i = 0; i < sc.pairs.size(); ++i) {
+    for (std::size_t k = 0; k < i; ++k) {
+      if (sc.pairs[k].name != sc.pairs[i].name) continue;
+      const std::string where =
+          i < listed ? "pairs[" + std::to_string(i) + "].name" : std::string("contacts");
+      r.fail(where, "the pair name '" + sc.pairs[i].name + "' is used twice (pair_" +
+                        sc.pairs[i].name + ".csv would be written twice)");
+    }
   }
   if (r.has("outputs")) {
     const Reader o = r.child("outputs");

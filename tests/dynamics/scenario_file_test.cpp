@@ -93,6 +93,104 @@ nlohmann::json distributedBall() {
   return j;
 }
 
+// Four bodies, one pair listed, "contacts" for the rest (meshes from assets/scenarios/meshes).
+nlohmann::json binOfParts() {
+  return nlohmann::json::parse(R"({
+    "format": "vcontact.scenario/1", "duration": 0.01,
+    "models": {"steel": {"format": "vcontact.model/1",
+                         "effects": {"stiffness": {"kv": 1e11}, "coulomb": {"mu": 0.2}}}},
+    "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
+               {"name": "fixture", "shape": "meshes/fixture.stl", "motion": "fixed"},
+               {"name": "tray", "shape": "meshes/battery_box.stl", "density": 1200,
+                "pose": "0,0,0.03"},
+               {"name": "punch", "shape": "meshes/punch.stl", "density": 7900,
+                "pose": "0.2,0,0.03"}],
+    "pairs": [{"name": "tray-in-fixture", "a": "tray", "b": "fixture", "model": "steel",
+               "method": "fast"}],
+    "contacts": {"model": {"format": "vcontact.model/1",
+                           "effects": {"stiffness": {"kv": 2e11}}}}})");
+}
+
+// "contacts" adds every pair not listed with at least one free body, the later body in
+// "bodies" as the payload unless it is not free, the method left to each pair's shapes.
+TEST(ScenarioFile, ContactsMakeEveryPairNotListed) {
+  const ScenarioFile f = scenarioFromJson(binOfParts(), "s.json", kScenarios);
+  const auto& pairs = f.scenario.pairs;
+  struct Expected {
+    const char* name;
+    std::size_t a, b;
+  };
+  const std::vector<Expected> expected = {{"tray-in-fixture", 2, 1},
+                                          {"tray-plate", 2, 0},
+                                          {"punch-plate", 3, 0},
+                                          {"punch-fixture", 3, 1},
+                                          {"punch-tray", 3, 2}};
+  ASSERT_EQ(pairs.size(), expected.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    EXPECT_EQ(pairs[k].name, expected[k].name) << k;
+    EXPECT_EQ(pairs[k].a, expected[k].a) << k;
+    EXPECT_EQ(pairs[k].b, expected[k].b) << k;
+    EXPECT_EQ(pairs[k].method.has_value(), k == 0) << k;
+    EXPECT_EQ(pairs[k].model.parameter("stiffness.kv"), k == 0 ? 1e11 : 2e11) << k;
+  }
+  // A fixed body listed after a free one is the plate of their pair, and "pairs" may be left
+  // out when "contacts" is given.
+  nlohmann::json j = binOfParts();
+  j.erase("pairs");
+  std::swap(j["bodies"][1], j["bodies"][2]);  // tray, then fixture
+  const auto reordered = scenarioFromJson(j, "s.json", kScenarios).scenario.pairs;
+  ASSERT_EQ(reordered.size(), 5u);
+  EXPECT_EQ(reordered[1].name, "tray-fixture");
+  EXPECT_EQ(reordered[1].a, 1u);
+  EXPECT_EQ(reordered[1].b, 2u);
+
+  // The run queries the two half-space pairs at every evaluation and screens the others: the
+  // punch is 0.2 m from the tray and the fixture.
+  dynamics::Scenario sc = f.scenario;
+  sc.settings.duration = 2e-3;
+  dynamics::Simulator sim(sc);
+  dynamics::SimulationSummary summary;
+  sim.run([](const dynamics::Snapshot&) {}, [](double) {}, summary);
+  EXPECT_GE(summary.contact_evaluations, 2 * summary.rhs_evaluations);
+  EXPECT_LE(summary.contact_evaluations, 3 * summary.rhs_evaluations);
+}
+
+TEST(ScenarioFile, ContactsErrorsNameThePlaceAndTheBodies) {
+  nlohmann::json spheres = ballOnPlate();  // two sphere primitives: no method handles them
+  spheres["bodies"].push_back({{"name", "ball2"}, {"shape", "sphere:0.01"}, {"density", 7900},
+                               {"pose", "0.1,0,0.0105"}});
+  spheres["contacts"] = spheres["pairs"][0];
+  spheres["contacts"].erase("a");
+  spheres["contacts"].erase("b");
+  const std::string noMethod = errorOf(spheres);
+  EXPECT_NE(noMethod.find("s.json: contacts: bodies 'ball2' and 'ball'"), std::string::npos)
+      << noMethod;
+  EXPECT_NE(noMethod.find("list the pairs that can touch"), std::string::npos) << noMethod;
+
+  nlohmann::json twice = binOfParts();
+  twice["pairs"].push_back({{"a", "fixture"}, {"b", "tray"}, {"model", "steel"}});
+  EXPECT_NE(errorOf(twice).find("pairs[1].b: bodies 'fixture' and 'tray' are already a pair "
+                                "('tray-in-fixture')"),
+            std::string::npos)
+      << errorOf(twice);
+
+  nlohmann::json sameName = binOfParts();
+  sameName["pairs"][0]["name"] = "punch-tray";
+  EXPECT_NE(errorOf(sameName).find("contacts: the pair name 'punch-tray' is used twice"),
+            std::string::npos)
+      << errorOf(sameName);
+
+  nlohmann::json neither = binOfParts();
+  neither.erase("pairs");
+  neither.erase("contacts");
+  EXPECT_NE(errorOf(neither).find("pairs: expected an array of pairs"), std::string::npos);
+
+  nlohmann::json unknown = binOfParts();
+  unknown["contacts"]["a"] = "tray";
+  EXPECT_NE(errorOf(unknown).find("contacts.a: unknown key"), std::string::npos)
+      << errorOf(unknown);
+}
+
 TEST(ScenarioFile, DistributedFrictionDefaultsToColumnsAndAGridOf64) {
   const ScenarioFile f = scenarioFromJson(distributedBall(), "s.json", kScenarios);
   const dynamics::ContactPair& pair = f.scenario.pairs[0];
