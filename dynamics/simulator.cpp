@@ -143,10 +143,12 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     const geometry::Shape& a = scenario_.bodies[p.a].shape;
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.push_back(volume::ContactVolume{});
-    try {
-      apart_.back().method = p.friction == FrictionMode::kDistributed ? volume::Method::kColumns
-                             : p.method                              ? *p.method
-                                                                     : volume::defaultMethod(a, b);
+    try {  // a pair no method (or not its method) handles fails here, before any output
+      const volume::Method m = p.friction == FrictionMode::kDistributed ? volume::Method::kColumns
+                               : p.method                              ? *p.method
+                                                                       : volume::defaultMethod(a, b);
+      volume::requireHandles(m, a, b);
+      apart_.back().method = m;
     } catch (const InputError& e) {
       throw InputError("pair '" + p.name + "'", e.message());
     }

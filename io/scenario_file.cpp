@@ -305,6 +305,19 @@ void readPairContact(const Reader& p, const std::map<std::string, dynamics::Mode
   readFriction(p, pair);
 }
 
+// The pair's method (given, or columns for distributed friction) handles its bodies' shapes.
+void checkPairMethod(const Reader& p, const dynamics::ContactPair& pair,
+                     const std::vector<dynamics::RigidBody>& bodies) {
+  if (!pair.method) return;
+  try {
+    volume::requireHandles(*pair.method, bodies[pair.a].shape, bodies[pair.b].shape);
+  } catch (const InputError& e) {
+    p.fail(p.has("method") ? "method" : "friction",
+           "bodies '" + bodies[pair.a].name + "' and '" + bodies[pair.b].name + "': " +
+               e.message());
+  }
+}
+
 // "contacts": one pair for every two bodies not already a pair, at least one of them free.
 // The later body in "bodies" is the payload a, unless it is not free; the method, if not
 // given, is the best each pair allows, and a pair no method handles is an error.
@@ -328,6 +341,7 @@ void addDefaultContacts(const Reader& c, const std::map<std::string, dynamics::M
       pair.b = free(j) ? i : j;
       pair.name = sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
       readPairContact(c, models, base_dir, pair);
+      checkPairMethod(c, pair, sc.bodies);
       const geometry::Shape& a = sc.bodies[pair.a].shape;
       const geometry::Shape& b = sc.bodies[pair.b].shape;
       if (!pair.method) {
@@ -396,6 +410,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
     }
     pair.name = p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
     readPairContact(p, models, base_dir, pair);
+    checkPairMethod(p, pair, sc.bodies);
     sc.pairs.push_back(std::move(pair));
   }
   if (r.has("contacts")) addDefaultContacts(r.child("contacts"), models, base_dir, sc);

@@ -19,6 +19,15 @@ namespace vcontact::volume {
 /// @throws InputError when no backend in this build handles the pair
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 
+/// Does `method` compute the contact of these shapes (whatever their poses)? analytic: a
+/// sphere, cylinder or box against a half-space; halfspace: a mesh against a half-space; cgal:
+/// two meshes, or a mesh and a half-space; fast: two meshes; columns: two meshes, or a mesh
+/// and a half-space. Either order.
+bool handles(Method method, const geometry::Shape& a, const geometry::Shape& b);
+/// Throws the InputError a query by `method` would throw for these shapes (naming both and
+/// what the method computes) unless it handles them: for readers that check before a run.
+void requireHandles(Method method, const geometry::Shape& a, const geometry::Shape& b);
+
 /// What a pair of shapes keeps between queries at nearby poses (one per pair and thread;
 /// used by the methods that gain from it: `fast`, MeshMeshCache).
 struct ContactCache {

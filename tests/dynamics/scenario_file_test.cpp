@@ -60,6 +60,9 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
       {"/bodies/1/colour", "red", "bodies[1].colour: unknown key"},
       {"/pairs/0/b", "table", "pairs[0].b: no body named 'table'"},
       {"/pairs/0/method", "magic", "pairs[0].method"},
+      {"/pairs/0/method", "fast",
+       "s.json: pairs[0].method: bodies 'ball' and 'plate': cannot compute sphere R=0.01 against "
+       "halfspace z<=0 with this method; it intersects two meshes"},
       {"/pairs/0/model/effects/glue", nlohmann::json::object(),
        "pairs[0].model.effects.glue: unknown effect"},
       {"/pairs/0/model/effects/stiffness/kv", -5.0,
@@ -84,10 +87,10 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
 // be no other; "columns" sets the fixed grid (default 64 lines per side) and is refused with
 // lumped friction or out of [8, 512]; the model needs coulomb and cannot have bristle. Each
 // message names the file, the pair's place and key, the pair and what was expected.
-nlohmann::json distributedBall() {
+nlohmann::json distributedPunch() {
   nlohmann::json j = ballOnPlate();
-  j["bodies"][1]["shape"] = "box:0.02,0.02,0.02";
-  j["pairs"][0]["name"] = "box-plate";
+  j["bodies"][1]["shape"] = "meshes/punch.stl";  // columns need a mesh (or a half-space)
+  j["pairs"][0]["name"] = "punch-plate";
   j["pairs"][0]["friction"] = "distributed";
   j["pairs"][0]["model"]["effects"]["coulomb"] = {{"mu", 0.2}};
   return j;
@@ -185,6 +188,13 @@ TEST(ScenarioFile, ContactsErrorsNameThePlaceAndTheBodies) {
   neither.erase("contacts");
   EXPECT_NE(errorOf(neither).find("pairs: expected an array of pairs"), std::string::npos);
 
+  nlohmann::json wrongMethod = binOfParts();
+  wrongMethod["contacts"]["method"] = "fast";  // tray and punch against the half-space
+  EXPECT_NE(errorOf(wrongMethod).find("contacts.method: bodies 'tray' and 'plate': cannot "
+                                      "compute"),
+            std::string::npos)
+      << errorOf(wrongMethod);
+
   nlohmann::json unknown = binOfParts();
   unknown["contacts"]["a"] = "tray";
   EXPECT_NE(errorOf(unknown).find("contacts.a: unknown key"), std::string::npos)
@@ -192,14 +202,14 @@ TEST(ScenarioFile, ContactsErrorsNameThePlaceAndTheBodies) {
 }
 
 TEST(ScenarioFile, DistributedFrictionDefaultsToColumnsAndAGridOf64) {
-  const ScenarioFile f = scenarioFromJson(distributedBall(), "s.json", kScenarios);
+  const ScenarioFile f = scenarioFromJson(distributedPunch(), "s.json", kScenarios);
   const dynamics::ContactPair& pair = f.scenario.pairs[0];
   EXPECT_EQ(pair.friction, dynamics::FrictionMode::kDistributed);
   ASSERT_TRUE(pair.method.has_value());
   EXPECT_EQ(*pair.method, volume::Method::kColumns);
   EXPECT_EQ(pair.column_resolution, dynamics::kDefaultColumnResolution);
   EXPECT_EQ(pair.column_resolution, 64);
-  nlohmann::json j = distributedBall();
+  nlohmann::json j = distributedPunch();
   j["pairs"][0]["columns"] = 96;
   j["pairs"][0]["method"] = "columns";
   EXPECT_EQ(scenarioFromJson(j, "s.json", kScenarios).scenario.pairs[0].column_resolution, 96);
@@ -222,39 +232,45 @@ TEST(ScenarioFile, DistributedFrictionErrorsNameThePairAndKey) {
       {"unknown law", "/pairs/0/friction", "pointwise",
        "s.json: pairs[0].friction: expected \"lumped\" or \"distributed\", got \"pointwise\""},
       {"another method", "/pairs/0/method", "halfspace",
-       "s.json: pairs[0].friction: pair 'box-plate': distributed friction integrates over the "
+       "s.json: pairs[0].friction: pair 'punch-plate': distributed friction integrates over the "
        "columns method's δ map; set \"method\": \"columns\" (or leave it out), not "
        "\"halfspace\""},
       {"too coarse", "/pairs/0/columns", 4,
-       "s.json: pairs[0].columns: pair 'box-plate': expected an integer number of grid lines "
+       "s.json: pairs[0].columns: pair 'punch-plate': expected an integer number of grid lines "
        "per side in [8, 512], got 4"},
-      {"too fine", "/pairs/0/columns", 1024, "pairs[0].columns: pair 'box-plate': expected an"},
+      {"too fine", "/pairs/0/columns", 1024, "pairs[0].columns: pair 'punch-plate': expected an"},
       {"not an integer", "/pairs/0/columns", 64.5, "in [8, 512], got 64.5"},
       {"a string", "/pairs/0/columns", "64", "in [8, 512], got \"64\""},
       {"negative", "/pairs/0/columns", -64, "in [8, 512], got -64"},
       {"bristle", "/pairs/0/model/effects/bristle", bristle,
-       "s.json: pairs[0].friction: pair 'box-plate': distributed friction is pointwise Coulomb "
+       "s.json: pairs[0].friction: pair 'punch-plate': distributed friction is pointwise Coulomb "
        "friction and cannot replace the bristle law"},
   };
   for (const auto& c : cases) {
-    nlohmann::json j = distributedBall();
+    nlohmann::json j = distributedPunch();
     j[nlohmann::json::json_pointer(c.pointer)] = c.value;
     if (std::string(c.name) == "bristle") j["pairs"][0]["model"]["effects"]["stribeck"] = nlohmann::json::object();
     const std::string message = errorOf(j);
     EXPECT_NE(message.find(c.fragment), std::string::npos)
         << c.name << ": got \"" << message << "\"";
   }
-  nlohmann::json no_coulomb = distributedBall();
+  nlohmann::json primitive = distributedPunch();
+  primitive["bodies"][1]["shape"] = "box:0.02,0.02,0.02";
+  EXPECT_NE(errorOf(primitive).find("pairs[0].friction: bodies 'ball' and 'plate': cannot "
+                                    "compute box"),
+            std::string::npos)
+      << errorOf(primitive);
+  nlohmann::json no_coulomb = distributedPunch();
   no_coulomb["pairs"][0]["model"]["effects"].erase("coulomb");
-  EXPECT_NE(errorOf(no_coulomb).find("pairs[0].friction: pair 'box-plate': distributed friction "
+  EXPECT_NE(errorOf(no_coulomb).find("pairs[0].friction: pair 'punch-plate': distributed friction "
                                      "integrates coulomb's friction pointwise; add the coulomb "
                                      "effect"),
             std::string::npos)
       << errorOf(no_coulomb);
-  nlohmann::json lumped_grid = distributedBall();
+  nlohmann::json lumped_grid = distributedPunch();
   lumped_grid["pairs"][0]["friction"] = "lumped";
   lumped_grid["pairs"][0]["columns"] = 64;
-  EXPECT_NE(errorOf(lumped_grid).find("pairs[0].columns: pair 'box-plate': the column grid "
+  EXPECT_NE(errorOf(lumped_grid).find("pairs[0].columns: pair 'punch-plate': the column grid "
                                       "applies to \"friction\": \"distributed\" only"),
             std::string::npos)
       << errorOf(lumped_grid);
@@ -263,7 +279,7 @@ TEST(ScenarioFile, DistributedFrictionErrorsNameThePairAndKey) {
 // The Simulator checks pairs built in code the same way (no reader in between).
 TEST(ScenarioFile, SimulatorRefusesADistributedPairItCannotRun) {
   const auto distributed = [] {
-    return scenarioFromJson(distributedBall(), "s.json", kScenarios).scenario;
+    return scenarioFromJson(distributedPunch(), "s.json", kScenarios).scenario;
   };
   EXPECT_NO_THROW(dynamics::Simulator{distributed()});
   const auto messageOf = [](const dynamics::Scenario& s) -> std::string {
@@ -276,18 +292,18 @@ TEST(ScenarioFile, SimulatorRefusesADistributedPairItCannotRun) {
   };
   dynamics::Scenario method = distributed();
   method.pairs[0].method = volume::Method::kHalfspace;
-  EXPECT_NE(messageOf(method).find("pair 'box-plate': distributed friction needs the columns "
+  EXPECT_NE(messageOf(method).find("pair 'punch-plate': distributed friction needs the columns "
                                    "method, not halfspace"),
             std::string::npos)
       << messageOf(method);
   dynamics::Scenario grid = distributed();
   grid.pairs[0].column_resolution = 2;
-  EXPECT_NE(messageOf(grid).find("pair 'box-plate': column resolution 2 is outside [8, 512]"),
+  EXPECT_NE(messageOf(grid).find("pair 'punch-plate': column resolution 2 is outside [8, 512]"),
             std::string::npos)
       << messageOf(grid);
   dynamics::Scenario model = distributed();
   model.pairs[0].model = dynamics::Model::withEffects({"stiffness"});
-  EXPECT_NE(messageOf(model).find("pair 'box-plate': distributed friction integrates coulomb"),
+  EXPECT_NE(messageOf(model).find("pair 'punch-plate': distributed friction integrates coulomb"),
             std::string::npos)
       << messageOf(model);
 }

@@ -142,6 +142,29 @@ TEST(SimulateCli, BadColumnGridExitsWithTwoNamingPairAndKey) {
   fs::remove_all(dir);
 }
 
+// A method that does not handle a pair's shapes is bad input: found when the file is read,
+// exit 2, no output (it used to surface at the first evaluation, after the CSV headers).
+TEST(SimulateCli, MethodThatCannotTakeThePairExitsWithTwoBeforeAnyOutput) {
+  const fs::path dir = scratch("method");
+  const fs::path scenario = shortPunchScenario(dir, "0.003");
+  std::string text = readAll(scenario);
+  const std::string method = "\"method\": \"halfspace\"";
+  const auto at = text.find(method);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, method.size(), "\"method\": \"fast\"");
+  std::ofstream(scenario) << text;
+  EXPECT_EQ(runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() +
+                       "\"",
+                   dir / "err"),
+            2);
+  const std::string err = readAll(dir / "err");
+  EXPECT_NE(err.find("pairs[0].method: bodies 'lumped' and 'plate': cannot compute"),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "bodies.csv"));
+  fs::remove_all(dir);
+}
+
 TEST(SimulateCli, WritesBodiesPairsAndSummary) {
   const fs::path dir = scratch("ok");
   const std::string scenario = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/ball_drop.json";

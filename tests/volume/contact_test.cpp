@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
@@ -79,6 +80,42 @@ TEST(ComputeContact, UnhandledPairsNameBothShapes) {
       computeContact(geometry::Sphere{0.01}, I, geometry::HalfSpace{}, I, Method::kColumns),
       InputError);
   EXPECT_THROW(computeContact(geometry::Sphere{0.01}, I, torus, I, Method::kCgal), InputError);
+}
+
+// handles() is what the readers check before a run; it must say exactly what a query does:
+// every method against every pair of shape kinds, both orders, a query throws InputError iff
+// handles() says no (and requireHandles throws then too). The shapes are apart, so the
+// queries that run are cheap.
+TEST(ComputeContact, HandlesSaysWhatTheQueryDoes) {
+  const std::vector<geometry::Shape> shapes = {
+      geometry::Sphere{0.01}, geometry::Cylinder{0.01, 0.02},
+      geometry::Box{Vector3d(0.01, 0.02, 0.03)}, geometry::HalfSpace{}, torusShape()};
+  const Isometry3d far = test::translation({0.0, 0.0, 0.5});
+  int handled = 0;
+  for (Method m : {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast,
+                   Method::kColumns}) {
+    for (const auto& a : shapes) {
+      for (const auto& b : shapes) {
+        const std::string what =
+            methodName(m) + ": " + geometry::describe(a) + " against " + geometry::describe(b);
+        bool queried = true;
+        try {
+          computeContact(a, far, b, Isometry3d::Identity(), m);
+        } catch (const InputError&) {
+          queried = false;
+        }
+        EXPECT_EQ(handles(m, a, b), queried) << what;
+        if (queried) {
+          EXPECT_NO_THROW(requireHandles(m, a, b)) << what;
+          ++handled;
+        } else {
+          EXPECT_THROW(requireHandles(m, a, b), InputError) << what;
+        }
+      }
+    }
+  }
+  // analytic 6, halfspace 2, cgal 3, fast 1, columns 3 (two half-spaces are no pair for it).
+  EXPECT_EQ(handled, 15);
 }
 
 // The tree is built once per mesh and shared.
