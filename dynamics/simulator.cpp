@@ -144,9 +144,10 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.push_back(volume::ContactVolume{});
     try {  // a pair no method (or not its method) handles fails here, before any output
-      const volume::Method m = p.friction == FrictionMode::kDistributed ? volume::Method::kColumns
-                               : p.method                              ? *p.method
-                                                                       : volume::defaultMethod(a, b);
+      const bool distributed = p.friction == FrictionMode::kDistributed;
+      const volume::Method m = distributed ? volume::Method::kColumns
+                               : p.method  ? *p.method
+                                           : volume::defaultMethod(a, b);
       volume::requireHandles(m, a, b);
       apart_.back().method = m;
     } catch (const InputError& e) {

@@ -120,49 +120,38 @@ TEST(SimulateCli, DistributedPairPutsTheSpinTorqueInCoulomb) {
   fs::remove_all(dir);
 }
 
-TEST(SimulateCli, BadColumnGridExitsWithTwoNamingPairAndKey) {
-  const fs::path dir = scratch("columns");
+// The short punch scenario with `from` replaced by `to` is bad input: `simulate` exits 2 with
+// `message` on standard error and writes no output.
+void expectRefused(const std::string& name, const std::string& from, const std::string& to,
+                   const std::string& message) {
+  const fs::path dir = scratch(name);
   const fs::path scenario = shortPunchScenario(dir, "0.003");
   std::string text = readAll(scenario);
-  const std::string grid = "\"columns\": 64";
-  const auto at = text.find(grid);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, grid.size(), "\"columns\": 4");
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
   std::ofstream(scenario) << text;
   EXPECT_EQ(runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() +
                        "\"",
                    dir / "err"),
             2);
   const std::string err = readAll(dir / "err");
-  EXPECT_NE(err.find("pairs[1].columns: pair 'distributed-plate': expected an integer number "
-                     "of grid lines per side in [8, 512], got 4"),
-            std::string::npos)
-      << err;
+  EXPECT_NE(err.find(message), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "out" / "bodies.csv"));
   fs::remove_all(dir);
+}
+
+TEST(SimulateCli, BadColumnGridExitsWithTwoNamingPairAndKey) {
+  expectRefused("columns", "\"columns\": 64", "\"columns\": 4",
+                "pairs[1].columns: pair 'distributed-plate': expected an integer number of grid "
+                "lines per side in [8, 512], got 4");
 }
 
 // A method that does not handle a pair's shapes is bad input: found when the file is read,
 // exit 2, no output (it used to surface at the first evaluation, after the CSV headers).
 TEST(SimulateCli, MethodThatCannotTakeThePairExitsWithTwoBeforeAnyOutput) {
-  const fs::path dir = scratch("method");
-  const fs::path scenario = shortPunchScenario(dir, "0.003");
-  std::string text = readAll(scenario);
-  const std::string method = "\"method\": \"halfspace\"";
-  const auto at = text.find(method);
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, method.size(), "\"method\": \"fast\"");
-  std::ofstream(scenario) << text;
-  EXPECT_EQ(runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() +
-                       "\"",
-                   dir / "err"),
-            2);
-  const std::string err = readAll(dir / "err");
-  EXPECT_NE(err.find("pairs[0].method: bodies 'lumped' and 'plate': cannot compute"),
-            std::string::npos)
-      << err;
-  EXPECT_FALSE(fs::exists(dir / "out" / "bodies.csv"));
-  fs::remove_all(dir);
+  expectRefused("method", "\"method\": \"halfspace\"", "\"method\": \"fast\"",
+                "pairs[0].method: bodies 'lumped' and 'plate': cannot compute");
 }
 
 TEST(SimulateCli, WritesBodiesPairsAndSummary) {
