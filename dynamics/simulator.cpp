@@ -215,24 +215,20 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     const BodyKinematics& A = kin[pair.a];
     const BodyKinematics& B = kin[pair.b];
     PairOutput& out = last_pairs_[k];
-    if (queried_[k]) {
+    const bool distributed = pair.friction == FrictionMode::kDistributed;
+    if (queried_[k]) {  // the constructor checked that the method takes the pair's shapes
       const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
       const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
       const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-      try {
-        out.cv = pair.friction == FrictionMode::kDistributed
-                     ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
-                                              volume::ColumnOptions::fixed(pair.column_resolution))
-                     : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
-                                              &caches_[k]);
-      } catch (const InputError& e) {  // a method that does not handle the pair's shapes
-        throw InputError("pair '" + pair.name + "'", e.message());
-      }
+      out.cv = distributed
+                   ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
+                                            volume::ColumnOptions::fixed(pair.column_resolution))
+                   : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
+                                            &caches_[k]);
       ++contact_count_;
     } else {
       out.cv = apart_[k];  // the query's answer for bodies apart
     }
-    const bool distributed = pair.friction == FrictionMode::kDistributed;
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
     const Eigen::Vector3d& p_c = out.cv.centroid;
     const RelativeMotion motion{A.pointVelocity(p_c) - B.pointVelocity(p_c), A.w_WB - B.w_WB};
