@@ -134,12 +134,12 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     broad_id_.push_back(-1);
     if (!box) continue;
     broad_id_.back() = broad_phase_.add(geometry::placedBounds(*box, b.X_WB0));
-    body_of_id_.push_back(static_cast<int>(i));
   }
   for (const ContactPair& p : scenario_.pairs) {
     const bool screened = broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 &&
                           !p.model.adjustsPayloadPose();
-    screened_.push_back(screened ? 1 : 0);
+    const std::pair<int, int> ids = std::minmax(broad_id_[p.a], broad_id_[p.b]);
+    screen_key_.push_back(screened ? ids : std::make_pair(-1, -1));
     const geometry::Shape& a = scenario_.bodies[p.a].shape;
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.push_back(volume::ContactVolume{});
@@ -180,19 +180,10 @@ void Simulator::screenPairs() {
     if (broad_id_[i] < 0 || scenario_.bodies[i].motion == BodyMotion::kFixed) continue;
     broad_phase_.update(broad_id_[i], geometry::placedBounds(local_bounds_[i], kin_[i].X_WB));
   }
-  overlapping_.clear();
-  for (const auto& [u, v] : broad_phase_.overlappingPairs()) {
-    const int i = body_of_id_[static_cast<std::size_t>(u)];
-    const int j = body_of_id_[static_cast<std::size_t>(v)];
-    overlapping_.emplace_back(std::min(i, j), std::max(i, j));
-  }
-  std::sort(overlapping_.begin(), overlapping_.end());
+  const std::vector<std::pair<int, int>> overlapping = broad_phase_.overlappingPairs();  // sorted
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
-    if (!screened_[k]) continue;
-    const auto a = static_cast<int>(scenario_.pairs[k].a);
-    const auto b = static_cast<int>(scenario_.pairs[k].b);
-    queried_[k] = std::binary_search(overlapping_.begin(), overlapping_.end(),
-                                     std::make_pair(std::min(a, b), std::max(a, b)));
+    if (screen_key_[k].first < 0) continue;
+    queried_[k] = std::binary_search(overlapping.begin(), overlapping.end(), screen_key_[k]);
   }
 }
 

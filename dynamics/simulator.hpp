@@ -131,13 +131,13 @@ class Simulator {
   // boxes do not overlap is not queried; its contact is empty (V = 0), as the query would say.
   geometry::BroadPhase broad_phase_;
   std::vector<int> broad_id_;                  ///< per body, −1 when unbounded (half-space)
-  std::vector<int> body_of_id_;                ///< inverse of broad_id_
   std::vector<geometry::Aabb> local_bounds_;   ///< per body, its shape's own bounds
-  std::vector<char> screened_;   ///< per pair: both bodies bounded, B1's pose not adjusted
+  /// Per pair, its bodies' broad-phase ids (smaller first) as overlappingPairs() lists them;
+  /// (−1, −1) when it is always queried (a body unbounded, or B1's pose adjusted).
+  std::vector<std::pair<int, int>> screen_key_;
   std::vector<char> queried_;    ///< per pair, at the latest right-hand side
   std::vector<volume::ContactVolume> apart_;  ///< per pair, its contact when not queried
   bool any_screened_ = false;
-  std::vector<std::pair<int, int>> overlapping_;  ///< body pairs (i < j) of the latest screen
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
   std::string non_finite_;  ///< the state whose rate was last found not finite
   long rhs_count_ = 0;
