@@ -41,11 +41,14 @@ inline dynamics::Scenario onPlate(dynamics::RigidBody body, dynamics::Model mode
   return s;
 }
 
-inline std::vector<dynamics::Snapshot> run(const dynamics::Scenario& scenario) {
+/// Every output snapshot of a run; its summary into `summary` when given.
+inline std::vector<dynamics::Snapshot> run(const dynamics::Scenario& scenario,
+                                           dynamics::SimulationSummary* summary = nullptr) {
   dynamics::Simulator sim(scenario);
   std::vector<dynamics::Snapshot> out;
-  dynamics::SimulationSummary summary;
-  sim.run([&](const dynamics::Snapshot& s) { out.push_back(s); }, [](double) {}, summary);
+  dynamics::SimulationSummary local;
+  sim.run([&](const dynamics::Snapshot& s) { out.push_back(s); }, [](double) {},
+          summary ? *summary : local);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "dynamics/simulator.hpp"
+#include "dynamics_fixtures.hpp"
 #include "geometry/error.hpp"
 #include "io/scenario_file.hpp"
 
@@ -151,9 +152,8 @@ TEST(ScenarioFile, ContactsMakeEveryPairNotListed) {
   // punch is 0.2 m from the tray and the fixture.
   dynamics::Scenario sc = f.scenario;
   sc.settings.duration = 2e-3;
-  dynamics::Simulator sim(sc);
   dynamics::SimulationSummary summary;
-  sim.run([](const dynamics::Snapshot&) {}, [](double) {}, summary);
+  test::run(sc, &summary);
   EXPECT_GE(summary.contact_evaluations, 2 * summary.rhs_evaluations);
   EXPECT_LE(summary.contact_evaluations, 3 * summary.rhs_evaluations);
 }

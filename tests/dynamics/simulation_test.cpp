@@ -329,18 +329,6 @@ dynamics::RigidBody meshBall(const std::string& name, const Eigen::Vector3d& p) 
   return freeBody(name, geometry::Mesh{mesh, "ball"}, at(p));
 }
 
-struct RunResult {
-  std::vector<Snapshot> out;
-  dynamics::SimulationSummary summary;
-};
-
-RunResult runWithSummary(const Scenario& scenario) {
-  dynamics::Simulator sim(scenario);
-  RunResult r;
-  sim.run([&](const Snapshot& s) { r.out.push_back(s); }, [](double) {}, r.summary);
-  return r;
-}
-
 // Two balls bouncing on a plate 0.1 m apart. A pair declared between them is screened out by
 // the broad phase at every right-hand side: it is never queried (two queries per right-hand
 // side, not three) and the run is the run without it, to the last bit (Dormand–Prince: the
@@ -356,21 +344,22 @@ TEST(SimulationBroadPhase, PairApartIsNeverQueriedAndChangesNothing) {
     tight(s, 0.02, 1e3, Integrator::kDopri5);
     return s;
   };
-  const RunResult with = runWithSummary(scenario(true));
-  const RunResult without = runWithSummary(scenario(false));
-  EXPECT_EQ(with.summary.contact_evaluations, 2 * with.summary.rhs_evaluations);
-  EXPECT_EQ(with.summary.rhs_evaluations, without.summary.rhs_evaluations);
-  ASSERT_EQ(with.out.size(), without.out.size());
-  for (std::size_t k = 0; k < with.out.size(); ++k) {
+  dynamics::SimulationSummary withSummary, withoutSummary;
+  const auto with = run(scenario(true), &withSummary);
+  const auto without = run(scenario(false), &withoutSummary);
+  EXPECT_EQ(withSummary.contact_evaluations, 2 * withSummary.rhs_evaluations);
+  EXPECT_EQ(withSummary.rhs_evaluations, withoutSummary.rhs_evaluations);
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t k = 0; k < with.size(); ++k) {
     for (std::size_t b = 1; b < 3; ++b) {
-      EXPECT_EQ(with.out[k].bodies[b].p_WBcm, without.out[k].bodies[b].p_WBcm) << k << " " << b;
-      EXPECT_EQ(with.out[k].bodies[b].v_WBcm, without.out[k].bodies[b].v_WBcm) << k << " " << b;
+      EXPECT_EQ(with[k].bodies[b].p_WBcm, without[k].bodies[b].p_WBcm) << k << " " << b;
+      EXPECT_EQ(with[k].bodies[b].v_WBcm, without[k].bodies[b].v_WBcm) << k << " " << b;
     }
-    EXPECT_EQ(with.out[k].pairs[2].cv.volume, 0.0);
+    EXPECT_EQ(with[k].pairs[2].cv.volume, 0.0);
   }
   // Both balls did bounce: the runs compared are not free falls.
   for (std::size_t b = 1; b < 3; ++b) {
-    EXPECT_TRUE(std::any_of(with.out.begin(), with.out.end(),
+    EXPECT_TRUE(std::any_of(with.begin(), with.end(),
                             [b](const Snapshot& o) { return o.bodies[b].v_WBcm.z() > 0.0; }))
         << b;
   }
@@ -391,17 +380,18 @@ TEST(SimulationBroadPhase, PairIsQueriedOnceTheBoxesMeet) {
   s.pairs.push_back({"moving-resting", 0, 1, elastic, std::nullopt});
   s.gravity_W.setZero();
   tight(s, 0.02, 1e3, Integrator::kDopri5);
-  const RunResult r = runWithSummary(s);
-  EXPECT_EQ(r.out.back().pairs[0].cv.volume, 0.0) << "still in contact";
-  const Eigen::Vector3d vA = r.out.back().bodies[0].v_WBcm, vB = r.out.back().bodies[1].v_WBcm;
+  dynamics::SimulationSummary summary;
+  const auto out = run(s, &summary);
+  EXPECT_EQ(out.back().pairs[0].cv.volume, 0.0) << "still in contact";
+  const Eigen::Vector3d vA = out.back().bodies[0].v_WBcm, vB = out.back().bodies[1].v_WBcm;
   std::printf("[measured] after the collision: moving %.3e m/s, resting %.9f m/s; %ld of %ld "
               "right-hand sides queried\n",
-              vA.x(), vB.x(), r.summary.contact_evaluations, r.summary.rhs_evaluations);
+              vA.x(), vB.x(), summary.contact_evaluations, summary.rhs_evaluations);
   EXPECT_NEAR(vA.x(), 0.0, 1e-6 * v);
   EXPECT_NEAR(vB.x(), v, 1e-6 * v);
   EXPECT_LT((vA + vB - Eigen::Vector3d(v, 0, 0)).norm(), 1e-12 * v);
-  EXPECT_GT(r.summary.contact_evaluations, 0);
-  EXPECT_LT(r.summary.contact_evaluations, r.summary.rhs_evaluations / 2);
+  EXPECT_GT(summary.contact_evaluations, 0);
+  EXPECT_LT(summary.contact_evaluations, summary.rhs_evaluations / 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothIntegrators, Simulation,
