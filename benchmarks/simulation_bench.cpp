@@ -17,8 +17,8 @@
 namespace {
 
 using vcontact::dynamics::Integrator;
-using vcontact::dynamics::Simulator;
 using vcontact::dynamics::SimulationSummary;
+using vcontact::dynamics::Simulator;
 using vcontact::dynamics::Snapshot;
 
 // The scenarios live next to this source tree's benchmarks/ folder.

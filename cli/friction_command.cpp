@@ -33,15 +33,15 @@ constexpr int kMaxRows = 2000;
 const Eigen::Vector3d kPlateRpyDeg(17.0, 29.0, 0.0);
 
 struct FrictionMapOptions {
-  double radius = 0.01;     // m: a 20 mm steel punch
-  double load = 10.0;       // N
-  double mu = 0.2;          // MODEL.md §4
-  double kv = 5.17e12;      // N/m³, MODEL.md §4
+  double radius = 0.01;  // m: a 20 mm steel punch
+  double load = 10.0;    // N
+  double mu = 0.2;       // MODEL.md §4
+  double kv = 5.17e12;   // N/m³, MODEL.md §4
   double epsMin = 1e-3, epsMax = 1e3;
   int perDecade = 4;
-  double speed = 1.0;       // m/s, |v| + ... scale of the slip, see --speed
-  std::string shape;        // empty: the flat punch
-  double depth = 2e-6;      // m, for --shape
+  double speed = 1.0;   // m/s, |v| + ... scale of the slip, see --speed
+  std::string shape;    // empty: the flat punch
+  double depth = 2e-6;  // m, for --shape
   std::string out = "friction_map.csv";
 };
 
@@ -77,8 +77,7 @@ SweepContact press(geometry::TriangleMesh mesh, double depth) {
   const geometry::Aabb box = geometry::bounds(mesh);
   SweepContact c;
   c.X_WH = io::poseFromRpyDegrees(Eigen::Vector3d::Zero(), kPlateRpyDeg);
-  const Eigen::Isometry3d X_WB =
-      c.X_WH * Eigen::Translation3d(0.0, 0.0, -box.min.z() - depth);
+  const Eigen::Isometry3d X_WB = c.X_WH * Eigen::Translation3d(0.0, 0.0, -box.min.z() - depth);
   const geometry::Mesh body{std::make_shared<geometry::TriangleMesh>(std::move(mesh)), "payload"};
   c.cv = volume::columnsContact(body, X_WB, geometry::HalfSpace{}, c.X_WH, &c.field);
   if (!c.cv.inContact()) throw InputError("--depth", "the body does not reach the plate");
@@ -102,15 +101,15 @@ SweepContact sweepContact(const FrictionMapOptions& o) {
   SweepContact c = press(meshOf(parsed.shape, "--shape (" + o.shape + ")"), o.depth);
   c.R = std::sqrt(2.0) * c.cv.r_gyr;  // the flat punch of the same r_gyr
   std::ostringstream s;
-  s << geometry::describe(parsed.shape) << ", depth " << o.depth << " m, R = sqrt(2) r_gyr = "
-    << c.R << " m";
+  s << geometry::describe(parsed.shape) << ", depth " << o.depth
+    << " m, R = sqrt(2) r_gyr = " << c.R << " m";
   c.description = s.str();
   return c;
 }
 
 struct Row {
-  double eps, v, w;                // –, m/s, rad/s
-  double fLumped, fDist, mLumped, mDist;  // N, N·m (magnitudes)
+  double eps, v, w;                              // –, m/s, rad/s
+  double fLumped, fDist, mLumped, mDist;         // N, N·m (magnitudes)
   std::optional<dynamics::PunchFriction> exact;  // F/μN, M/μNR
 };
 
@@ -156,8 +155,7 @@ void validate(const FrictionMapOptions& o) {
   check(std::isfinite(o.kv) && o.kv > 0.0, "--kv", "a volumetric stiffness > 0 in N/m^3");
   check(std::isfinite(o.depth) && o.depth > 0.0, "--depth", "a depth > 0 in metres");
   check(std::isfinite(o.speed) && o.speed > 0.0, "--speed", "a speed > 0 in m/s");
-  check(std::isfinite(o.epsMin) && o.epsMin > 0.0 && std::isfinite(o.epsMax) &&
-            o.epsMax > o.epsMin,
+  check(std::isfinite(o.epsMin) && o.epsMin > 0.0 && std::isfinite(o.epsMax) && o.epsMax > o.epsMin,
         "--eps-min/--eps-max", "0 < eps-min < eps-max, finite");
   check(o.perDecade >= 1 && std::log10(o.epsMax / o.epsMin) * o.perDecade < kMaxRows,
         "--per-decade", "at least 1, and fewer than 2000 rows in all");
@@ -189,14 +187,14 @@ void printTable(const std::vector<Row>& rows, const SweepContact& c, const Frict
             << "distributed\n";
   std::cout << std::setw(12) << "eps" << std::setw(10) << "F_lumped" << std::setw(10) << "F_dist"
             << std::setw(10) << "F_exact" << std::setw(9) << "F_ratio" << std::setw(10)
-            << "M_lumped" << std::setw(10) << "M_dist" << std::setw(10) << "M_exact"
-            << std::setw(9) << "M_ratio" << '\n';
+            << "M_lumped" << std::setw(10) << "M_dist" << std::setw(10) << "M_exact" << std::setw(9)
+            << "M_ratio" << '\n';
   std::cout << std::fixed;
   for (const Row& r : rows) {
     const double F = o.mu * fn, M = F * c.R;
-    std::cout << std::setprecision(5) << std::scientific << std::setw(12) << r.eps
-              << std::fixed << std::setw(10) << r.fLumped / F << std::setw(10) << r.fDist / F
-              << std::setw(10) << (r.exact ? r.exact->force : std::nan("")) << std::setw(9)
+    std::cout << std::setprecision(5) << std::scientific << std::setw(12) << r.eps << std::fixed
+              << std::setw(10) << r.fLumped / F << std::setw(10) << r.fDist / F << std::setw(10)
+              << (r.exact ? r.exact->force : std::nan("")) << std::setw(9)
               << ratio(r.fLumped, r.fDist) << std::setw(10) << r.mLumped / M << std::setw(10)
               << r.mDist / M << std::setw(10) << (r.exact ? r.exact->torque : std::nan(""))
               << std::setw(9) << ratio(r.mLumped, r.mDist) << '\n';
@@ -206,7 +204,8 @@ void printTable(const std::vector<Row>& rows, const SweepContact& c, const Frict
 void runFrictionMap(const FrictionMapOptions& o) {
   validate(o);
   const SweepContact c = sweepContact(o);
-  dynamics::Model lumped = dynamics::Model::withEffects({"stiffness", "coulomb", "spin", "contensou"});
+  dynamics::Model lumped =
+      dynamics::Model::withEffects({"stiffness", "coulomb", "spin", "contensou"});
   lumped.setParameter("stiffness.kv", o.kv);
   lumped.setParameter("coulomb.mu", o.mu);
   std::vector<Row> rows;

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
-
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
@@ -16,7 +15,7 @@ namespace vcontact::cli {
 namespace {
 
 constexpr int kSimulationFailedExitCode = 3;  // 2 is bad input (main.cpp)
-constexpr double kProgressIntervalS = 0.5;  // wall-clock seconds between progress lines
+constexpr double kProgressIntervalS = 0.5;    // wall-clock seconds between progress lines
 
 struct SimulateOptions {
   std::string scenario;
@@ -59,8 +58,8 @@ void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
                             {"jacobian_evaluations", s.jacobian_evaluations}};
   std::ofstream(dir + "/summary.json") << j.dump(2) << '\n';
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
-            << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps
-            << " steps (" << s.rejected_steps << " rejected), " << s.contact_evaluations
+            << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
+            << s.rejected_steps << " rejected), " << s.contact_evaluations
             << " contact evaluations";
   if (s.jacobian_evaluations > 0) std::cerr << ", " << s.jacobian_evaluations << " Jacobians";
   std::cerr << '\n';
@@ -74,8 +73,8 @@ void runSimulate(const SimulateOptions& o) {
   Progress progress(file.scenario.settings.duration, o.quiet);
   dynamics::SimulationSummary summary;
   try {
-    sim.run([&](const dynamics::Snapshot& s) { writer.write(s); },
-            [&](double t) { progress(t); }, summary);
+    sim.run([&](const dynamics::Snapshot& s) { writer.write(s); }, [&](double t) { progress(t); },
+            summary);
   } catch (const dynamics::SimulationError& e) {
     writer.flush();
     progress.done();

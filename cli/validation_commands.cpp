@@ -49,8 +49,9 @@ Inputs readInputs(const ValidationOptions& o) {
 void printNoise(const validation::NoiseLevels& noise) {
   for (const auto& [o, n] : noise) {
     std::cout << "sigma " << o << " = " << n.sigma
-              << (n.estimated ? " (estimated from the data: 1.4826 MAD of second differences / sqrt(6))"
-                              : " (from the sidecar's noise)")
+              << (n.estimated
+                      ? " (estimated from the data: 1.4826 MAD of second differences / sqrt(6))"
+                      : " (from the sidecar's noise)")
               << '\n';
   }
 }
@@ -93,8 +94,12 @@ void runCompare(const ValidationOptions& o) {
   fs::create_directories(o.out);
   io::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
   io::writeJson(io::comparisonJson(r.comparison, noise), o.out + "/compare.json");
-  writeReport(o.out, {"compare", &d, noise, {{label(in.model.effectIds()), &r}},
-                      validation::failureWindows(d, r.comparison, r.prediction), nullptr});
+  writeReport(o.out, {"compare",
+                      &d,
+                      noise,
+                      {{label(in.model.effectIds()), &r}},
+                      validation::failureWindows(d, r.comparison, r.prediction),
+                      nullptr});
 }
 
 void runFit(const ValidationOptions& o) {
@@ -103,20 +108,26 @@ void runFit(const ValidationOptions& o) {
   const auto noise = validation::noiseLevels(d);
   validation::Replayer replayer(d);
   const validation::FitResult before = asGiven(replayer, noise, in.model);
-  const validation::FitResult r = validation::fit(replayer, noise, in.model, {in.loss, o.maxIterations});
+  const validation::FitResult r =
+      validation::fit(replayer, noise, in.model, {in.loss, o.maxIterations});
   printNoise(noise);
   printComparison("as given", before.comparison);
   printComparison("fitted", r.comparison);
   for (const auto& p : r.parameters) {
-    if (!p.fixed) std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << '\n';
+    if (!p.fixed)
+      std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << '\n';
   }
   printWarnings(r.warnings);
   fs::create_directories(o.out);
   io::writeJson(io::modelToJson(r.model), o.out + "/model.json");
   io::writeJson(io::fitJson(r, noise, in.loss), o.out + "/fit.json");
   io::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
-  writeReport(o.out, {"fit", &d, noise, {{"as given", &before}, {"fitted", &r}},
-                      validation::failureWindows(d, r.comparison, r.prediction), nullptr});
+  writeReport(o.out, {"fit",
+                      &d,
+                      noise,
+                      {{"as given", &before}, {"fitted", &r}},
+                      validation::failureWindows(d, r.comparison, r.prediction),
+                      nullptr});
 }
 
 void runDiagnose(const ValidationOptions& o) {
@@ -127,20 +138,22 @@ void runDiagnose(const ValidationOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const validation::Diagnosis diag =
       validation::diagnose(d, noise, in.model, {{in.loss, o.maxIterations}, o.iterate});
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  io::ReportInput report{"diagnose", &d, noise, {}, diag.stages.front().where,
-                         &diag.stages.front().ranking};
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  io::ReportInput report{
+      "diagnose", &d, noise, {}, diag.stages.front().where, &diag.stages.front().ranking};
   for (std::size_t i = 0; i < diag.stages.size(); ++i) {
     const auto& s = diag.stages[i];
-    const std::string stageLabel = i == 0                ? label(s.effects)
+    const std::string stageLabel = i == 0               ? label(s.effects)
                                    : !s.removed.empty() ? "- " + s.removed
                                                         : "+ " + diag.stages[i - 1].verdict;
     report.stages.push_back({stageLabel, &s.baseline});
     printComparison(label(s.effects), s.baseline.comparison);
     std::cout << "  verdict: " << s.verdict;
     if (!s.ranking.empty() && s.ranking.front().error.empty()) {
-      std::cout << " (best: " << s.ranking.front().effect << ", chi " << s.ranking.front().fit.comparison.chi
-                << ", delta BIC " << s.ranking.front().deltaBic << ")";
+      std::cout << " (best: " << s.ranking.front().effect << ", chi "
+                << s.ranking.front().fit.comparison.chi << ", delta BIC "
+                << s.ranking.front().deltaBic << ")";
     }
     std::cout << '\n';
   }
@@ -191,7 +204,8 @@ void addValidationOptions(CLI::App* cmd, const std::shared_ptr<ValidationOptions
   if (!fits) return;
   cmd->add_option("--loss", o->loss, "none | huber | cauchy (robust loss on residual/sigma)")
       ->capture_default_str();
-  cmd->add_option("--max-iterations", o->maxIterations, "Ceres iterations per fit")->capture_default_str();
+  cmd->add_option("--max-iterations", o->maxIterations, "Ceres iterations per fit")
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -199,33 +213,41 @@ void addValidationOptions(CLI::App* cmd, const std::shared_ptr<ValidationOptions
 void addValidationCommands(CLI::App& app) {
   auto compare = std::make_shared<ValidationOptions>();
   CLI::App* c = app.add_subcommand(
-      "compare", "Replay a dataset through a model: residuals.csv, compare.json (chi, RMS), report.html.");
+      "compare",
+      "Replay a dataset through a model: residuals.csv, compare.json (chi, RMS), report.html.");
   addValidationOptions(c, compare, false);
   c->callback([compare] { runCompare(*compare); });
 
   auto fit = std::make_shared<ValidationOptions>();
-  CLI::App* f = app.add_subcommand(
-      "fit", "Fit the model's free parameters to a dataset: model.json, fit.json, residuals.csv, report.html.");
+  CLI::App* f = app.add_subcommand("fit",
+                                   "Fit the model's free parameters to a dataset: model.json, "
+                                   "fit.json, residuals.csv, report.html.");
   addValidationOptions(f, fit, true);
   f->callback([fit] { runFit(*fit); });
 
   auto diag = std::make_shared<ValidationOptions>();
   CLI::App* g = app.add_subcommand(
-      "diagnose", "Fit, then rank every missing effect by delta BIC: diagnosis.json, model.json, report.html.");
+      "diagnose",
+      "Fit, then rank every missing effect by delta BIC: diagnosis.json, model.json, report.html.");
   addValidationOptions(g, diag, true);
-  g->add_flag("--iterate", diag->iterate, "add the best effect and repeat until the verdict is none");
+  g->add_flag("--iterate", diag->iterate,
+              "add the best effect and repeat until the verdict is none");
   g->callback([diag] { runDiagnose(*diag); });
 
   auto synth = std::make_shared<SynthOptions>();
   CLI::App* s = app.add_subcommand(
-      "synth", "Write a synthetic rig dataset: a rig profile replayed through a known model plus noise.");
+      "synth",
+      "Write a synthetic rig dataset: a rig profile replayed through a known model plus noise.");
   s->add_option("--profile", synth->profile,
-                "loading | impacts | friction-ramp | drive | dwell | slide-spin | rolling")->required();
+                "loading | impacts | friction-ramp | drive | dwell | slide-spin | rolling")
+      ->required();
   s->add_option("--model", synth->model, "the true model file")->required();
-  s->add_option("--out", synth->out, "dataset sidecar to write, NAME.json (NAME.csv beside it)")->required();
+  s->add_option("--out", synth->out, "dataset sidecar to write, NAME.json (NAME.csv beside it)")
+      ->required();
   s->add_option("--samples", synth->samples, "number of samples")->capture_default_str();
   s->add_option("--seed", synth->seed, "noise seed")->capture_default_str();
-  s->add_option("--noise-scale", synth->noiseScale, "multiplies the profile's noise sigma")->capture_default_str();
+  s->add_option("--noise-scale", synth->noiseScale, "multiplies the profile's noise sigma")
+      ->capture_default_str();
   s->callback([synth] { runSynth(*synth); });
 }
 

@@ -1,8 +1,7 @@
 #include <fstream>
 #include <iostream>
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"

@@ -1,14 +1,14 @@
 #include "dynamics/bdf_integrator.hpp"
 
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
-
-#include <Eigen/LU>
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 namespace vcontact::dynamics {
 namespace {
@@ -98,14 +98,20 @@ T* require(T* p, const char* call) {
 
 std::string describe(int flag) {
   switch (flag) {
-    case CV_TOO_MUCH_ACC: return "the tolerances are below what double precision can reach";
-    case CV_ERR_FAILURE: return "the local error test failed repeatedly";
-    case CV_CONV_FAILURE: return "the Newton iteration failed to converge repeatedly";
-    case CV_LSETUP_FAIL: return "the Jacobian or its LU factorisation failed";
-    case CV_LSOLVE_FAIL: return "the linear solve failed";
+    case CV_TOO_MUCH_ACC:
+      return "the tolerances are below what double precision can reach";
+    case CV_ERR_FAILURE:
+      return "the local error test failed repeatedly";
+    case CV_CONV_FAILURE:
+      return "the Newton iteration failed to converge repeatedly";
+    case CV_LSETUP_FAIL:
+      return "the Jacobian or its LU factorisation failed";
+    case CV_LSOLVE_FAIL:
+      return "the linear solve failed";
     case CV_FIRST_RHSFUNC_ERR:
     case CV_REPTD_RHSFUNC_ERR:
-    case CV_RHSFUNC_FAIL: return "the derivative was repeatedly not finite";
+    case CV_RHSFUNC_FAIL:
+      return "the derivative was repeatedly not finite";
     default: {
       std::ostringstream s;
       s << "CVODE failed with flag " << flag;
@@ -131,8 +137,7 @@ struct BdfIntegrator::Impl {
   static int rhs(realtype t, N_Vector x, N_Vector dxdt, void* user) {
     auto* self = static_cast<Impl*>(user);
     try {
-      return self->f(t, N_VGetArrayPointer(x), N_VGetArrayPointer(dxdt)) ? kRhsOk
-                                                                         : kRhsRecoverable;
+      return self->f(t, N_VGetArrayPointer(x), N_VGetArrayPointer(dxdt)) ? kRhsOk : kRhsRecoverable;
     } catch (...) {
       self->pending = std::current_exception();
       return kRhsUnrecoverable;

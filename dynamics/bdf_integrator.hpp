@@ -23,10 +23,13 @@ namespace vcontact::dynamics {
 class BdfError : public std::runtime_error {
  public:
   BdfError(double t, double h, bool step_collapse, bool rhs_failed, const std::string& reason)
-      : std::runtime_error(reason), t_(t), h_(h), step_collapse_(step_collapse),
+      : std::runtime_error(reason),
+        t_(t),
+        h_(h),
+        step_collapse_(step_collapse),
         rhs_failed_(rhs_failed) {}
-  double time() const { return t_; }            ///< s, the last time reached
-  double stepSize() const { return h_; }        ///< s, the step size being tried
+  double time() const { return t_; }      ///< s, the last time reached
+  double stepSize() const { return h_; }  ///< s, the step size being tried
   bool stepCollapse() const { return step_collapse_; }
   bool rhsFailed() const { return rhs_failed_; }  ///< the derivative was repeatedly not finite
 
@@ -42,7 +45,7 @@ class BdfIntegrator {
   using Rhs = std::function<bool(double t, const double* x, double* dxdt)>;
 
   struct Settings {
-    double abs_tol = 1e-9;       ///< |local error_i| ≤ abs_tol + rel_tol |x_i|
+    double abs_tol = 1e-9;  ///< |local error_i| ≤ abs_tol + rel_tol |x_i|
     double rel_tol = 1e-6;
     double initial_step = 1e-6;  ///< s
     double max_step = 1e-3;      ///< s
@@ -52,9 +55,9 @@ class BdfIntegrator {
 
   struct Counts {
     long steps = 0;
-    long rejected = 0;       ///< error-test and Newton-convergence failures
-    long jacobians = 0;      ///< difference-quotient Jacobians formed
-    long jacobian_rhs = 0;   ///< right-hand-side evaluations spent on them
+    long rejected = 0;      ///< error-test and Newton-convergence failures
+    long jacobians = 0;     ///< difference-quotient Jacobians formed
+    long jacobian_rhs = 0;  ///< right-hand-side evaluations spent on them
   };
 
   BdfIntegrator(std::size_t n, Rhs f, const Settings& settings, double t0, const double* x0);

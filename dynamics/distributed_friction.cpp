@@ -118,16 +118,14 @@ PunchFriction lumpedPunchFriction(double eps, double g) {
 }
 
 DistributedFriction distributedFriction(const volume::ContactVolume& cv,
-                                        const volume::ColumnField& field,
-                                        const PressureLaw& law, const RelativeMotion& motion,
-                                        double mu, double v_eps) {
+                                        const volume::ColumnField& field, const PressureLaw& law,
+                                        const RelativeMotion& motion, double mu, double v_eps) {
   require(cv.inContact(), "the contact volume must be > 0", cv.volume);
   const std::size_t count = field.depth.size();
   require(count > 0 && field.points_W.size() == count,
           "the field needs as many points as depths, at least one", double(count));
   require(std::isfinite(law.kv) && law.kv > 0.0, "kv must be finite and > 0", law.kv);
-  require(std::isfinite(law.a) && law.a >= 0.0, "the damping factor a must be finite, >= 0",
-          law.a);
+  require(std::isfinite(law.a) && law.a >= 0.0, "the damping factor a must be finite, >= 0", law.a);
   require(std::isfinite(mu) && mu >= 0.0, "mu must be finite and >= 0", mu);
   require(std::isfinite(v_eps) && v_eps > 0.0, "v_eps must be finite and > 0", v_eps);
   require(motion.v_c_W.allFinite() && motion.w_W.allFinite(), "the motion must be finite",

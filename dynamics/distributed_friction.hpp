@@ -82,9 +82,8 @@ struct DistributedFriction {
 /// @throws std::invalid_argument when the inputs are not finite or in range, or when the field
 ///         does not belong to cv (Σ δ dS ≠ V to 1e-9)
 DistributedFriction distributedFriction(const volume::ContactVolume& cv,
-                                        const volume::ColumnField& field,
-                                        const PressureLaw& law, const RelativeMotion& motion,
-                                        double mu, double v_eps);
+                                        const volume::ColumnField& field, const PressureLaw& law,
+                                        const RelativeMotion& motion, double mu, double v_eps);
 
 /// Dimensionless friction of a flat punch, see the header comment.
 struct PunchFriction {

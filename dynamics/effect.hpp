@@ -18,13 +18,12 @@
 // Adding an effect is one new file in dynamics/effects/ plus one line in
 // dynamics/effects/registry.cpp; simulation, fitting and diagnosis then see it through Model.
 
+#include <Eigen/Geometry>
 #include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "dynamics/pair_state.hpp"
 #include "dynamics/wrench.hpp"
@@ -38,12 +37,12 @@ namespace vcontact::dynamics {
 
 /// One named, bounded model parameter.
 struct ParameterSpec {
-  std::string name;           ///< e.g. "kv" (the model calls it "stiffness.kv")
-  std::string unit;           ///< SI unit, "–" for none
-  double default_value;       ///< used when a model file leaves it out
-  double lower;               ///< physical lower bound (inclusive)
-  double upper;               ///< physical upper bound (inclusive)
-  std::string description;    ///< one line
+  std::string name;         ///< e.g. "kv" (the model calls it "stiffness.kv")
+  std::string unit;         ///< SI unit, "–" for none
+  double default_value;     ///< used when a model file leaves it out
+  double lower;             ///< physical lower bound (inclusive)
+  double upper;             ///< physical upper bound (inclusive)
+  std::string description;  ///< one line
 };
 
 /// Velocity of the material point of B1 at p_c minus that of B2, and ω1 − ω2 (MODEL.md §2).
@@ -80,16 +79,16 @@ struct ContactContext {
   /// (dynamics/DISTRIBUTED_FRICTION.md): coulomb then integrates pointwise Coulomb friction
   /// over it, force and spin torque together, and spin adds nothing. Null: lumped friction.
   const volume::ColumnField* field = nullptr;
-  PairState state;         ///< with z projected onto the contact plane
+  PairState state;  ///< with z projected onto the contact plane
   ModelSettings settings;
 
   // ---- kinematics at p_c (MODEL.md §2) ----
-  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();        ///< out of B2 into B1
-  double delta_dot = 0.0;                              ///< −v_c·n, m/s
-  Eigen::Vector3d v_t = Eigen::Vector3d::Zero();       ///< tangential slip, m/s
-  double omega_n = 0.0;                                ///< spin ω·n, rad/s
-  Eigen::Vector3d omega_t = Eigen::Vector3d::Zero();   ///< rolling, rad/s
-  double r_gyr = 0.0;                                  ///< m
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();       ///< out of B2 into B1
+  double delta_dot = 0.0;                             ///< −v_c·n, m/s
+  Eigen::Vector3d v_t = Eigen::Vector3d::Zero();      ///< tangential slip, m/s
+  double omega_n = 0.0;                               ///< spin ω·n, rad/s
+  Eigen::Vector3d omega_t = Eigen::Vector3d::Zero();  ///< rolling, rad/s
+  double r_gyr = 0.0;                                 ///< m
 
   // ---- pass 1: configured parameters ----
   double kv = 0.0;      ///< N/m³
@@ -103,13 +102,13 @@ struct ContactContext {
   FrictionLaw law = FrictionLaw::kCoulomb;
 
   // ---- derived, refined in stage order ----
-  double v_avg = 0.0;   ///< sqrt(|v_t|² + (r_gyr ω_n)²), m/s
-  double s = 1.0;       ///< exp(−v_avg²/v_s²)
-  double s_mu = 1.0;    ///< the stick measure in μ_max (s, or s_dw with dwell)
-  double mu_max = 0.0;  ///< –
-  double C_v = 1.0;     ///< Contensou factor on translation
-  double C_w = 1.0;     ///< Contensou factor on spin
-  double f_n = 0.0;     ///< normal force magnitude, N (≥ 0)
+  double v_avg = 0.0;      ///< sqrt(|v_t|² + (r_gyr ω_n)²), m/s
+  double s = 1.0;          ///< exp(−v_avg²/v_s²)
+  double s_mu = 1.0;       ///< the stick measure in μ_max (s, or s_dw with dwell)
+  double mu_max = 0.0;     ///< –
+  double C_v = 1.0;        ///< Contensou factor on translation
+  double C_w = 1.0;        ///< Contensou factor on spin
+  double f_n = 0.0;        ///< normal force magnitude, N (≥ 0)
   double theta_dot = 0.0;  ///< θ̇_n from the bristle stage, rad/s
 
   PairStateRates rates;  ///< state rates, written by the effects that own the states

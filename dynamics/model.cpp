@@ -58,9 +58,9 @@ void Model::add(std::unique_ptr<Effect> effect) {
   if (has(effect->id())) {
     throw InputError(kSource, "effect '" + std::string(effect->id()) + "' appears twice");
   }
-  const auto after = std::upper_bound(
-      effects_.begin(), effects_.end(), effect->stage(),
-      [](Stage s, const std::unique_ptr<Effect>& e) { return s < e->stage(); });
+  const auto after =
+      std::upper_bound(effects_.begin(), effects_.end(), effect->stage(),
+                       [](Stage s, const std::unique_ptr<Effect>& e) { return s < e->stage(); });
   adjusts_pose_ = adjusts_pose_ || effect->stage() == Stage::kGeometryOnly;
   effects_.insert(after, std::move(effect));
 }
@@ -76,14 +76,15 @@ void Model::validate() const {
   }
   if (has("stribeck") && parameter("stribeck.mu_s") < parameter("coulomb.mu")) {
     std::ostringstream s;
-    s << "stribeck.mu_s = " << parameter("stribeck.mu_s") << " must be >= coulomb.mu = "
-      << parameter("coulomb.mu") << " (MODEL.md section 3)";
+    s << "stribeck.mu_s = " << parameter("stribeck.mu_s")
+      << " must be >= coulomb.mu = " << parameter("coulomb.mu") << " (MODEL.md section 3)";
     throw InputError(kSource, s.str());
   }
 }
 
 bool Model::has(std::string_view id) const {
-  return std::any_of(effects_.begin(), effects_.end(), [&](const auto& e) { return e->id() == id; });
+  return std::any_of(effects_.begin(), effects_.end(),
+                     [&](const auto& e) { return e->id() == id; });
 }
 
 std::vector<std::string> Model::effectIds() const {
@@ -202,12 +203,14 @@ ContactResult Model::evaluate(const volume::ContactVolume& cv, const RelativeMot
 
 void Model::checkDistributedFriction() const {
   if (!has("coulomb")) {
-    throw InputError(kSource, "distributed friction integrates coulomb's friction pointwise; "
-                              "add the coulomb effect");
+    throw InputError(kSource,
+                     "distributed friction integrates coulomb's friction pointwise; "
+                     "add the coulomb effect");
   }
   if (has("bristle")) {
-    throw InputError(kSource, "distributed friction is pointwise Coulomb friction and cannot "
-                              "replace the bristle law; remove bristle or use lumped friction");
+    throw InputError(kSource,
+                     "distributed friction is pointwise Coulomb friction and cannot "
+                     "replace the bristle law; remove bristle or use lumped friction");
   }
 }
 
@@ -243,7 +246,8 @@ bool Model::settle(const volume::ContactVolume& cv, const RelativeMotion& motion
   }
   const double change = (state.z_W - before.z_W).norm() /
                             std::max(before.z_W.norm(), std::numeric_limits<double>::min()) +
-                        std::abs(state.theta_n - before.theta_n) + std::abs(state.s_dw - before.s_dw);
+                        std::abs(state.theta_n - before.theta_n) +
+                        std::abs(state.s_dw - before.s_dw);
   return change > kSettleChangeTolerance;
 }
 

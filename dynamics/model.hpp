@@ -18,12 +18,12 @@ namespace vcontact::dynamics {
 
 /// The result of one contact evaluation.
 struct ContactResult {
-  Wrench wrench;                 ///< total wrench on B1 at p_c
-  PairStateRates rates;          ///< d/dt of the pair state
-  std::vector<Wrench> shares;    ///< one per effect, in Model::effectIds() order; sums to wrench
-  double f_n = 0.0;              ///< normal force magnitude, N
-  double s = 0.0;                ///< stick–slip state, –
-  double mu_max = 0.0;           ///< friction limit used, –
+  Wrench wrench;               ///< total wrench on B1 at p_c
+  PairStateRates rates;        ///< d/dt of the pair state
+  std::vector<Wrench> shares;  ///< one per effect, in Model::effectIds() order; sums to wrench
+  double f_n = 0.0;            ///< normal force magnitude, N
+  double s = 0.0;              ///< stick–slip state, –
+  double mu_max = 0.0;         ///< friction limit used, –
 };
 
 class Model {
@@ -80,8 +80,7 @@ class Model {
   ///   for the lumped friction of MODEL.md §3; with a field the model must pass
   ///   checkDistributedFriction()
   ContactResult evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                         const PairState& state,
-                         const volume::ColumnField* field = nullptr) const;
+                         const PairState& state, const volume::ColumnField* field = nullptr) const;
   /// The same, into `out` (reuses its storage: no allocation in the integrator's loop).
   void evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
                 const PairState& state, ContactResult& out,

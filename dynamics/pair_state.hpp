@@ -6,9 +6,8 @@
 // turn with the normal: when the normal turns, z is projected onto the new plane
 // (Model::settle), and every effect reads the projected value.
 
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 namespace vcontact::dynamics {
 

@@ -37,8 +37,7 @@ BodyKinematics scheduledKinematics(const RigidBody& body, double t) {
           Eigen::AngleAxisd(angle, m.w_W.normalized()).toRotationMatrix() * body.X_WB0.linear();
     }
     const double phase = 2.0 * std::numbers::pi * m.frequency_hz * t;
-    k.X_WB.translation() =
-        body.X_WB0.translation() + m.v_W * t + m.amplitude_W * std::sin(phase);
+    k.X_WB.translation() = body.X_WB0.translation() + m.v_W * t + m.amplitude_W * std::sin(phase);
     // Velocity of the frame origin Bo; Bcm moves with the rotation about Bo.
     const Eigen::Vector3d v_WBo =
         m.v_W + m.amplitude_W * (2.0 * std::numbers::pi * m.frequency_hz * std::cos(phase));

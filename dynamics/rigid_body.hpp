@@ -4,9 +4,8 @@
 // Frames: B is the body frame, which is also the frame of its shape; Bcm is its centre of
 // mass (p_BBcm in B). A free body's state is p_WBcm, q_WB (unit quaternion), v_WBcm, w_WB.
 
-#include <string>
-
 #include <Eigen/Geometry>
+#include <string>
 
 #include "geometry/primitives.hpp"
 

@@ -28,11 +28,11 @@ constexpr int kMinColumnResolution = 8;
 constexpr int kMaxColumnResolution = 512;
 
 struct ContactPair {
-  std::string name;                     ///< for output ("ball-plate")
-  std::size_t a = 0;                    ///< index of B1 (payload) in Scenario::bodies
-  std::size_t b = 0;                    ///< index of B2 (plate)
+  std::string name;   ///< for output ("ball-plate")
+  std::size_t a = 0;  ///< index of B1 (payload) in Scenario::bodies
+  std::size_t b = 0;  ///< index of B2 (plate)
   Model model;
-  std::optional<volume::Method> method; ///< default: volume::defaultMethod
+  std::optional<volume::Method> method;  ///< default: volume::defaultMethod
   /// kDistributed needs method columns and a model that passes
   /// Model::checkDistributedFriction (the scenario reader checks both).
   FrictionMode friction = FrictionMode::kLumped;
@@ -50,13 +50,13 @@ enum class Integrator {
 
 struct SimulationSettings {
   Integrator integrator = Integrator::kDopri5;
-  double duration = 1.0;          ///< s
-  double output_rate_hz = 1000.0; ///< Hz, output every 1/rate s (and at t = 0)
-  double abs_tol = 1e-9;          ///< absolute error per step, state units (m, m/s, rad, ...)
-  double rel_tol = 1e-6;          ///< relative error per step
-  double initial_step = 1e-6;     ///< s
-  double max_step = 1e-3;         ///< s, so that no contact is stepped over in free flight
-  double min_step = 1e-13;        ///< s; a step-size collapse below this stops the run
+  double duration = 1.0;           ///< s
+  double output_rate_hz = 1000.0;  ///< Hz, output every 1/rate s (and at t = 0)
+  double abs_tol = 1e-9;           ///< absolute error per step, state units (m, m/s, rad, ...)
+  double rel_tol = 1e-6;           ///< relative error per step
+  double initial_step = 1e-6;      ///< s
+  double max_step = 1e-3;          ///< s, so that no contact is stepped over in free flight
+  double min_step = 1e-13;         ///< s; a step-size collapse below this stops the run
   /// Stop when a pair's mean penetration V/A exceeds this fraction of the smaller body's size.
   double max_penetration_fraction = 0.1;
 };

@@ -1,12 +1,11 @@
 #include "dynamics/simulator.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <boost/numeric/odeint.hpp>
 #include <chrono>
 #include <cmath>
 #include <sstream>
-
-#include <Eigen/Eigenvalues>
-#include <boost/numeric/odeint.hpp>
 
 #include "dynamics/bdf_integrator.hpp"
 #include "geometry/error.hpp"
@@ -116,10 +115,9 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     double* s = &x0_[static_cast<std::size_t>(offset_[i])];
     const Eigen::Vector3d p = b.X_WB0 * b.p_BBcm;
     const Eigen::Quaterniond q(b.X_WB0.linear());
-    const double init[kBodyStates] = {p.x(),        p.y(),        p.z(),        q.w(),
-                                      q.x(),        q.y(),        q.z(),        b.v_WBcm0.x(),
-                                      b.v_WBcm0.y(), b.v_WBcm0.z(), b.w_WB0.x(),  b.w_WB0.y(),
-                                      b.w_WB0.z()};
+    const double init[kBodyStates] = {
+        p.x(),         p.y(),         p.z(),         q.w(),       q.x(),       q.y(),      q.z(),
+        b.v_WBcm0.x(), b.v_WBcm0.y(), b.v_WBcm0.z(), b.w_WB0.x(), b.w_WB0.y(), b.w_WB0.z()};
     std::copy(init, init + kBodyStates, s);
   }
   last_pairs_.resize(scenario_.pairs.size());
@@ -136,8 +134,8 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     broad_id_.back() = broad_phase_.add(geometry::placedBounds(*box, b.X_WB0));
   }
   for (const ContactPair& p : scenario_.pairs) {
-    const bool screened = broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 &&
-                          !p.model.adjustsPayloadPose();
+    const bool screened =
+        broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 && !p.model.adjustsPayloadPose();
     const std::pair<int, int> ids = std::minmax(broad_id_[p.a], broad_id_[p.b]);
     screen_key_.push_back(screened ? ids : std::make_pair(-1, -1));
     const geometry::Shape& a = scenario_.bodies[p.a].shape;
@@ -214,8 +212,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
       out.cv = distributed
                    ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
                                             volume::ColumnOptions::fixed(pair.column_resolution))
-                   : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method,
-                                            &caches_[k]);
+                   : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method, &caches_[k]);
       ++contact_count_;
     } else {
       out.cv = apart_[k];  // the query's answer for bodies apart
@@ -247,12 +244,19 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     const Eigen::Vector3d w_B = R.transpose() * w;
     const Eigen::Vector3d h_W = R * (body.I_BBcm_B * w_B);
     const Eigen::Vector3d v_dot = force[i] / body.mass + scenario_.gravity_W;
-    const Eigen::Vector3d w_dot =
-        R * (I_inv_B_[i] * (R.transpose() * (torque[i] - w.cross(h_W))));
-    const double rates[kBodyStates] = {s[7],          s[8],          s[9],
-                                       0.5 * q_dot.w(), 0.5 * q_dot.x(), 0.5 * q_dot.y(),
-                                       0.5 * q_dot.z(), v_dot.x(),     v_dot.y(),
-                                       v_dot.z(),     w_dot.x(),     w_dot.y(),
+    const Eigen::Vector3d w_dot = R * (I_inv_B_[i] * (R.transpose() * (torque[i] - w.cross(h_W))));
+    const double rates[kBodyStates] = {s[7],
+                                       s[8],
+                                       s[9],
+                                       0.5 * q_dot.w(),
+                                       0.5 * q_dot.x(),
+                                       0.5 * q_dot.y(),
+                                       0.5 * q_dot.z(),
+                                       v_dot.x(),
+                                       v_dot.y(),
+                                       v_dot.z(),
+                                       w_dot.x(),
+                                       w_dot.y(),
                                        w_dot.z()};
     std::copy(rates, rates + kBodyStates, d);
   }
@@ -370,7 +374,12 @@ std::string Simulator::stateOwner(std::size_t i) const {
     }
     static const char* const kQuantity[] = {"position", "attitude", "velocity", "angular velocity"};
     const std::size_t j = i - static_cast<std::size_t>(offset_[b]);
-    return "body '" + scenario_.bodies[b].name + "' (" + kQuantity[j < 3 ? 0 : j < 7 ? 1 : j < 10 ? 2 : 3] + ")";
+    return "body '" + scenario_.bodies[b].name + "' (" +
+           kQuantity[j < 3    ? 0
+                     : j < 7  ? 1
+                     : j < 10 ? 2
+                              : 3] +
+           ")";
   }
   for (std::size_t k = 0; k < pair_offset_.size(); ++k) {
     if (i >= static_cast<std::size_t>(pair_offset_[k]) &&
@@ -389,8 +398,8 @@ bool Simulator::rhsFinite(const double* x, double* dxdt, double t) {
   rhs(rhs_x_, rhs_dxdt_, t);
   std::copy(rhs_dxdt_.begin(), rhs_dxdt_.end(), dxdt);
   if (allFinite(rhs_dxdt_)) return true;
-  const auto bad = std::find_if(rhs_dxdt_.begin(), rhs_dxdt_.end(),
-                                [](double d) { return !std::isfinite(d); });
+  const auto bad =
+      std::find_if(rhs_dxdt_.begin(), rhs_dxdt_.end(), [](double d) { return !std::isfinite(d); });
   non_finite_ = stateOwner(static_cast<std::size_t>(bad - rhs_dxdt_.begin()));
   return false;
 }
@@ -398,7 +407,8 @@ bool Simulator::rhsFinite(const double* x, double* dxdt, double t) {
 // CVODE's failures in the words of the explicit path: time, pair or body, quantity.
 SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
   const double t = std::max(e.time(), t_last);
-  if (e.stepCollapse()) return stepCollapse(t, std::abs(e.stepSize()), "; BDF: " + std::string(e.what()));
+  if (e.stepCollapse())
+    return stepCollapse(t, std::abs(e.stepSize()), "; BDF: " + std::string(e.what()));
   std::ostringstream s;
   if (e.rhsFailed()) {
     s << where(t) << ", " << non_finite_ << ": the rate of change is not finite at every step "
@@ -525,8 +535,8 @@ void Simulator::runBdf(State& x, double& t, const OutputFn& on_output,
     check(x, t);
     settled = x;
     settlePairs(settled, t);
-    const bool jumped = exceedsTolerance(x, settled, set) ||
-                        normaliseQuaternions(settled) > kQuaternionNormDrift;
+    const bool jumped =
+        exceedsTolerance(x, settled, set) || normaliseQuaternions(settled) > kQuaternionNormDrift;
     for (;;) {
       const double t_out = std::min(static_cast<double>(next_output) * interval, set.duration);
       if (t_out > t + kOutputTimeSlack * interval) break;

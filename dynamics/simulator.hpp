@@ -37,8 +37,7 @@ class BdfError;
 
 class SimulationError : public std::runtime_error {
  public:
-  SimulationError(double t, std::string message)
-      : std::runtime_error(message), time_(t) {}
+  SimulationError(double t, std::string message) : std::runtime_error(message), time_(t) {}
   double time() const { return time_; }
 
  private:
@@ -53,21 +52,21 @@ struct PairOutput {
 };
 
 struct Snapshot {
-  double t = 0.0;                        ///< s
-  std::vector<BodyKinematics> bodies;    ///< one per Scenario::bodies
-  std::vector<PairOutput> pairs;         ///< one per Scenario::pairs
+  double t = 0.0;                      ///< s
+  std::vector<BodyKinematics> bodies;  ///< one per Scenario::bodies
+  std::vector<PairOutput> pairs;       ///< one per Scenario::pairs
 };
 
 struct SimulationSummary {
-  double simulated_time = 0.0;   ///< s
-  double wall_time = 0.0;        ///< s
-  long steps = 0;                ///< accepted steps
+  double simulated_time = 0.0;  ///< s
+  double wall_time = 0.0;       ///< s
+  long steps = 0;               ///< accepted steps
   long rejected_steps = 0;
   long rhs_evaluations = 0;
-  long contact_evaluations = 0;  ///< volume queries (the pairs the broad phase let through, at
-                                 ///< every right-hand-side evaluation)
-  long jacobian_evaluations = 0; ///< BDF: difference-quotient Jacobians (their right-hand
-                                 ///< sides are in rhs_evaluations); 0 for Dormand–Prince
+  long contact_evaluations = 0;   ///< volume queries (the pairs the broad phase let through, at
+                                  ///< every right-hand-side evaluation)
+  long jacobian_evaluations = 0;  ///< BDF: difference-quotient Jacobians (their right-hand
+                                  ///< sides are in rhs_evaluations); 0 for Dormand–Prince
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
 
@@ -112,9 +111,9 @@ class Simulator {
   SimulationError bdfFailure(const BdfError& e, double t_last) const;
 
   Scenario scenario_;
-  std::vector<int> offset_;       ///< start of each free body's 13 states, −1 if not free
-  std::vector<int> pair_offset_;  ///< start of each pair's PairState::kSize states
-  std::vector<double> size_;      ///< characteristic size of each body, m
+  std::vector<int> offset_;               ///< start of each free body's 13 states, −1 if not free
+  std::vector<int> pair_offset_;          ///< start of each pair's PairState::kSize states
+  std::vector<double> size_;              ///< characteristic size of each body, m
   std::vector<Eigen::Matrix3d> I_inv_B_;  ///< inverse inertia about Bcm, B axes, 1/(kg·m²)
   // Scratch space of rhs(), kept to avoid allocations in the integrator's loop.
   std::vector<BodyKinematics> kin_;
@@ -130,12 +129,12 @@ class Simulator {
   // Broad phase (FCL's dynamic AABB tree over the bodies' placed bounds): a pair whose bodies'
   // boxes do not overlap is not queried; its contact is empty (V = 0), as the query would say.
   geometry::BroadPhase broad_phase_;
-  std::vector<int> broad_id_;                  ///< per body, −1 when unbounded (half-space)
-  std::vector<geometry::Aabb> local_bounds_;   ///< per body, its shape's own bounds
+  std::vector<int> broad_id_;                 ///< per body, −1 when unbounded (half-space)
+  std::vector<geometry::Aabb> local_bounds_;  ///< per body, its shape's own bounds
   /// Per pair, its bodies' broad-phase ids (smaller first) as overlappingPairs() lists them;
   /// (−1, −1) when it is always queried (a body unbounded, or B1's pose adjusted).
   std::vector<std::pair<int, int>> screen_key_;
-  std::vector<char> queried_;    ///< per pair, at the latest right-hand side
+  std::vector<char> queried_;                 ///< per pair, at the latest right-hand side
   std::vector<volume::ContactVolume> apart_;  ///< per pair, its contact when not queried
   bool any_screened_ = false;
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors

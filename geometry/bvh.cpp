@@ -38,7 +38,7 @@ struct Box {
 };
 
 struct Bin {
-  Box box;     ///< of the triangles (not the centroids) in the bin
+  Box box;  ///< of the triangles (not the centroids) in the bin
   int count = 0;
 };
 
@@ -60,8 +60,8 @@ int splitTriangles(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>&
   for (auto it = begin; it != end; ++it) centroidBox.grow(centroids[static_cast<std::size_t>(*it)]);
   const Eigen::Vector3d extent = centroidBox.hi - centroidBox.lo;
   const auto binOf = [&](int f, int axis) {
-    const double u = (centroids[static_cast<std::size_t>(f)][axis] - centroidBox.lo[axis]) /
-                     extent[axis];
+    const double u =
+        (centroids[static_cast<std::size_t>(f)][axis] - centroidBox.lo[axis]) / extent[axis];
     return std::clamp(static_cast<int>(kSahBins * u), 0, kSahBins - 1);
   };
 

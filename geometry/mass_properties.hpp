@@ -18,9 +18,9 @@ Moments solidMoments(const Shape& shape);
 
 /// Mass properties for a density ρ (kg/m³): mass, centre of mass and inertia about it.
 struct MassProperties {
-  double mass = 0.0;                                 ///< kg
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();     ///< m, body frame
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero(); ///< kg·m², about com, body axes
+  double mass = 0.0;                                  ///< kg
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();      ///< m, body frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< kg·m², about com, body axes
 };
 MassProperties massProperties(const Moments& moments, double density);
 

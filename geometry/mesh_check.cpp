@@ -37,8 +37,9 @@ void checkFinite(const TriangleMesh& mesh) {
     }
   }
   if (bad > 0) {
-    reject(bad, bad == 1 ? "vertex with a NaN or infinite coordinate"
-                         : "vertices with a NaN or infinite coordinate",
+    reject(bad,
+           bad == 1 ? "vertex with a NaN or infinite coordinate"
+                    : "vertices with a NaN or infinite coordinate",
            "is vertex " + std::to_string(first));
   }
 }

@@ -34,13 +34,13 @@ Moments tetrahedronMoments(const Eigen::Vector3d& o, const Eigen::Vector3d& a,
   local.m0 = D / 6.0;
   local.m1 = (D / 24.0) * s;
   // ∫ x xᵀ over the tetrahedron (0, u, v, w) = V/20 (Σ_k p_k p_kᵀ + s sᵀ), V = D/6.
-  local.m2 = (D / 120.0) *
-             (u * u.transpose() + v * v.transpose() + w * w.transpose() + s * s.transpose());
+  local.m2 =
+      (D / 120.0) * (u * u.transpose() + v * v.transpose() + w * w.transpose() + s * s.transpose());
   Moments M;
   M.m0 = local.m0;
   M.m1 = local.m1 + o * local.m0;
-  M.m2 = local.m2 + o * local.m1.transpose() + local.m1 * o.transpose() +
-         local.m0 * o * o.transpose();
+  M.m2 =
+      local.m2 + o * local.m1.transpose() + local.m1 * o.transpose() + local.m0 * o * o.transpose();
   return M;
 }
 

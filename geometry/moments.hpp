@@ -10,9 +10,9 @@
 namespace vcontact::geometry {
 
 struct Moments {
-  double m0 = 0.0;                                 ///< m³
-  Eigen::Vector3d m1 = Eigen::Vector3d::Zero();    ///< m⁴
-  Eigen::Matrix3d m2 = Eigen::Matrix3d::Zero();    ///< m⁵ (symmetric)
+  double m0 = 0.0;                               ///< m³
+  Eigen::Vector3d m1 = Eigen::Vector3d::Zero();  ///< m⁴
+  Eigen::Matrix3d m2 = Eigen::Matrix3d::Zero();  ///< m⁵ (symmetric)
 
   Moments& operator+=(const Moments& o) {
     m0 += o.m0;
@@ -87,7 +87,7 @@ class TetrahedronSum {
   double d_ = 0.0;
   Eigen::Vector3d ds_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d diag_ = Eigen::Vector3d::Zero();  ///< Σ D(u uᵀ + v vᵀ + w wᵀ + s sᵀ): xx, yy, zz
-  Eigen::Vector3d off_ = Eigen::Vector3d::Zero();   ///< ... xy, yz, zx
+  Eigen::Vector3d off_ = Eigen::Vector3d::Zero();  ///< ... xy, yz, zx
 };
 
 }  // namespace vcontact::geometry

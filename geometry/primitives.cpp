@@ -37,38 +37,39 @@ std::string shapeKind(const Shape& shape) {
 std::string describe(const Shape& shape) {
   std::ostringstream os;
   os.precision(6);
-  std::visit(Overloaded{[&](const Sphere& s) { os << "sphere R=" << s.radius; },
-                        [&](const Cylinder& c) { os << "cylinder R=" << c.radius << " L=" << c.length; },
-                        [&](const Box& b) {
-                          os << "box " << b.size.x() << "x" << b.size.y() << "x" << b.size.z();
-                        },
-                        [&](const HalfSpace&) { os << "halfspace z<=0"; },
-                        [&](const Mesh& m) {
-                          os << "mesh " << m.name << " (" << m.mesh->triangleCount()
-                             << " triangles)";
-                        }},
-             shape);
+  std::visit(
+      Overloaded{[&](const Sphere& s) { os << "sphere R=" << s.radius; },
+                 [&](const Cylinder& c) { os << "cylinder R=" << c.radius << " L=" << c.length; },
+                 [&](const Box& b) {
+                   os << "box " << b.size.x() << "x" << b.size.y() << "x" << b.size.z();
+                 },
+                 [&](const HalfSpace&) { os << "halfspace z<=0"; },
+                 [&](const Mesh& m) {
+                   os << "mesh " << m.name << " (" << m.mesh->triangleCount() << " triangles)";
+                 }},
+      shape);
   return os.str();
 }
 
 void validate(const Shape& shape, const std::string& source) {
-  std::visit(Overloaded{[&](const Sphere& s) { requirePositive(s.radius, "sphere radius", source); },
-                        [&](const Cylinder& c) {
-                          requirePositive(c.radius, "cylinder radius", source);
-                          requirePositive(c.length, "cylinder length", source);
-                        },
-                        [&](const Box& b) {
-                          requirePositive(b.size.x(), "box size x", source);
-                          requirePositive(b.size.y(), "box size y", source);
-                          requirePositive(b.size.z(), "box size z", source);
-                        },
-                        [](const HalfSpace&) {},
-                        [&](const Mesh& m) {
-                          if (!m.mesh || m.mesh->triangleCount() == 0) {
-                            throw InputError(source, "mesh has no triangles");
-                          }
-                        }},
-             shape);
+  std::visit(
+      Overloaded{[&](const Sphere& s) { requirePositive(s.radius, "sphere radius", source); },
+                 [&](const Cylinder& c) {
+                   requirePositive(c.radius, "cylinder radius", source);
+                   requirePositive(c.length, "cylinder length", source);
+                 },
+                 [&](const Box& b) {
+                   requirePositive(b.size.x(), "box size x", source);
+                   requirePositive(b.size.y(), "box size y", source);
+                   requirePositive(b.size.z(), "box size z", source);
+                 },
+                 [](const HalfSpace&) {},
+                 [&](const Mesh& m) {
+                   if (!m.mesh || m.mesh->triangleCount() == 0) {
+                     throw InputError(source, "mesh has no triangles");
+                   }
+                 }},
+      shape);
 }
 
 void validatePose(const Eigen::Isometry3d& X, const std::string& source) {

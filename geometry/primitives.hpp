@@ -7,12 +7,11 @@
 //   Mesh     a closed, outward-oriented triangle mesh in its body frame.
 // A shape is placed in the world by an Eigen::Isometry3d X_WS (pose of shape S in world W).
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <string>
 #include <variant>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "geometry/triangle_mesh.hpp"
 

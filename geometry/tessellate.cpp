@@ -118,8 +118,8 @@ TriangleMesh tessellateTorus(double majorRadius, double tubeRadius, int segments
     const int i1 = (i + 1) % segments;
     for (int j = 0; j < tubeSegments; ++j) {
       const int j1 = (j + 1) % tubeSegments;
-      b.quad(idx[i * tubeSegments + j], idx[i1 * tubeSegments + j],
-             idx[i1 * tubeSegments + j1], idx[i * tubeSegments + j1]);
+      b.quad(idx[i * tubeSegments + j], idx[i1 * tubeSegments + j], idx[i1 * tubeSegments + j1],
+             idx[i * tubeSegments + j1]);
     }
   }
   return b.build();

@@ -19,7 +19,6 @@ TriangleMesh tessellateCylinder(double radius, double length, int segments);
 TriangleMesh tessellateBox(const Eigen::Vector3d& size);
 
 /// Torus about the z axis: major radius R, tube radius r. Triangles: 2·segments·tubeSegments.
-TriangleMesh tessellateTorus(double majorRadius, double tubeRadius, int segments,
-                             int tubeSegments);
+TriangleMesh tessellateTorus(double majorRadius, double tubeRadius, int segments, int tubeSegments);
 
 }  // namespace vcontact::geometry

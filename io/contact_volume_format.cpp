@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <iomanip>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace vcontact::io {
 namespace {
@@ -68,12 +67,11 @@ std::string toTable(const volume::ContactVolume& cv) {
     row(r == 0 ? "J_v" : "", v3(cv.J_v.row(r).transpose()), r == 0 ? "m^5" : "");
   }
   for (int r = 0; r < 3; ++r) {
-    row(r == 0 ? (cv.J_s_approximated ? "J_s (~J_v)" : "J_s") : "",
-        v3(cv.J_s.row(r).transpose()), r == 0 ? "m^5" : "");
+    row(r == 0 ? (cv.J_s_approximated ? "J_s (~J_v)" : "J_s") : "", v3(cv.J_s.row(r).transpose()),
+        r == 0 ? "m^5" : "");
   }
-  row("rel. error", std::isnan(cv.relative_error) ? "exact for the given shapes"
-                                                  : num(cv.relative_error),
-      "");
+  row("rel. error",
+      std::isnan(cv.relative_error) ? "exact for the given shapes" : num(cv.relative_error), "");
   return os.str();
 }
 

@@ -1,9 +1,8 @@
 #pragma once
 // ContactVolume as a human-readable table or as JSON (schema in README, "vcontact volume").
 
-#include <string>
-
 #include <nlohmann/json_fwd.hpp>
+#include <string>
 
 #include "volume/contact_volume.hpp"
 

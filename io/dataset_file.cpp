@@ -5,10 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
@@ -71,7 +70,8 @@ Table readCsv(const std::string& path) {
       std::set<std::string> seen;
       for (const auto& n : table.names) {
         if (n.empty()) throw InputError(path, "line 1: empty column name");
-        if (!seen.insert(n).second) throw InputError(path, "line 1: column '" + n + "' appears twice");
+        if (!seen.insert(n).second)
+          throw InputError(path, "line 1: column '" + n + "' appears twice");
       }
       continue;
     }
@@ -86,7 +86,8 @@ Table readCsv(const std::string& path) {
     for (std::size_t c = 0; c < fields.size(); ++c) {
       const std::string& f = fields[c];
       const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), row[c]);
-      const std::string where = "line " + std::to_string(lineNo) + ", column '" + table.names[c] + "'";
+      const std::string where =
+          "line " + std::to_string(lineNo) + ", column '" + table.names[c] + "'";
       if (f.empty() || ec != std::errc() || end != f.data() + f.size()) {
         throw InputError(path, where + ": '" + f + "' is not a number");
       }
@@ -95,12 +96,14 @@ Table readCsv(const std::string& path) {
     table.rows.push_back(std::move(row));
     table.lineOf.push_back(lineNo);
   }
-  if (table.names.empty()) throw InputError(path, "empty file: expected a header line of column names");
+  if (table.names.empty())
+    throw InputError(path, "empty file: expected a header line of column names");
   return table;
 }
 
 std::size_t columnIndex(const Table& t, const std::string& name) {
-  return static_cast<std::size_t>(std::find(t.names.begin(), t.names.end(), name) - t.names.begin());
+  return static_cast<std::size_t>(std::find(t.names.begin(), t.names.end(), name) -
+                                  t.names.begin());
 }
 
 // Either all three of a vector's columns or none.
@@ -122,7 +125,8 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
     }
   }
   if (std::none_of(t.names.begin(), t.names.end(), isWrench)) {
-    throw InputError(path, "line 1: no wrench column; expected at least one of fx, fy, fz, tx, ty, tz");
+    throw InputError(path,
+                     "line 1: no wrench column; expected at least one of fx, fy, fz, tx, ty, tz");
   }
   if (t.rows.size() < kMinimumSamples) {
     throw InputError(path, "only " + std::to_string(t.rows.size()) + " samples; at least " +
@@ -183,13 +187,15 @@ void readOutputsAndNoise(const json& j, const std::string& where, const std::str
     d.outputs.push_back(name);
   }
   if (!j.contains("noise")) return;
-  if (!j.at("noise").is_object()) throw InputError(where, "\"noise\" must be an object {output: sigma}");
+  if (!j.at("noise").is_object())
+    throw InputError(where, "\"noise\" must be an object {output: sigma}");
   for (const auto& [key, value] : j.at("noise").items()) {
     if (std::find(d.outputs.begin(), d.outputs.end(), key) == d.outputs.end()) {
       throw InputError(where, "noise: \"" + key + "\" is not one of the outputs");
     }
     if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>())) {
-      throw InputError(where, "noise: \"" + key + "\" must be a positive number, got " + value.dump());
+      throw InputError(where,
+                       "noise: \"" + key + "\" must be a positive number, got " + value.dump());
     }
     d.noise[key] = value.get<double>();
   }
@@ -203,20 +209,24 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   if (!j.is_object()) throw InputError(where, "the sidecar must be a JSON object");
   const std::string format = requireString(j, "format", where);
   if (format != kFormat) {
-    throw InputError(where, "format must be \"" + std::string(kFormat) + "\", got \"" + format + "\"");
+    throw InputError(where,
+                     "format must be \"" + std::string(kFormat) + "\", got \"" + format + "\"");
   }
   const std::string mode = requireString(j, "mode", where);
   if (mode == "dynamic") {
-    throw InputError(where, "mode \"dynamic\" is reserved for a later version of the format; "
-                            "this engine replays \"kinematic\" datasets");
+    throw InputError(where,
+                     "mode \"dynamic\" is reserved for a later version of the format; "
+                     "this engine replays \"kinematic\" datasets");
   }
-  if (mode != "kinematic") throw InputError(where, "mode must be \"kinematic\", got \"" + mode + "\"");
+  if (mode != "kinematic")
+    throw InputError(where, "mode must be \"kinematic\", got \"" + mode + "\"");
 
   DatasetReadResult result;
   validation::Dataset& d = result.dataset;
   d.sidecarPath = sidecarPath;
   const fs::path base = fs::path(sidecarPath).parent_path();
-  d.name = j.contains("name") ? requireString(j, "name", where) : fs::path(sidecarPath).stem().string();
+  d.name =
+      j.contains("name") ? requireString(j, "name", where) : fs::path(sidecarPath).stem().string();
   if (j.contains("notes")) d.notes = requireString(j, "notes", where);
   const std::string data = requireString(j, "data", where);
   d.dataPath = (base / data).string();
@@ -235,10 +245,13 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   fillSamples(readCsv(d.dataPath), d.dataPath, d);
   readOutputsAndNoise(j, where, d.dataPath, d);
   if (d.velocityFromPositions) {
-    result.warnings.push_back(d.dataPath + ": no vx, vy, vz columns; velocities differentiated from x, y, z");
+    result.warnings.push_back(d.dataPath +
+                              ": no vx, vy, vz columns; velocities differentiated from x, y, z");
   }
   if (d.omegaFromAttitude) {
-    result.warnings.push_back(d.dataPath + ": no wx, wy, wz columns; angular velocities differentiated from the quaternions");
+    result.warnings.push_back(
+        d.dataPath +
+        ": no wx, wy, wz columns; angular velocities differentiated from the quaternions");
   }
   return result;
 }

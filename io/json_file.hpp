@@ -1,9 +1,8 @@
 #pragma once
 // Reading a JSON file, with the errors every reader of the project reports the same way.
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace vcontact::io {
 

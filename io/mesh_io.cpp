@@ -1,15 +1,15 @@
 #include "io/mesh_io.hpp"
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <array>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
-
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include "geometry/error.hpp"
 #include "geometry/mesh_check.hpp"
@@ -29,16 +29,15 @@ geometry::TriangleMesh weld(const aiScene& scene, double scale) {
     std::vector<int> local(mesh.mNumVertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
-      const auto [it, added] = index.emplace(std::array<float, 3>{p.x, p.y, p.z},
-                                             static_cast<int>(vertices.size()));
+      const auto [it, added] =
+          index.emplace(std::array<float, 3>{p.x, p.y, p.z}, static_cast<int>(vertices.size()));
       if (added) vertices.emplace_back(scale * p.x, scale * p.y, scale * p.z);
       local[v] = it->second;
     }
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines carry no volume
-      faces.emplace_back(local[face.mIndices[0]], local[face.mIndices[1]],
-                         local[face.mIndices[2]]);
+      faces.emplace_back(local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]);
     }
   }
   geometry::TriangleMesh out;
@@ -66,9 +65,9 @@ MeshReadResult readMesh(const std::string& path, double scale) {
   Assimp::Importer importer;
   // Keep assimp from inventing geometry: no normal generation, no smoothing; bake node
   // transforms (glTF) and split polygons into triangles.
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                aiProcess_ValidateDataStructure | aiProcess_SortByPType);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                  aiProcess_ValidateDataStructure | aiProcess_SortByPType);
   if (scene == nullptr) {
     throw InputError(path, std::string("cannot read mesh: ") + importer.GetErrorString());
   }
@@ -117,8 +116,8 @@ void writeObj(const geometry::TriangleMesh& mesh, const std::string& path) {
   out.precision(17);
   out << "# vcontact mesh, metres\n";
   for (Eigen::Index i = 0; i < mesh.vertexCount(); ++i) {
-    out << "v " << mesh.vertices(i, 0) << ' ' << mesh.vertices(i, 1) << ' '
-        << mesh.vertices(i, 2) << '\n';
+    out << "v " << mesh.vertices(i, 0) << ' ' << mesh.vertices(i, 1) << ' ' << mesh.vertices(i, 2)
+        << '\n';
   }
   for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
     out << "f " << mesh.triangles(f, 0) + 1 << ' ' << mesh.triangles(f, 1) + 1 << ' '

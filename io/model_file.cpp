@@ -79,8 +79,8 @@ void readFixed(dynamics::Model& model, const nlohmann::json& j, const std::strin
   try {
     model.setFixed(std::move(names));
   } catch (const InputError& e) {
-    throw InputError(source, place + ": " + e.message() + "; expected one of: " +
-                                 joined(model.parameterNames()));
+    throw InputError(source, place + ": " + e.message() +
+                                 "; expected one of: " + joined(model.parameterNames()));
   }
 }
 
@@ -88,12 +88,12 @@ void readFixed(dynamics::Model& model, const nlohmann::json& j, const std::strin
 
 dynamics::Model modelFromJson(const nlohmann::json& j, const std::string& source,
                               const std::string& place) {
-  if (!j.is_object()) throw InputError(source, (place.empty() ? "top level" : place) +
-                                                   ": expected a model object");
+  if (!j.is_object())
+    throw InputError(source, (place.empty() ? "top level" : place) + ": expected a model object");
   for (const auto& [key, value] : j.items()) {
     if (key != "format" && key != "effects" && key != "fixed" && key != "settings") {
-      throw InputError(source, at(place, key) +
-                                   ": unknown key; expected format, effects, fixed, settings");
+      throw InputError(source,
+                       at(place, key) + ": unknown key; expected format, effects, fixed, settings");
     }
   }
   if (!j.contains("format") || j["format"] != kFormat) {
@@ -117,8 +117,8 @@ dynamics::Model modelFromJson(const nlohmann::json& j, const std::string& source
   try {
     model.validate();
   } catch (const InputError& e) {
-    throw InputError(source, (place.empty() ? "effects" : at(place, "effects")) + ": " +
-                                 e.message());
+    throw InputError(source,
+                     (place.empty() ? "effects" : at(place, "effects")) + ": " + e.message());
   }
   if (j.contains("fixed")) readFixed(model, j["fixed"], source, at(place, "fixed"));
   return model;

@@ -9,9 +9,8 @@
 // Parameters left out take their defaults. Errors name the file, the JSON place
 // ("effects.coulomb.mu") and what was expected.
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "dynamics/model.hpp"
 

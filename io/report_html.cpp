@@ -22,7 +22,9 @@ std::string num(double v, int digits = 4) {
   return s.str();
 }
 
-std::size_t strideOf(std::size_t n) { return std::max<std::size_t>(1, n / kMaxPointsPerSeries + 1); }
+std::size_t strideOf(std::size_t n) {
+  return std::max<std::size_t>(1, n / kMaxPointsPerSeries + 1);
+}
 
 Series series(const std::string& label, const std::vector<double>& x, const Eigen::VectorXd& y,
               bool markers = false) {
@@ -48,10 +50,12 @@ void measuredVsModel(std::ostringstream& h, const ReportInput& in, const std::ve
     std::vector<Series> s = {series("measured", t, o.measured, true),
                              series("model: " + in.stages.front().label, t, o.predicted)};
     if (in.stages.size() > 1) {
-      s.push_back(series("model: " + in.stages.back().label, t,
-                         last.comparison.outputs[k].predicted));
+      s.push_back(
+          series("model: " + in.stages.back().label, t, last.comparison.outputs[k].predicted));
     }
-    h << lineChart({o.output + ": measured and model", "t [s]", o.output + " [" + unitOf(o.output) + "]"}, s)
+    h << lineChart(
+             {o.output + ": measured and model", "t [s]", o.output + " [" + unitOf(o.output) + "]"},
+             s)
       << '\n';
   }
 }
@@ -90,17 +94,22 @@ void residualsAgainstRegime(std::ostringstream& h, const ReportInput& in) {
   };
   const Var vars[] = {
       {"sliding speed |v_t| [m/s]", [](const validation::RegimeSample& r) { return r.speed; }},
-      {"spin ratio r_gyr|ω_n|/|v_t|", [](const validation::RegimeSample& r) { return r.spin_ratio; }},
+      {"spin ratio r_gyr|ω_n|/|v_t|",
+       [](const validation::RegimeSample& r) { return r.spin_ratio; }},
       {"time at rest [s]", [](const validation::RegimeSample& r) { return r.time_at_rest; }},
-      {"rest before this motion [s]", [](const validation::RegimeSample& r) { return r.preceding_rest; }},
-      {"penetration rate [m/s]", [](const validation::RegimeSample& r) { return r.penetration_rate; }},
+      {"rest before this motion [s]",
+       [](const validation::RegimeSample& r) { return r.preceding_rest; }},
+      {"penetration rate [m/s]",
+       [](const validation::RegimeSample& r) { return r.penetration_rate; }},
       {"normal load f_n [N]", [](const validation::RegimeSample& r) { return r.load; }}};
   for (const auto& v : vars) {
     std::vector<double> x;
     for (const auto& r : f.prediction.regime) x.push_back(v.get(r));
     std::vector<Series> s;
-    for (const auto& o : f.comparison.outputs) s.push_back(series(o.output, x, o.residual / o.sigma, true));
-    h << lineChart({std::string("residual/σ against ") + v.label, v.label, "residual / σ", 360, 260}, s)
+    for (const auto& o : f.comparison.outputs)
+      s.push_back(series(o.output, x, o.residual / o.sigma, true));
+    h << lineChart(
+             {std::string("residual/σ against ") + v.label, v.label, "residual / σ", 360, 260}, s)
       << '\n';
   }
 }
@@ -123,7 +132,8 @@ void candidateTable(std::ostringstream& h, const ReportInput& in) {
     }
     h << "<td>" << num(c.fit.comparison.chi) << "</td><td>" << num(c.deltaBic, 6) << "</td><td>"
       << params.str() << "</td><td>"
-      << (c.redundantWith.empty() ? "" : "adds nothing beyond " + c.redundantWith) << "</td></tr>\n";
+      << (c.redundantWith.empty() ? "" : "adds nothing beyond " + c.redundantWith)
+      << "</td></tr>\n";
   }
   h << "</table>\n";
 }
@@ -180,8 +190,8 @@ std::string reportHtml(const ReportInput& in) {
   std::vector<double> t;
   for (const auto& s : d.samples) t.push_back(s.t);
   std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vcontact " << in.command
-    << ": " << escapeXml(d.name) << "</title><style>" << kStyle << "</style></head><body>\n"
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vcontact " << in.command << ": "
+    << escapeXml(d.name) << "</title><style>" << kStyle << "</style></head><body>\n"
     << "<h1>vcontact " << in.command << ": " << escapeXml(d.name) << "</h1>\n<p>"
     << escapeXml(d.notes) << "</p>\n<p>" << d.size() << " samples; σ per output: ";
   for (const auto& [o, n] : in.noise) {
@@ -189,7 +199,8 @@ std::string reportHtml(const ReportInput& in) {
       << (n.estimated ? " (estimated from the data)" : " (sidecar)") << "; ";
   }
   h << "</p>\n<p>chi: ";
-  for (const auto& s : in.stages) h << escapeXml(s.label) << " = " << num(s.fit->comparison.chi) << "; ";
+  for (const auto& s : in.stages)
+    h << escapeXml(s.label) << " = " << num(s.fit->comparison.chi) << "; ";
   h << "</p>\n";
   chiBars(h, in);
   measuredVsModel(h, in, t);

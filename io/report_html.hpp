@@ -16,16 +16,16 @@
 namespace vcontact::io {
 
 struct ReportStage {
-  std::string label;                         ///< e.g. "stiffness + coulomb", "+ contensou"
-  const validation::FitResult* fit;          ///< prediction, comparison, parameters
+  std::string label;                 ///< e.g. "stiffness + coulomb", "+ contensou"
+  const validation::FitResult* fit;  ///< prediction, comparison, parameters
 };
 
 struct ReportInput {
-  std::string command;                       ///< "compare", "fit" or "diagnose"
+  std::string command;  ///< "compare", "fit" or "diagnose"
   const validation::Dataset* dataset = nullptr;
   validation::NoiseLevels noise;
-  std::vector<ReportStage> stages;           ///< first: the user's model; last: the final one
-  std::vector<validation::FailureWindow> where;            ///< of the first stage
+  std::vector<ReportStage> stages;               ///< first: the user's model; last: the final one
+  std::vector<validation::FailureWindow> where;  ///< of the first stage
   const std::vector<validation::Candidate>* ranking = nullptr;  ///< of the first stage
 };
 

@@ -117,8 +117,9 @@ Eigen::Isometry3d readPose(const Reader& r, const std::string& key) {
   if (v.is_string()) return parsePose(v.get<std::string>(), r.source() + ": " + r.at(key));
   const auto n = r.numbers(key);
   if (n.size() != 3 && n.size() != 6 && n.size() != 7) {
-    r.fail(key, "expected \"x,y,z[,roll,pitch,yaw | ,qw,qx,qy,qz]\" or an array of 3, 6 or 7 "
-                "numbers");
+    r.fail(key,
+           "expected \"x,y,z[,roll,pitch,yaw | ,qw,qx,qy,qz]\" or an array of 3, 6 or 7 "
+           "numbers");
   }
   std::ostringstream s;
   s.precision(17);
@@ -166,8 +167,8 @@ void readMass(const Reader& r, dynamics::RigidBody& body) {
 
 dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
                              std::vector<std::string>& warnings) {
-  r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density",
-               "mass", "inertia", "com", "prescribed"});
+  r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density", "mass",
+               "inertia", "com", "prescribed"});
   dynamics::RigidBody body;
   body.name = r.text("name");
   std::string shape = r.text("shape");
@@ -260,15 +261,17 @@ void readFriction(const Reader& p, dynamics::ContactPair& pair) {
   const std::string pairName = "pair '" + pair.name + "': ";
   if (pair.friction != dynamics::FrictionMode::kDistributed) {
     if (p.has("columns")) {
-      p.fail("columns", pairName + "the column grid applies to \"friction\": \"distributed\" "
-                                   "only");
+      p.fail("columns", pairName +
+                            "the column grid applies to \"friction\": \"distributed\" "
+                            "only");
     }
     return;
   }
   if (!pair.method) pair.method = volume::Method::kColumns;
   if (*pair.method != volume::Method::kColumns) {
-    p.fail("friction", pairName + "distributed friction integrates over the columns method's "
-                                  "δ map; set \"method\": \"columns\" (or leave it out), not \"" +
+    p.fail("friction", pairName +
+                           "distributed friction integrates over the columns method's "
+                           "δ map; set \"method\": \"columns\" (or leave it out), not \"" +
                            volume::methodName(*pair.method) + "\"");
   }
   if (p.has("columns")) {
@@ -279,8 +282,7 @@ void readFriction(const Reader& p, dynamics::ContactPair& pair) {
         lines > dynamics::kMaxColumnResolution) {
       p.fail("columns", pairName + "expected an integer number of grid lines per side in [" +
                             std::to_string(dynamics::kMinColumnResolution) + ", " +
-                            std::to_string(dynamics::kMaxColumnResolution) + "], got " +
-                            v.dump());
+                            std::to_string(dynamics::kMaxColumnResolution) + "], got " + v.dump());
     }
     pair.column_resolution = static_cast<int>(lines);
   }
@@ -312,9 +314,8 @@ void checkPairMethod(const Reader& p, const dynamics::ContactPair& pair,
   try {
     volume::requireHandles(*pair.method, bodies[pair.a].shape, bodies[pair.b].shape);
   } catch (const InputError& e) {
-    p.fail(p.has("method") ? "method" : "friction",
-           "bodies '" + bodies[pair.a].name + "' and '" + bodies[pair.b].name + "': " +
-               e.message());
+    p.fail(p.has("method") ? "method" : "friction", "bodies '" + bodies[pair.a].name + "' and '" +
+                                                        bodies[pair.b].name + "': " + e.message());
   }
 }
 
@@ -349,7 +350,8 @@ void addDefaultContacts(const Reader& c, const std::map<std::string, dynamics::M
           volume::defaultMethod(a, b);
         } catch (const InputError& e) {
           c.fail("", "bodies '" + sc.bodies[pair.a].name + "' and '" + sc.bodies[pair.b].name +
-                         "': " + e.message() + "; give them meshes, or list the pairs that can "
+                         "': " + e.message() +
+                         "; give them meshes, or list the pairs that can "
                          "touch in \"pairs\"");
         }
       }
@@ -364,8 +366,8 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir) {
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
-  r.allowOnly({"format", "duration", "output_rate", "integrator", "gravity", "tolerances",
-               "bodies", "models", "pairs", "contacts", "outputs", "description"});
+  r.allowOnly({"format", "duration", "output_rate", "integrator", "gravity", "tolerances", "bodies",
+               "models", "pairs", "contacts", "outputs", "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }
@@ -408,7 +410,8 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                         "' are already a pair ('" + q.name + "')");
       }
     }
-    pair.name = p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
+    pair.name =
+        p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
     readPairContact(p, models, base_dir, pair);
     checkPairMethod(p, pair, sc.bodies);
     sc.pairs.push_back(std::move(pair));

@@ -3,10 +3,9 @@
 // duration, output rate, outputs and integration tolerances. The format is documented in
 // dynamics/SCENARIO.md. Relative paths (meshes, model files) are relative to the scenario file.
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "dynamics/scenario.hpp"
 

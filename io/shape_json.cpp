@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "geometry/error.hpp"
@@ -31,8 +30,8 @@ JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
     if (path.is_relative()) path = std::filesystem::path(baseDir) / path;
     auto read = readMesh(path.string(), scale);
     out.warnings = std::move(read.warnings);
-    out.shape = geometry::Mesh{
-        std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)), path.string()};
+    out.shape = geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)),
+                               path.string()};
     return out;
   }
   if (!j.contains("shape") || !j.at("shape").is_string()) {
@@ -42,14 +41,16 @@ JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
   if (kind == "sphere") {
     out.shape = geometry::Sphere{requireNumber(j, "radius", where)};
   } else if (kind == "cylinder") {
-    out.shape = geometry::Cylinder{requireNumber(j, "radius", where), requireNumber(j, "length", where)};
+    out.shape =
+        geometry::Cylinder{requireNumber(j, "radius", where), requireNumber(j, "length", where)};
   } else if (kind == "box") {
     const auto& s = j.contains("size") ? j.at("size") : nlohmann::json();
     if (!s.is_array() || s.size() != 3 || !s[0].is_number() || !s[1].is_number() ||
         !s[2].is_number()) {
       throw InputError(where, "a box needs \"size\": [x, y, z] in metres");
     }
-    out.shape = geometry::Box{Eigen::Vector3d(s[0].get<double>(), s[1].get<double>(), s[2].get<double>())};
+    out.shape =
+        geometry::Box{Eigen::Vector3d(s[0].get<double>(), s[1].get<double>(), s[2].get<double>())};
   } else if (kind == "halfspace") {
     out.shape = geometry::HalfSpace{};
   } else {

@@ -6,10 +6,9 @@
 //   {"shape": "halfspace"}
 //   {"mesh": "part.stl", "scale": 0.001}     (path relative to the JSON file's folder)
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "geometry/primitives.hpp"
 

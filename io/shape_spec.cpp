@@ -64,28 +64,31 @@ Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& t, const Eigen::Vect
     throw InputError(source, os.str());
   }
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::Quaterniond(wxyz(0), wxyz(1), wxyz(2), wxyz(3)).normalized()
-                   .toRotationMatrix();
+  X.linear() =
+      Eigen::Quaterniond(wxyz(0), wxyz(1), wxyz(2), wxyz(3)).normalized().toRotationMatrix();
   X.translation() = t;
   return X;
 }
 
 Eigen::Isometry3d parsePose(const std::string& text, const std::string& source) {
   const std::vector<double> v = parseNumberList(text, source);
-  const Eigen::Vector3d t = v.size() >= 3 ? Eigen::Vector3d(v[0], v[1], v[2])
-                                          : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d t =
+      v.size() >= 3 ? Eigen::Vector3d(v[0], v[1], v[2]) : Eigen::Vector3d::Zero();
   switch (v.size()) {
     case 3: {
       Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
       X.translation() = t;
       return X;
     }
-    case 6: return poseFromRpyDegrees(t, Eigen::Vector3d(v[3], v[4], v[5]));
-    case 7: return poseFromQuaternion(t, Eigen::Vector4d(v[3], v[4], v[5], v[6]), source);
+    case 6:
+      return poseFromRpyDegrees(t, Eigen::Vector3d(v[3], v[4], v[5]));
+    case 7:
+      return poseFromQuaternion(t, Eigen::Vector4d(v[3], v[4], v[5], v[6]), source);
     default:
-      throw InputError(source, "a pose is x,y,z or x,y,z,roll,pitch,yaw (degrees) or "
-                               "x,y,z,qw,qx,qy,qz; got " + std::to_string(v.size()) +
-                                   " numbers");
+      throw InputError(source,
+                       "a pose is x,y,z or x,y,z,roll,pitch,yaw (degrees) or "
+                       "x,y,z,qw,qx,qy,qz; got " +
+                           std::to_string(v.size()) + " numbers");
   }
 }
 
@@ -124,8 +127,8 @@ ParsedShape parseShape(const std::string& text, const std::string& source) {
     }
     auto read = readMesh(path, scale);
     out.warnings = std::move(read.warnings);
-    out.shape = geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)),
-                               path};
+    out.shape =
+        geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)), path};
   }
   geometry::validate(out.shape, source);
   return out;

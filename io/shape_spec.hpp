@@ -8,10 +8,9 @@
 //            that order: R = Rz(yaw) Ry(pitch) Rx(roll); a quaternion is normalised after a
 //            check that it is within 1e-6 of unit length)
 
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "geometry/primitives.hpp"
 

@@ -53,8 +53,7 @@ std::ofstream SimulationCsvWriter::open(const std::string& path) {
   return f;
 }
 
-SimulationCsvWriter::SimulationCsvWriter(const std::string& dir,
-                                         const dynamics::Scenario& scenario,
+SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                                          const OutputSelection& outputs)
     : scenario_(scenario), outputs_(outputs) {
   std::error_code ec;
@@ -67,7 +66,8 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir,
   }
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
-    std::ofstream& f = pairs_.emplace_back(open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
+    std::ofstream& f =
+        pairs_.emplace_back(open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
     f << "t,V,depth,area,r_gyr";
     putHeader3(f, "c");
     putHeader3(f, "n");

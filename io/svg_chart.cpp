@@ -54,8 +54,10 @@ void openSvg(std::ostringstream& os, const Axes& a) {
      << "\" height=\"" << a.height << "\" viewBox=\"0 0 " << a.width << ' ' << a.height
      << "\" font-family=\"sans-serif\" font-size=\"11\">\n"
      << "<title>" << escapeXml(a.title) << "</title>\n"
-     << "<text x=\"" << a.width / 2 << "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\" "
-        "font-weight=\"bold\">" << escapeXml(a.title) << "</text>\n";
+     << "<text x=\"" << a.width / 2
+     << "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\" "
+        "font-weight=\"bold\">"
+     << escapeXml(a.title) << "</text>\n";
 }
 
 void drawAxes(std::ostringstream& os, const Frame& f, bool xTicks) {
@@ -77,8 +79,8 @@ void drawAxes(std::ostringstream& os, const Frame& f, bool xTicks) {
          << "\" text-anchor=\"middle\">" << fmt(t) << "</text>\n";
     }
   }
-  os << "<text x=\"" << (x0 + x1) / 2 << "\" y=\"" << a.height - 8
-     << "\" text-anchor=\"middle\">" << escapeXml(a.xLabel) << "</text>\n"
+  os << "<text x=\"" << (x0 + x1) / 2 << "\" y=\"" << a.height - 8 << "\" text-anchor=\"middle\">"
+     << escapeXml(a.xLabel) << "</text>\n"
      << "<text transform=\"translate(14," << (y0 + y1) / 2
      << ") rotate(-90)\" text-anchor=\"middle\">" << escapeXml(a.yLabel) << "</text>\n";
 }
@@ -90,11 +92,20 @@ std::string escapeXml(const std::string& text) {
   out.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -139,7 +150,8 @@ std::string lineChart(const Axes& axes, const std::vector<Series>& series,
     const std::string colour = s.colour.empty() ? kPalette[k % 6] : s.colour;
     const std::size_t n = std::min(s.x.size(), s.y.size());
     // Long series are thinned to about two points per horizontal pixel.
-    const std::size_t stride = std::max<std::size_t>(1, n / (2 * static_cast<std::size_t>(axes.width)));
+    const std::size_t stride =
+        std::max<std::size_t>(1, n / (2 * static_cast<std::size_t>(axes.width)));
     if (s.markers) {
       os << "<g class=\"series\" fill=\"" << colour << "\" fill-opacity=\"0.6\">";
       for (std::size_t i = 0; i < n; i += stride) {
@@ -187,8 +199,8 @@ std::string barChart(const Axes& axes, const std::vector<std::string>& labels,
     os << "<rect class=\"bar\" x=\"" << x << "\" y=\"" << top << "\" width=\"" << 0.7 * slot
        << "\" height=\"" << std::max(0.5, base - top) << "\" fill=\"" << kPalette[i % 6]
        << "\"><title>" << escapeXml(labels[i]) << ": " << fmt(values[i]) << "</title></rect>\n"
-       << "<text x=\"" << x + 0.35 * slot << "\" y=\"" << top - 4
-       << "\" text-anchor=\"middle\">" << fmt(values[i]) << "</text>\n"
+       << "<text x=\"" << x + 0.35 * slot << "\" y=\"" << top - 4 << "\" text-anchor=\"middle\">"
+       << fmt(values[i]) << "</text>\n"
        << "<text x=\"" << x + 0.35 * slot << "\" y=\"" << axes.height - kBottom + 16
        << "\" text-anchor=\"middle\">" << escapeXml(labels[i]) << "</text>\n";
   }

@@ -11,8 +11,8 @@ namespace vcontact::io {
 struct Series {
   std::string label;
   std::vector<double> x, y;
-  std::string colour;       ///< CSS colour; empty picks from the palette
-  bool markers = false;     ///< draw points instead of a line
+  std::string colour;    ///< CSS colour; empty picks from the palette
+  bool markers = false;  ///< draw points instead of a line
 };
 
 /// An x-interval shaded behind the data (e.g. a window where the model fails).

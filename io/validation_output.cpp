@@ -84,8 +84,8 @@ json rankingJson(const validation::DiagnosisStage& s) {
 json whereJson(const validation::DiagnosisStage& s) {
   json where = json::array();
   for (const auto& w : s.where) {
-    where.push_back({{"output", w.output}, {"t0", w.t0}, {"t1", w.t1}, {"chi", w.chi},
-                     {"regime", w.regime}});
+    where.push_back(
+        {{"output", w.output}, {"t0", w.t0}, {"t1", w.t1}, {"chi", w.chi}, {"regime", w.regime}});
   }
   return where;
 }
@@ -119,21 +119,29 @@ json comparisonJson(const Comparison& c, const validation::NoiseLevels& noise) {
                 {"source", n.estimated ? "estimated: 1.4826 MAD of second differences / sqrt(6)"
                                        : "sidecar noise"}};
   }
-  return {{"chi", c.chi}, {"chi2", c.chi2}, {"residuals", c.count}, {"rms", rmsJson(c)},
+  return {{"chi", c.chi},
+          {"chi2", c.chi2},
+          {"residuals", c.count},
+          {"rms", rmsJson(c)},
           {"sigma", sigma}};
 }
 
 json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validation::Loss loss) {
   json params = json::array();
   for (const auto& p : fit.parameters) {
-    params.push_back({{"name", p.name}, {"unit", p.unit}, {"initial", p.initial},
-                      {"value", p.value}, {"std_error", number(p.stdError)},
-                      {"fixed", p.fixed}, {"identifiable", p.identifiable}});
+    params.push_back({{"name", p.name},
+                      {"unit", p.unit},
+                      {"initial", p.initial},
+                      {"value", p.value},
+                      {"std_error", number(p.stdError)},
+                      {"fixed", p.fixed},
+                      {"identifiable", p.identifiable}});
   }
   json corr = json::array();
   for (Eigen::Index i = 0; i < fit.correlation.rows(); ++i) {
     json row = json::array();
-    for (Eigen::Index j = 0; j < fit.correlation.cols(); ++j) row.push_back(number(fit.correlation(i, j)));
+    for (Eigen::Index j = 0; j < fit.correlation.cols(); ++j)
+      row.push_back(number(fit.correlation(i, j)));
     corr.push_back(std::move(row));
   }
   return {{"comparison", comparisonJson(fit.comparison, noise)},
@@ -166,7 +174,8 @@ json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels
       stages.push_back(std::move(st));
     }
     j["stages"] = std::move(stages);
-    j["final"] = {{"effects", d.final().model.effectIds()}, {"chi", d.final().comparison.chi},
+    j["final"] = {{"effects", d.final().model.effectIds()},
+                  {"chi", d.final().comparison.chi},
                   {"model", modelToJson(d.final().model)}};
   }
   return j;
@@ -175,13 +184,17 @@ json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels
 void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) {
   const fs::path sidecar(sidecarPath);
   const fs::path csv = fs::path(sidecar).replace_extension(".csv");
-  json j = {{"format", "vcontact.dataset/1"}, {"name", d.name}, {"data", csv.filename().string()},
-            {"mode", "kinematic"}, {"payload", shapeJson(d.payload, "payload")},
-            {"plate", shapeJson(d.plate, "plate")}, {"outputs", d.outputs},
+  json j = {{"format", "vcontact.dataset/1"},
+            {"name", d.name},
+            {"data", csv.filename().string()},
+            {"mode", "kinematic"},
+            {"payload", shapeJson(d.payload, "payload")},
+            {"plate", shapeJson(d.plate, "plate")},
+            {"outputs", d.outputs},
             {"notes", d.notes}};
   if (!d.noise.empty()) j["noise"] = d.noise;
-  std::vector<std::string> names = {"t", "x", "y", "z", "qw", "qx", "qy", "qz",
-                                    "vx", "vy", "vz", "wx", "wy", "wz"};
+  std::vector<std::string> names = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
+                                    "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
   for (const auto& o : d.outputs) names.push_back(o);
   for (const auto& n : names) {
     if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
@@ -192,7 +205,8 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) 
   for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
   out << '\n';
   for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(d.size()); ++i) {
-    for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << d.columns.at(names[c])[i];
+    for (std::size_t c = 0; c < names.size(); ++c)
+      out << (c ? "," : "") << d.columns.at(names[c])[i];
     out << '\n';
   }
 }

@@ -2,9 +2,8 @@
 // What `vcontact compare | fit | diagnose | synth` write: residual CSVs, fit.json,
 // diagnosis.json, fitted model files and synthetic datasets (DATASET.md format).
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "validation/diagnose.hpp"
 #include "validation/fit.hpp"
@@ -13,8 +12,8 @@
 namespace vcontact::io {
 
 /// residuals.csv: t, then per output measured, predicted, residual, residual/σ.
-void writeResidualsCsv(const validation::Dataset& dataset,
-                       const validation::Comparison& comparison, const std::string& path);
+void writeResidualsCsv(const validation::Dataset& dataset, const validation::Comparison& comparison,
+                       const std::string& path);
 
 /// {"chi", "rms": {output: …}, "sigma": {output: {"value", "source"}}, "samples", "residuals"}
 nlohmann::json comparisonJson(const validation::Comparison& comparison,

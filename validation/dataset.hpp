@@ -8,14 +8,13 @@
 // of B relative to P, in P), and the measured wrench on the payload by the plate: force f_P
 // and torque about the payload origin, in P.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "geometry/primitives.hpp"
 
@@ -25,7 +24,7 @@ namespace vcontact::validation {
 inline const std::array<std::string, 6> kWrenchColumns = {"fx", "fy", "fz", "tx", "ty", "tz"};
 
 struct Sample {
-  double t = 0.0;                                  ///< s
+  double t = 0.0;  ///< s
   Eigen::Isometry3d X_PB = Eigen::Isometry3d::Identity();
   Eigen::Vector3d v_PB = Eigen::Vector3d::Zero();  ///< m/s
   Eigen::Vector3d w_PB = Eigen::Vector3d::Zero();  ///< rad/s
@@ -38,8 +37,8 @@ struct Dataset {
   std::string dataPath;     ///< the CSV, resolved
   geometry::Shape payload;
   geometry::Shape plate;
-  std::vector<std::string> outputs;      ///< wrench columns to compare, e.g. {"fx", "tz"}
-  std::map<std::string, double> noise;   ///< 1-σ per output where the sidecar gives it
+  std::vector<std::string> outputs;     ///< wrench columns to compare, e.g. {"fx", "tz"}
+  std::map<std::string, double> noise;  ///< 1-σ per output where the sidecar gives it
 
   std::vector<Sample> samples;
   /// Every CSV column by name, kinematic, wrench and extra ones alike (never dropped).

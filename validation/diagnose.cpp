@@ -1,11 +1,11 @@
 #include "validation/diagnose.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <sstream>
-
-#include <tbb/parallel_for.h>
 
 #include "dynamics/effects/registry.hpp"
 
@@ -28,7 +28,8 @@ constexpr std::size_t kMaxWindows = 8;
 void closure(const Model& model, const std::string& id, std::vector<std::string>& out) {
   if (model.has(id) || std::find(out.begin(), out.end(), id) != out.end()) return;
   out.push_back(id);
-  for (auto req : dynamics::createEffect(id)->requiredEffects()) closure(model, std::string(req), out);
+  for (auto req : dynamics::createEffect(id)->requiredEffects())
+    closure(model, std::string(req), out);
 }
 
 std::vector<Candidate> candidatesFor(const Model& model) {
@@ -77,14 +78,17 @@ void rank(std::vector<Candidate>& candidates, double baselineBic, double margin)
   for (auto& c : candidates) {
     for (const auto& other : candidates) {
       if (!c.error.empty() || !other.error.empty() || !properSubset(other.added, c.added)) continue;
-      if (c.fit.comparison.chi2 > other.fit.comparison.chi2 - margin) c.redundantWith = other.effect;
+      if (c.fit.comparison.chi2 > other.fit.comparison.chi2 - margin)
+        c.redundantWith = other.effect;
     }
   }
-  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-    if (a.error.empty() != b.error.empty()) return a.error.empty();
-    if (a.redundantWith.empty() != b.redundantWith.empty()) return a.redundantWith.empty();
-    return a.deltaBic < b.deltaBic;
-  });
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) {
+                     if (a.error.empty() != b.error.empty()) return a.error.empty();
+                     if (a.redundantWith.empty() != b.redundantWith.empty())
+                       return a.redundantWith.empty();
+                     return a.deltaBic < b.deltaBic;
+                   });
 }
 
 // ---- where ------------------------------------------------------------------------------
@@ -130,8 +134,8 @@ std::string format3(double v) {
 // Mean mid-rank percentile of the window's samples within the whole record: 0.5 when the
 // window is typical of the record in this variable, near 1 (0) when it sits at the top
 // (bottom) of its range. A rank statistic (Mann–Whitney), blind to units and outliers.
-double windowRank(const std::vector<double>& all, const std::vector<double>& sorted,
-                  std::size_t a, std::size_t b) {
+double windowRank(const std::vector<double>& all, const std::vector<double>& sorted, std::size_t a,
+                  std::size_t b) {
   double sum = 0.0;
   for (std::size_t i = a; i <= b; ++i) {
     const auto lo = std::lower_bound(sorted.begin(), sorted.end(), all[i]);
@@ -169,8 +173,10 @@ std::string describeRegime(const std::vector<RegimeSample>& regime, std::size_t 
 void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
                std::vector<std::pair<double, FailureWindow>>& out) {
   const auto n = static_cast<std::size_t>(r.residual.size());
-  const std::size_t half = std::max(kMinWindowSamples,
-                                    static_cast<std::size_t>(kWindowFraction * static_cast<double>(n))) / 2;
+  const std::size_t half =
+      std::max(kMinWindowSamples,
+               static_cast<std::size_t>(kWindowFraction * static_cast<double>(n))) /
+      2;
   const Eigen::VectorXd e2 = (r.residual / r.sigma).array().square();
   std::vector<double> cum(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) cum[i + 1] = cum[i] + e2[static_cast<Eigen::Index>(i)];
@@ -183,7 +189,10 @@ void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
     failing[i] = meanOver(a, b) > kWindowChi * kWindowChi;
   }
   for (std::size_t i = 0; i < n;) {
-    if (!failing[i]) { ++i; continue; }
+    if (!failing[i]) {
+      ++i;
+      continue;
+    }
     std::size_t j = i;
     while (j + 1 < n && failing[j + 1]) ++j;
     if (j + 1 - i < kMinWindowSamples) {  // a lone outlier, not a regime

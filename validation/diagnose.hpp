@@ -40,11 +40,11 @@ namespace vcontact::validation {
 inline constexpr double kBicMargin = 10.0;
 
 struct Candidate {
-  std::string effect;                ///< the effect ranked
-  std::vector<std::string> added;    ///< every effect added with it (itself first)
+  std::string effect;              ///< the effect ranked
+  std::vector<std::string> added;  ///< every effect added with it (itself first)
   FitResult fit;
   double deltaBic = 0.0;
-  std::string error;                 ///< non-empty: the candidate could not be fitted
+  std::string error;  ///< non-empty: the candidate could not be fitted
   /// Non-empty: a candidate adding a subset of these effects fits as well (χ² within the
   /// margin), so this one adds nothing of its own; ranked after the others.
   std::string redundantWith;
@@ -54,21 +54,22 @@ struct FailureWindow {
   std::string output;
   double t0 = 0.0, t1 = 0.0;  ///< s
   double chi = 0.0;           ///< sqrt(mean (r/σ)²) over the window
-  std::string regime;         ///< e.g. "spin ratio r_gyr|ω_n|/|v_t| in [2.1, 8.4] (spin-dominated sliding)"
+  std::string
+      regime;  ///< e.g. "spin ratio r_gyr|ω_n|/|v_t| in [2.1, 8.4] (spin-dominated sliding)"
 };
 
 struct DiagnosisStage {
   std::vector<std::string> effects;  ///< of the baseline model
   FitResult baseline;
-  std::vector<Candidate> ranking;    ///< best (lowest ΔBIC) first; failed candidates last
+  std::vector<Candidate> ranking;  ///< best (lowest ΔBIC) first; failed candidates last
   std::vector<FailureWindow> where;
-  std::string verdict;               ///< the best candidate's id, or "none"
-  std::string removed;               ///< non-empty: this stage dropped an effect (pruning)
+  std::string verdict;  ///< the best candidate's id, or "none"
+  std::string removed;  ///< non-empty: this stage dropped an effect (pruning)
 };
 
 struct DiagnoseOptions {
   FitOptions fit;
-  bool iterate = false;      ///< add the best and repeat until "none"
+  bool iterate = false;  ///< add the best and repeat until "none"
   double margin = kBicMargin;
 };
 

@@ -1,13 +1,13 @@
 #include "validation/fit.hpp"
 
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <sstream>
-
-#include <Eigen/Eigenvalues>
-#include <ceres/ceres.h>
 
 #include "geometry/error.hpp"
 
@@ -135,8 +135,10 @@ std::vector<bool> unidentifiable(const Eigen::MatrixXd& J) {
   Eigen::VectorXd norms = J.colwise().norm();
   Eigen::MatrixXd Jn = J;
   for (Eigen::Index j = 0; j < k; ++j) {
-    if (norms[j] == 0.0) out[static_cast<std::size_t>(j)] = true;
-    else Jn.col(j) /= norms[j];
+    if (norms[j] == 0.0)
+      out[static_cast<std::size_t>(j)] = true;
+    else
+      Jn.col(j) /= norms[j];
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Jn.transpose() * Jn);
   const double top = std::max(eig.eigenvalues().maxCoeff(), std::numeric_limits<double>::min());
@@ -144,7 +146,8 @@ std::vector<bool> unidentifiable(const Eigen::MatrixXd& J) {
     // singular value ratio = sqrt(eigenvalue ratio)
     if (std::sqrt(std::max(eig.eigenvalues()[i], 0.0) / top) >= kIdentifiableRatio) continue;
     for (Eigen::Index j = 0; j < k; ++j) {
-      if (std::abs(eig.eigenvectors()(j, i)) > kNullComponent) out[static_cast<std::size_t>(j)] = true;
+      if (std::abs(eig.eigenvectors()(j, i)) > kNullComponent)
+        out[static_cast<std::size_t>(j)] = true;
     }
   }
   return out;
@@ -242,9 +245,12 @@ Loss parseLoss(const std::string& name) {
 
 std::string lossName(Loss loss) {
   switch (loss) {
-    case Loss::kHuber: return "huber";
-    case Loss::kCauchy: return "cauchy";
-    case Loss::kSquared: break;
+    case Loss::kHuber:
+      return "huber";
+    case Loss::kCauchy:
+      return "cauchy";
+    case Loss::kSquared:
+      break;
   }
   return "none";
 }
@@ -257,8 +263,8 @@ FitResult fit(Replayer& replayer, const NoiseLevels& noise, const Model& start,
   const auto specs = start.parameterSpecs();
   const auto initial = start.parameters();
   for (std::size_t i = 0; i < specs.size(); ++i) {
-    r.parameters.push_back({specs[i].name, specs[i].unit, initial[i], initial[i],
-                            std::nan(""), true, true});
+    r.parameters.push_back(
+        {specs[i].name, specs[i].unit, initial[i], initial[i], std::nan(""), true, true});
   }
   for (const auto& f : free) {
     r.parameters[f.index].fixed = false;
@@ -304,7 +310,8 @@ FitResult fit(Replayer& replayer, const NoiseLevels& noise, const Model& start,
     r.prediction = replayer.run(r.model);
     r.comparison = compare(replayer.dataset(), r.prediction, noise);
     estimateUncertainty(problem, free, u, r);
-    if (!r.converged) r.warnings.push_back("the solver stopped before convergence: " + r.solverReport);
+    if (!r.converged)
+      r.warnings.push_back("the solver stopped before convergence: " + r.solverReport);
   } else {
     r.prediction = replayer.run(r.model);
     r.comparison = compare(replayer.dataset(), r.prediction, noise);

@@ -19,11 +19,10 @@
 // near-null direction of the column-normalised Jacobian (singular value ratio below
 // kIdentifiableRatio) are reported as not identifiable and held out of the covariance.
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "dynamics/model.hpp"
 #include "validation/dataset.hpp"
@@ -44,28 +43,28 @@ struct FitOptions {
 };
 
 struct ParameterEstimate {
-  std::string name;          ///< "effect.parameter"
+  std::string name;  ///< "effect.parameter"
   std::string unit;
   double initial = 0.0;
   double value = 0.0;
-  double stdError = 0.0;     ///< NaN when fixed; +inf when not identifiable
+  double stdError = 0.0;  ///< NaN when fixed; +inf when not identifiable
   bool fixed = false;
   bool identifiable = true;
 };
 
 struct FitResult {
-  dynamics::Model model;                  ///< with the fitted values
+  dynamics::Model model;  ///< with the fitted values
   Prediction prediction;
   Comparison comparison;
   double bic = 0.0;
-  std::size_t freeCount = 0;              ///< k in the BIC
+  std::size_t freeCount = 0;  ///< k in the BIC
   std::vector<ParameterEstimate> parameters;
-  std::vector<std::string> freeNames;     ///< rows/columns of `correlation`
-  Eigen::MatrixXd correlation;            ///< of the free parameters (NaN rows: not identified)
+  std::vector<std::string> freeNames;  ///< rows/columns of `correlation`
+  Eigen::MatrixXd correlation;         ///< of the free parameters (NaN rows: not identified)
   std::vector<std::string> warnings;
   int iterations = 0;
   bool converged = false;
-  std::string solverReport;               ///< Ceres' one-line summary
+  std::string solverReport;  ///< Ceres' one-line summary
 };
 
 /// Fits every parameter of `start` that is not in start.fixed().

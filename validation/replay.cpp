@@ -60,8 +60,10 @@ class HalfspaceVolumes {
     auto it = cache_.find(key);
     if (it == cache_.end()) {
       const geometry::Shape halfspace = geometry::HalfSpace{};
-      it = cache_.emplace(key, volume::computeContact(payload, X_c, halfspace,
-                                                      Eigen::Isometry3d::Identity())).first;
+      it = cache_
+               .emplace(key, volume::computeContact(payload, X_c, halfspace,
+                                                    Eigen::Isometry3d::Identity()))
+               .first;
     }
     return moved(it->second, X * X_c.inverse());
   }
@@ -77,7 +79,8 @@ class HalfspaceVolumes {
       X.linear().setIdentity();
     } else if (std::holds_alternative<geometry::Cylinder>(payload)) {
       const Eigen::Vector3d b = X.linear().transpose().col(2);
-      X.linear() = X.linear() * Eigen::AngleAxisd(std::atan2(b.y(), b.x()), Eigen::Vector3d::UnitZ());
+      X.linear() =
+          X.linear() * Eigen::AngleAxisd(std::atan2(b.y(), b.x()), Eigen::Vector3d::UnitZ());
     }
     return X;
   }

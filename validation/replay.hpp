@@ -19,10 +19,9 @@
 // After each step Model::settle applies the discrete updates (projection, dwell jump, reset
 // when contact is lost). The first sample starts from the zero state.
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "dynamics/model.hpp"
 #include "validation/dataset.hpp"

@@ -40,8 +40,7 @@ NoiseLevels noiseLevels(const Dataset& dataset) {
   return levels;
 }
 
-Comparison compare(const Dataset& dataset, const Prediction& prediction,
-                   const NoiseLevels& noise) {
+Comparison compare(const Dataset& dataset, const Prediction& prediction, const NoiseLevels& noise) {
   Comparison c;
   for (const auto& o : dataset.outputs) {
     OutputResiduals r;

@@ -11,11 +11,10 @@
 // (the MAD of the second differences, robust to the few samples where the signal itself
 // kinks: impacts, stops). It assumes the signal is smooth over three samples.
 
+#include <Eigen/Core>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "validation/dataset.hpp"
 #include "validation/replay.hpp"
@@ -23,8 +22,8 @@
 namespace vcontact::validation {
 
 struct NoiseLevel {
-  double sigma = 0.0;       ///< 1-σ, in the output's unit
-  bool estimated = false;   ///< true: from the data (MAD of second differences)
+  double sigma = 0.0;      ///< 1-σ, in the output's unit
+  bool estimated = false;  ///< true: from the data (MAD of second differences)
 };
 
 using NoiseLevels = std::map<std::string, NoiseLevel>;
@@ -46,13 +45,12 @@ struct OutputResiduals {
 
 struct Comparison {
   std::vector<OutputResiduals> outputs;
-  double chi2 = 0.0;       ///< Σ (r/σ)² over all outputs and samples
-  std::size_t count = 0;   ///< number of residuals
-  double chi = 0.0;        ///< sqrt(chi2 / count)
+  double chi2 = 0.0;      ///< Σ (r/σ)² over all outputs and samples
+  std::size_t count = 0;  ///< number of residuals
+  double chi = 0.0;       ///< sqrt(chi2 / count)
 };
 
-Comparison compare(const Dataset& dataset, const Prediction& prediction,
-                   const NoiseLevels& noise);
+Comparison compare(const Dataset& dataset, const Prediction& prediction, const NoiseLevels& noise);
 
 /// Bayesian information criterion with known σ: BIC = χ² + k ln n (−2 ln L up to a constant
 /// that is the same for every model of the same data and σ).

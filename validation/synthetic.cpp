@@ -15,8 +15,8 @@ constexpr double kPunchRadius = 0.01, kPunchLength = 0.02;  // m
 constexpr double kBallRadius = 0.01;                        // m
 constexpr double kSlideDepth = 20e-9;  // m: about 30 N on the punch at kv = 5.17e12 N/m³
 // Noise σ of a good six-axis load cell at these loads.
-constexpr double kForceNoise = 0.03;     // N
-constexpr double kTorqueNoise = 2e-4;    // N·m
+constexpr double kForceNoise = 0.03;        // N
+constexpr double kTorqueNoise = 2e-4;       // N·m
 constexpr double kSmallTorqueNoise = 2e-5;  // N·m, ball rolling (mN·m torques)
 
 // The prescribed motion at time t (s): depth of the lowest point below the plate surface,
@@ -50,7 +50,7 @@ RigState loading(double t) {
 
 RigState impacts(double t) {
   constexpr double period = 0.25, dMax = 10e-6, lift = 2e-6;  // s, m, m
-  constexpr double contact[4] = {0.04, 0.06, 0.1, 0.15};       // s in contact per impact
+  constexpr double contact[4] = {0.04, 0.06, 0.1, 0.15};      // s in contact per impact
   const int k = std::min(3, static_cast<int>(t / period));
   const double s = t - k * period, tc = contact[k];
   if (s < tc) return {dMax * std::sin(M_PI * s / tc), dMax * M_PI / tc * std::cos(M_PI * s / tc)};
@@ -65,7 +65,7 @@ RigState frictionRamp(double t) {
 }
 
 RigState drive(double t) {
-  constexpr double T = 3.0, ramp = 0.05;                            // s
+  constexpr double T = 3.0, ramp = 0.05;                                   // s
   constexpr double level[6] = {0.5e-3, 2e-3, 6e-3, 15e-3, -3e-3, -10e-3};  // m/s
   double v = level[0];
   for (int k = 1; k < 6; ++k) v += (level[k] - level[k - 1]) * smoothStep(t, k * T / 6, ramp);
@@ -77,7 +77,8 @@ RigState dwell(double t) {
   // Slide 0.4 s, stop 0.1 s, slide 0.4 s, stop 0.5 s, slide 0.4 s, stop 1.5 s, slide.
   constexpr double stops[3][2] = {{0.4, 0.1}, {0.9, 0.5}, {1.8, 1.5}};
   double v = v0 * smoothStep(t, 0.0, ramp);
-  for (const auto& s : stops) v -= v0 * (smoothStep(t, s[0], ramp) - smoothStep(t, s[0] + s[1], ramp));
+  for (const auto& s : stops)
+    v -= v0 * (smoothStep(t, s[0], ramp) - smoothStep(t, s[0] + s[1], ramp));
   return {kSlideDepth, 0.0, v};
 }
 
@@ -89,7 +90,7 @@ RigState slideSpin(double t) {
 
 RigState rolling(double t) {
   constexpr double T = 2.0, d0 = 5e-6, w0 = 2.0;  // s, m, rad/s
-  const double f = 3.0 * 2.0 * M_PI / T;           // depth wobble, rad/s
+  const double f = 3.0 * 2.0 * M_PI / T;          // depth wobble, rad/s
   RigState r{d0 * (1.0 + 0.2 * std::sin(f * t)), d0 * 0.2 * f * std::cos(f * t)};
   r.wx = w0 * std::sin(2.0 * M_PI * t / T);
   r.vy = r.wx * kBallRadius;  // rolling without slip: v_c = v + ω × (0, 0, −R) = 0
@@ -165,22 +166,33 @@ Dataset rigMotion(const std::string& name, std::size_t n) {
     Sample& s = d.samples[i];
     s.t = t;
     s.X_PB.linear() = (Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()) *
-                       Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX())).toRotationMatrix();
+                       Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                          .toRotationMatrix();
     s.X_PB.translation() = Eigen::Vector3d(p_xy.x(), p_xy.y(), lowest - r.depth);
     s.v_PB = Eigen::Vector3d(r.vx, r.vy, -r.depthRate);
     // Only one of spin and roll is non-zero in every profile, so ω is the plain sum.
     s.w_PB = Eigen::Vector3d(r.wx, 0.0, r.wz);
     const Eigen::Quaterniond q(s.X_PB.linear());
-    const double values[] = {t, s.X_PB.translation().x(), s.X_PB.translation().y(),
-                             s.X_PB.translation().z(), q.w(), q.x(), q.y(), q.z(),
-                             s.v_PB.x(), s.v_PB.y(), s.v_PB.z(),
-                             s.w_PB.x(), s.w_PB.y(), s.w_PB.z()};
-    const char* names[] = {"t", "x", "y", "z", "qw", "qx", "qy", "qz",
-                           "vx", "vy", "vz", "wx", "wy", "wz"};
+    const double values[] = {t,
+                             s.X_PB.translation().x(),
+                             s.X_PB.translation().y(),
+                             s.X_PB.translation().z(),
+                             q.w(),
+                             q.x(),
+                             q.y(),
+                             q.z(),
+                             s.v_PB.x(),
+                             s.v_PB.y(),
+                             s.v_PB.z(),
+                             s.w_PB.x(),
+                             s.w_PB.y(),
+                             s.w_PB.z()};
+    const char* names[] = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
+                           "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
     for (std::size_t c = 0; c < std::size(names); ++c) setColumn(d, names[c], i, values[c]);
   }
-  for (const auto& o : d.outputs) d.noise[o] = o[0] == 'f' ? kForceNoise
-                                               : profile.ball ? kSmallTorqueNoise : kTorqueNoise;
+  for (const auto& o : d.outputs)
+    d.noise[o] = o[0] == 'f' ? kForceNoise : profile.ball ? kSmallTorqueNoise : kTorqueNoise;
   return d;
 }
 

@@ -43,8 +43,8 @@ ContactVolume sphereInHalfspaceFrame(double R, const Vector3d& c_H, const Isomet
   const Vector3d p_H(c_H.x(), c_H.y(), c_H.z() - R + uBar);
   const double area = d <= R ? M_PI * d * (2.0 * R - d) : M_PI * R * R;
   const Matrix3d R_WH = X_WH.linear();
-  return assembleContactVolume(V, X_WH * p_H, R_WH * Sigma_H * R_WH.transpose(), R_WH.col(2),
-                               area, d, Method::kAnalytic);
+  return assembleContactVolume(V, X_WH * p_H, R_WH * Sigma_H * R_WH.transpose(), R_WH.col(2), area,
+                               d, Method::kAnalytic);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -79,7 +79,8 @@ constexpr TrigPoly kSin4 = {0.375, 0.0, -0.5, 0.0, 0.125};
 constexpr double kSeriesBelow = 0.75;
 constexpr int kSeriesTerms = 18;  // (4·0.75)^{37}/37! < 1e-17
 
-double integrateClosed(const TrigPoly& a, double theta, const std::array<double, kTrigTerms>& sinK) {
+double integrateClosed(const TrigPoly& a, double theta,
+                       const std::array<double, kTrigTerms>& sinK) {
   double sum = a[0] * theta;
   for (int k = 1; k < kTrigTerms; ++k) sum += a[k] * sinK[k] / k;
   return sum;
@@ -225,8 +226,8 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
         const double A = M_PI * R * R, len = b - a;
         const double p1 = (zb * zb - za * za) / 2.0, p2 = (zb * zb * zb - za * za * za) / 3.0;
         Slice f;
-        f << A * len, A * R * len, 1.25 * A * R * R * len, 0.25 * A * R * R * len,
-            A * p1, A * R * p1, A * p2, 4.0 * c.s * R * len, 0.0;
+        f << A * len, A * R * len, 1.25 * A * R * R * len, 0.25 * A * R * R * len, A * p1,
+            A * R * p1, A * p2, 4.0 * c.s * R * len, 0.0;
         total += f;
         continue;
       }
@@ -236,7 +237,8 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
       // slice moments go like d^{3/2} there. ζ is kept where θ barely moves (the axis almost
       // parallel to the plane), since ζ(θ) would then be ill-conditioned.
       const double tLo = std::min(ta, tb), tHi = std::max(ta, tb);
-      const bool nearTangency = tLo < kThetaRatio * tHi || (M_PI - tHi) < kThetaRatio * (M_PI - tLo);
+      const bool nearTangency =
+          tLo < kThetaRatio * tHi || (M_PI - tHi) < kThetaRatio * (M_PI - tLo);
       QuadratureResult<9> r;
       if (isTangency(a) || isTangency(b) || (nearTangency && tHi - tLo > kMinThetaRange)) {
         // ζ(θ) − a = (sR/n_z)(cos θ − cos θ_a), the difference of cosines written as a
@@ -280,9 +282,9 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
   const Matrix3d R_WC = X_WC.linear();
   // o and the offset are mapped separately: o + cOff would round the offset (~d) against
   // the radius, losing digits for shallow contact.
-  ContactVolume cv = assembleContactVolume(V, X_WC * o + R_WC * cOff,
-                                           R_WC * Sigma_C * R_WC.transpose(), n_W, area, depth,
-                                           Method::kAnalytic);
+  ContactVolume cv =
+      assembleContactVolume(V, X_WC * o + R_WC * cOff, R_WC * Sigma_C * R_WC.transpose(), n_W, area,
+                            depth, Method::kAnalytic);
   cv.relative_error = relErr;
   return cv;
 }
@@ -302,15 +304,14 @@ bool isBoundedPrimitive(const geometry::Shape& s) {
 ContactVolume primitiveHalfspace(const geometry::Shape& body, const Isometry3d& X_WB,
                                  const Isometry3d& X_WH) {
   return std::visit(
-      Overloaded{
-          [&](const geometry::Sphere& s) { return sphereHalfspace(s.radius, X_WB, X_WH); },
-          [&](const geometry::Cylinder& c) {
-            return cylinderHalfspace(c.radius, c.length, X_WB, X_WH);
-          },
-          [&](const geometry::Box& b) { return boxHalfspace(b.size, X_WB, X_WH); },
-          [&](const auto&) -> ContactVolume {
-            throw InputError("--method analytic", "not a bounded primitive");
-          }},
+      Overloaded{[&](const geometry::Sphere& s) { return sphereHalfspace(s.radius, X_WB, X_WH); },
+                 [&](const geometry::Cylinder& c) {
+                   return cylinderHalfspace(c.radius, c.length, X_WB, X_WH);
+                 },
+                 [&](const geometry::Box& b) { return boxHalfspace(b.size, X_WB, X_WH); },
+                 [&](const auto&) -> ContactVolume {
+                   throw InputError("--method analytic", "not a bounded primitive");
+                 }},
       body);
 }
 
@@ -353,8 +354,8 @@ ContactVolume analyticContact(const geometry::Shape& a, const Isometry3d& X_WA,
   if (!analyticSupports(a, b)) {
     throw InputError("--method analytic",
                      "the analytic method handles a sphere, cylinder or box against a "
-                     "half-space; got " + geometry::shapeKind(a) + " and " +
-                         geometry::shapeKind(b));
+                     "half-space; got " +
+                         geometry::shapeKind(a) + " and " + geometry::shapeKind(b));
   }
   if (std::holds_alternative<geometry::HalfSpace>(b)) return primitiveHalfspace(a, X_WA, X_WB);
   return swapped(primitiveHalfspace(b, X_WB, X_WA));

@@ -12,16 +12,21 @@
 namespace vcontact::volume {
 namespace {
 
-bool isHalfspace(const geometry::Shape& s) { return std::holds_alternative<geometry::HalfSpace>(s); }
+bool isHalfspace(const geometry::Shape& s) {
+  return std::holds_alternative<geometry::HalfSpace>(s);
+}
 
 const geometry::Mesh* meshOf(const geometry::Shape& s) { return std::get_if<geometry::Mesh>(&s); }
 
 /// What `method` computes, for the message of a pair it does not handle.
 const char* scope(Method method) {
   switch (method) {
-    case Method::kAnalytic: return "it takes a sphere, cylinder or box against a half-space";
-    case Method::kHalfspace: return "it clips a mesh by a half-space";
-    case Method::kCgal: return "it intersects two meshes, or a mesh and a half-space";
+    case Method::kAnalytic:
+      return "it takes a sphere, cylinder or box against a half-space";
+    case Method::kHalfspace:
+      return "it clips a mesh by a half-space";
+    case Method::kCgal:
+      return "it intersects two meshes, or a mesh and a half-space";
     case Method::kFast:
       return "it intersects two meshes (for a mesh against a half-space use halfspace)";
     case Method::kColumns:
@@ -31,9 +36,9 @@ const char* scope(Method method) {
 }
 
 [[noreturn]] void unsupported(Method method, const geometry::Shape& a, const geometry::Shape& b) {
-  throw InputError("--method " + methodName(method),
-                   "cannot compute " + geometry::describe(a) + " against " +
-                       geometry::describe(b) + " with this method; " + scope(method));
+  throw InputError("--method " + methodName(method), "cannot compute " + geometry::describe(a) +
+                                                         " against " + geometry::describe(b) +
+                                                         " with this method; " + scope(method));
 }
 
 ContactVolume halfspaceClip(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
@@ -105,11 +110,16 @@ bool handles(Method method, const geometry::Shape& a, const geometry::Shape& b) 
   const bool meshA = meshOf(a) != nullptr, meshB = meshOf(b) != nullptr;
   const bool halfA = isHalfspace(a), halfB = isHalfspace(b);
   switch (method) {
-    case Method::kAnalytic: return analyticSupports(a, b);
-    case Method::kHalfspace: return (meshA && halfB) || (meshB && halfA);
-    case Method::kCgal: return (meshA && (meshB || halfB)) || (meshB && halfA);
-    case Method::kFast: return meshA && meshB;
-    case Method::kColumns: return (meshA || halfA) && (meshB || halfB) && (meshA || meshB);
+    case Method::kAnalytic:
+      return analyticSupports(a, b);
+    case Method::kHalfspace:
+      return (meshA && halfB) || (meshB && halfA);
+    case Method::kCgal:
+      return (meshA && (meshB || halfB)) || (meshB && halfA);
+    case Method::kFast:
+      return meshA && meshB;
+    case Method::kColumns:
+      return (meshA || halfA) && (meshB || halfB) && (meshA || meshB);
   }
   return false;
 }
@@ -123,11 +133,16 @@ ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& 
                              std::optional<Method> method, ContactCache* cache) {
   const Method m = method ? *method : defaultMethod(a, b);  // value_or would evaluate eagerly
   switch (m) {
-    case Method::kAnalytic: return analyticContact(a, X_WA, b, X_WB);
-    case Method::kHalfspace: return halfspaceClip(a, X_WA, b, X_WB);
-    case Method::kCgal: return cgalReference(a, X_WA, b, X_WB);
-    case Method::kFast: return fastMeshMesh(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr);
-    case Method::kColumns: return columnsContact(a, X_WA, b, X_WB, nullptr);
+    case Method::kAnalytic:
+      return analyticContact(a, X_WA, b, X_WB);
+    case Method::kHalfspace:
+      return halfspaceClip(a, X_WA, b, X_WB);
+    case Method::kCgal:
+      return cgalReference(a, X_WA, b, X_WB);
+    case Method::kFast:
+      return fastMeshMesh(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr);
+    case Method::kColumns:
+      return columnsContact(a, X_WA, b, X_WB, nullptr);
   }
   unsupported(m, a, b);
 }

@@ -2,9 +2,8 @@
 // One entry point over every backend: the interference of two placed shapes by a chosen
 // method, or by the best method the pair allows.
 
-#include <optional>
-
 #include <Eigen/Geometry>
+#include <optional>
 
 #include "geometry/primitives.hpp"
 #include "volume/columns.hpp"

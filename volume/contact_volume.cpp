@@ -8,18 +8,23 @@ namespace vcontact::volume {
 
 std::string methodName(Method method) {
   switch (method) {
-    case Method::kAnalytic: return "analytic";
-    case Method::kHalfspace: return "halfspace";
-    case Method::kCgal: return "cgal";
-    case Method::kFast: return "fast";
-    case Method::kColumns: return "columns";
+    case Method::kAnalytic:
+      return "analytic";
+    case Method::kHalfspace:
+      return "halfspace";
+    case Method::kCgal:
+      return "cgal";
+    case Method::kFast:
+      return "fast";
+    case Method::kColumns:
+      return "columns";
   }
   return "unknown";
 }
 
 Method parseMethod(const std::string& name) {
-  for (Method m : {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast,
-                   Method::kColumns}) {
+  for (Method m :
+       {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast, Method::kColumns}) {
     if (methodName(m) == name) return m;
   }
   throw InputError("--method", "unknown method '" + name +

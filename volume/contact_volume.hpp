@@ -5,10 +5,9 @@
 // Frames: all quantities are in the world frame W. Body B1 ("a", the payload) and body B2
 // ("b", the plate); the normal n points out of B2 into B1.
 
+#include <Eigen/Core>
 #include <limits>
 #include <string>
-
-#include <Eigen/Core>
 
 namespace vcontact::volume {
 
@@ -23,11 +22,11 @@ struct ContactVolume {
   double volume = 0.0;                                 ///< V, m³ (0: no contact)
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< p_c, m
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   ///< n, unit, out of B2 into B1
-  Eigen::Matrix3d J_v = Eigen::Matrix3d::Zero();       ///< ∫((ρ·ρ)I − ρρᵀ)dV about p_c, m⁵
-  Eigen::Matrix3d J_s = Eigen::Matrix3d::Zero();       ///< surface inertia tensor, m⁵
-  double area = 0.0;                                   ///< contact area A, m²
-  double r_gyr = 0.0;                                  ///< radius of gyration about n, m
-  double depth = 0.0;       ///< deepest penetration along n, m
+  Eigen::Matrix3d J_v = Eigen::Matrix3d::Zero();  ///< ∫((ρ·ρ)I − ρρᵀ)dV about p_c, m⁵
+  Eigen::Matrix3d J_s = Eigen::Matrix3d::Zero();  ///< surface inertia tensor, m⁵
+  double area = 0.0;                              ///< contact area A, m²
+  double r_gyr = 0.0;                             ///< radius of gyration about n, m
+  double depth = 0.0;                             ///< deepest penetration along n, m
   Method method = Method::kAnalytic;
   /// Estimated relative error of V from the method itself (quadrature, grid); NaN where the
   /// method is exact for the shapes it was given (closed forms, polyhedral clips).

@@ -26,8 +26,8 @@ int crossComponentSign(const Vector3d& u0, const Vector3d& u1, const Vector3d& w
   if (l - r > bound) return 1;
   if (r - l > bound) return -1;
   using Q = CGAL::Exact_rational;
-  const Q det = (Q(u1[i]) - Q(u0[i])) * (Q(w1[j]) - Q(w0[j])) -
-                (Q(u1[j]) - Q(u0[j])) * (Q(w1[i]) - Q(w0[i]));
+  const Q det =
+      (Q(u1[i]) - Q(u0[i])) * (Q(w1[j]) - Q(w0[j])) - (Q(u1[j]) - Q(u0[j])) * (Q(w1[i]) - Q(w0[i]));
   return CGAL::sign(det);
 }
 
@@ -43,16 +43,16 @@ int perturbedSign(int d0, const Vector3d& u0, const Vector3d& u1, const Vector3d
 }
 
 /// orient3d(a, b, c, p + sτ) = D₀ + s τ·((b − a) × (c − a)).
-int perturbedPointSide(const Vector3d& a, const Vector3d& b, const Vector3d& c,
-                       const Vector3d& p, int s) {
+int perturbedPointSide(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vector3d& p,
+                       int s) {
   return perturbedSign(orient3d(a, b, c, p), a, b, a, c, s);
 }
 
 /// orient3d(p + sτ, q + sτ, a, b) = D₀ + s τ·((q − p) × (b − a)): the side of the line
 /// through the edge (a, b) the segment's line passes (derivation: expand the determinant
 /// det[q − p, a − p − sτ, b − p − sτ], whose τ² term vanishes).
-int perturbedLineSide(const Vector3d& p, const Vector3d& q, const Vector3d& a,
-                      const Vector3d& b, int s) {
+int perturbedLineSide(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b,
+                      int s) {
   return perturbedSign(orient3d(p, q, a, b), p, q, a, b, s);
 }
 
@@ -66,8 +66,7 @@ int orient3d(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vect
 }
 
 int perturbedSegmentCrossing(const Vector3d& p, const Vector3d& q, const Vector3d& a,
-                             const Vector3d& b, const Vector3d& c, int s, int knownP,
-                             int knownQ) {
+                             const Vector3d& b, const Vector3d& c, int s, int knownP, int knownQ) {
   const int sp = knownP != 0 ? knownP : perturbedPointSide(a, b, c, p, s);
   const int sq = knownQ != 0 ? knownQ : perturbedPointSide(a, b, c, q, s);
   // Both ends share the translation, so an edge lying in the plane stays on one side.

@@ -33,8 +33,8 @@ void clipTriangle(const Vector3d (&v)[3], FanSum& out) {
   if (inside == 0) return;
   // Twice the projected area of the whole face, negative when it faces down; the clipped part
   // keeps a fraction of it (a triangle and its sub-polygons share one normal).
-  const double up2 = (v[1].x() - v[0].x()) * (v[2].y() - v[0].y()) -
-                     (v[1].y() - v[0].y()) * (v[2].x() - v[0].x());
+  const double up2 =
+      (v[1].x() - v[0].x()) * (v[2].y() - v[0].y()) - (v[1].y() - v[0].y()) * (v[2].x() - v[0].x());
   if (inside == 3) {
     out.add(v[0], v[1], v[2]);
     if (up2 < 0.0) out.area -= 0.5 * up2;
@@ -103,8 +103,8 @@ void clipFace(const geometry::TriangleMesh& mesh, Eigen::Index f, const Placemen
   clipPlacedTriangle({&p[0], &p[1], &p[2]}, o_H, out);
 }
 
-/// Vertices placed in H during one query, by vertex index (StampedValues). Reused across queries on a thread, so a query allocates nothing
-/// once the largest mesh has been seen.
+/// Vertices placed in H during one query, by vertex index (StampedValues). Reused across queries on
+/// a thread, so a query allocates nothing once the largest mesh has been seen.
 class PlacedVertices {
  public:
   /// The thread's cache, emptied for a new query on a mesh of `vertexCount` vertices.
@@ -304,8 +304,8 @@ class BvhClip {
   const geometry::TriangleMesh& mesh_;
   const Eigen::Isometry3d X_HM_;
   const Placement placement_;
-  const Vector3d up_;     ///< z_H in M axes
-  const Vector3d absUp_;  ///< |z_H| componentwise, for a box's extent along it
+  const Vector3d up_;        ///< z_H in M axes
+  const Vector3d absUp_;     ///< |z_H| componentwise, for a box's extent along it
   const double slackScale_;  ///< kBoxRoundingUlps · eps
   const double slackBase_;   ///< |translation|₁, the size the heights are rounded against
   Vector3d deepest_ = Vector3d::Zero();  ///< deepest vertex, H

@@ -64,17 +64,17 @@ struct FaceFoot {
 
 /// Per-mesh memory reused by the queries of one thread, so a query costs what it touches.
 struct SideScratch {
-  StampedValues<Vector3d> p_W;       ///< vertices placed in W
-  StampedValues<PlacedFace> faces;   ///< faces placed in W
-  StampedValues<FaceFoot> feet;      ///< faces' planes for the integration
-  StampSet inside;  ///< vertices inside the other body
+  StampedValues<Vector3d> p_W;      ///< vertices placed in W
+  StampedValues<PlacedFace> faces;  ///< faces placed in W
+  StampedValues<FaceFoot> feet;     ///< faces' planes for the integration
+  StampSet inside;                  ///< vertices inside the other body
   std::vector<int> insideList;
   StampSet cut;  ///< faces with at least one intersection segment
   std::vector<int> cutList;
-  StampSet crossingEdge;  ///< edges that cross the other surface
+  StampSet crossingEdge;      ///< edges that cross the other surface
   StampSet coplanarSame;      ///< faces in the plane of a face of the other mesh, same way
   StampSet coplanarOpposite;  ///< ... facing it
-  std::vector<char> seeded;  ///< per component: has a crossing edge
+  std::vector<char> seeded;   ///< per component: has a crossing edge
 };
 
 /// One edge of one mesh through one face of the other.
@@ -164,7 +164,7 @@ struct Body {
     if (!fresh) return F;
     const Vector3d& a = corner(f, 0);
     const Vector3d N = (corner(f, 1) - a).cross(corner(f, 2) - a);
-    F.normal = N * (1.0 / N.norm());  // one division, not three
+    F.normal = N * (1.0 / N.norm());              // one division, not three
     F.foot = o - F.normal * F.normal.dot(o - a);  // o projected onto the face's plane
     return F;
   }
@@ -203,9 +203,7 @@ int planeSides(const PlacedFace& T, const Vector3d* P, int* side) {
 bool allCertain(const int* side) { return side[0] * side[1] * side[2] != 0; }
 
 /// Index of the corner whose side differs from the other two's. @pre not all three equal
-int loneCorner(const int* side) {
-  return side[0] == side[1] ? 2 : (side[0] == side[2] ? 1 : 0);
-}
+int loneCorner(const int* side) { return side[0] == side[1] ? 2 : (side[0] == side[2] ? 1 : 0); }
 
 /// Are two triangles, each with corners certainly on both sides of the other's plane, certainly
 /// disjoint? Guigue & Devillers 2003 ("Fast and robust triangle-triangle overlap test using
@@ -218,11 +216,10 @@ int loneCorner(const int* side) {
 /// also under the perturbation: none of its edge–face tests could report a crossing.
 /// @param sideA, sideB  certain sides (±1, none 0, not all equal) of A's corners against B's
 ///   plane and of B's against A's
-bool certainlyDisjoint(const Vector3d* A, const int* sideA, const Vector3d* B,
-                       const int* sideB) {
+bool certainlyDisjoint(const Vector3d* A, const int* sideA, const Vector3d* B, const int* sideB) {
   const int i = loneCorner(sideA);
   const Vector3d* T1[3] = {&A[i], &A[(i + 1) % 3], &A[(i + 2) % 3]};
-  int b[3] = {0, 1, 2};  // B's corners in T2's order
+  int b[3] = {0, 1, 2};                     // B's corners in T2's order
   if (sideA[i] < 0) std::swap(b[1], b[2]);  // flip T2 so that p1 is on its positive side
   const int sideT2[3] = {sideB[b[0]], sideB[b[1]], sideB[b[2]]};
   const int j = loneCorner(sideT2);
@@ -261,8 +258,7 @@ std::pair<Vector3d, Vector3d> placedBox(const Isometry3d& X, const Vector3d& cen
 }
 
 /// Segment p0 + t (p1 − p0), t ∈ [0, 1], meets the box (centre c, half-sizes h)?
-bool segmentMeetsBox(const Vector3d& p0, const Vector3d& p1, const Vector3d& c,
-                     const Vector3d& h) {
+bool segmentMeetsBox(const Vector3d& p0, const Vector3d& p1, const Vector3d& c, const Vector3d& h) {
   double t0 = 0.0, t1 = 1.0;
   const Vector3d d = p1 - p0;
   for (int k = 0; k < 3; ++k) {
@@ -453,14 +449,15 @@ class Intersector {
                                         const Vector3d& otherCenter) {
       // other's vertices: otherCenter + s·otherAxis + radial part (⟂ axis)
       const double c = (otherCenter - slabCenter).dot(slabAxis);
-      const double below = c + std::min(k * other.axialLo, k * other.axialHi) -
-                           (slab.axialHi + margin_);
-      const double above = (slab.axialLo - margin_) -
-                           (c + std::max(k * other.axialLo, k * other.axialHi));
+      const double below =
+          c + std::min(k * other.axialLo, k * other.axialHi) - (slab.axialHi + margin_);
+      const double above =
+          (slab.axialLo - margin_) - (c + std::max(k * other.axialLo, k * other.axialHi));
       const double gap = std::max(below, above);
       return (gap <= 0.0) | (gap * gap <= other.radialExtent * other.radialExtent * sine2);
     };
-    return meets(na, centerA, axisA, nb, nb.center) & meets(nb, nb.center, nb.normalAxis, na, centerA);
+    return meets(na, centerA, axisA, nb, nb.center) &
+           meets(nb, nb.center, nb.normalAxis, na, centerA);
   }
 
   /// A node's slab (bvh.hpp) placed in W, its axial range grown by the box margin.
@@ -537,7 +534,6 @@ class Intersector {
     }
   }
 
-
   /// Faces in one plane (exactly): their shared patch belongs to both boundaries. Same
   /// orientation (flush faces of a body in a pocket): its normals cancel in MODEL.md §1's
   /// n (n_B − n_A = 0); opposite orientation (faces pressed together): a region of zero
@@ -549,7 +545,8 @@ class Intersector {
       if (orient3d(B[0], B[1], B[2], A[k]) != 0) return;
     }
     const bool same = (A[1] - A[0]).cross(A[2] - A[0]).dot((B[1] - B[0]).cross(B[2] - B[0])) > 0.0;
-    StampSet SideScratch::*flag = same ? &SideScratch::coplanarSame : &SideScratch::coplanarOpposite;
+    StampSet SideScratch::*flag =
+        same ? &SideScratch::coplanarSame : &SideScratch::coplanarOpposite;
     anyCoplanar_ = true;
     (body_[0].s.*flag).insert(tA);
     (body_[1].s.*flag).insert(tB);
@@ -650,13 +647,11 @@ class Intersector {
     if (clean) return at(*first).sigma < 0;
     const Crossing& c = at(*first);
     const MeshEdge& E = body_[c.side].topo.edges()[static_cast<std::size_t>(c.edge)];
-    const bool startsInside =
-        contains(1 - c.side, body_[c.side].p(E.v0), perturbationSign(c.side));
+    const bool startsInside = contains(1 - c.side, body_[c.side].p(E.v0), perturbationSign(c.side));
     int expected = startsInside ? -1 : +1;
     for (auto it = first; it != last; ++it, expected = -expected) {
       if (at(*it).sigma == expected) continue;
-      const auto next =
-          std::find_if(it + 1, last, [&](int k) { return at(k).sigma == expected; });
+      const auto next = std::find_if(it + 1, last, [&](int k) { return at(k).sigma == expected; });
       if (next == last) {
         throw std::logic_error(describeFailure("an edge's crossings do not alternate"));
       }
@@ -694,8 +689,10 @@ class Intersector {
         throw std::logic_error(describeFailure("a face pair's crossings do not form one segment"));
       }
       const Endpoint& e1 = w_.endpoints[i + 1];
-      const Vector3d& xs = w_.crossings[static_cast<std::size_t>(e0.start ? e0.crossing : e1.crossing)].x;
-      const Vector3d& xe = w_.crossings[static_cast<std::size_t>(e0.start ? e1.crossing : e0.crossing)].x;
+      const Vector3d& xs =
+          w_.crossings[static_cast<std::size_t>(e0.start ? e0.crossing : e1.crossing)].x;
+      const Vector3d& xe =
+          w_.crossings[static_cast<std::size_t>(e0.start ? e1.crossing : e0.crossing)].x;
       const int tA = static_cast<int>(e0.key >> 32);
       const int tB = static_cast<int>(e0.key & 0xffffffffu);
       w_.pieces.push_back({0, tA, xs, xe});
@@ -774,8 +771,8 @@ class Intersector {
       }
       for (int i = n.first; i < n.first + n.count; ++i) {
         const int f = m.bvh.order()[static_cast<std::size_t>(i)];
-        if (perturbedSegmentCrossing(p_W, f_W, m.corner(f, 0), m.corner(f, 1), m.corner(f, 2),
-                                     s) != 0) {
+        if (perturbedSegmentCrossing(p_W, f_W, m.corner(f, 0), m.corner(f, 1), m.corner(f, 2), s) !=
+            0) {
           ++crossings;
         }
       }
@@ -802,7 +799,8 @@ class Intersector {
     Body& m = body_[side];
     for (const int v : m.s.insideList) {
       for (const int* f = m.topo.facesBegin(v); f != m.topo.facesEnd(v); ++f) {
-        if (m.mesh().triangles(*f, 0) == v && !m.s.cut.contains(*f)) w_.wholes.push_back({side, *f});
+        if (m.mesh().triangles(*f, 0) == v && !m.s.cut.contains(*f))
+          w_.wholes.push_back({side, *f});
       }
     }
   }
@@ -833,8 +831,8 @@ class Intersector {
     auto& patches = w_.patches;
     patches.clear();
     geometry::TetrahedronSum fan;
-    double termSum6 = 0.0;  // 6 Σ |fan term volumes|
-    double areaSum = 0.0;   // Σ |patch areas|
+    double termSum6 = 0.0;           // 6 Σ |fan term volumes|
+    double areaSum = 0.0;            // Σ |patch areas|
     Vector3d scale3 = o.cwiseAbs();  // largest |coordinate| of the patches' points, per axis
     Vector3d nSum = Vector3d::Zero();  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1)
     const auto add = [&](int side, int face, const Vector3d& c, const Vector3d& p,
@@ -853,11 +851,13 @@ class Intersector {
     for (const Piece& pc : w_.pieces) {
       const FaceFoot& F = body_[pc.side].foot(pc.face, o);
       const Vector3d& c = F.foot;
-      add(pc.side, pc.face, c, pc.p, pc.q, F.normal, 0.5 * F.normal.dot((pc.p - c).cross(pc.q - c)));
+      add(pc.side, pc.face, c, pc.p, pc.q, F.normal,
+          0.5 * F.normal.dot((pc.p - c).cross(pc.q - c)));
     }
     for (const WholeFace& wf : w_.wholes) {
       Body& m = body_[wf.side];
-      const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
+      const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1),
+                     &c = m.corner(wf.face, 2);
       const Vector3d N = (b - a).cross(c - a);
       const double twiceArea = N.norm();
       const Vector3d nrm = N * (1.0 / twiceArea);
@@ -878,8 +878,8 @@ class Intersector {
         hi = std::max(hi, n.dot(*p - o));
       }
     }
-    return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
-                                 0.5 * area2, hi - lo, Method::kFast);
+    return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n, 0.5 * area2,
+                                 hi - lo, Method::kFast);
   }
 
   /// n from the area vectors; when they cancel (the region is bounded by one body's surface
@@ -912,8 +912,8 @@ bool MeshMeshCache::covers(const MeshBvh& treeA, const MeshBvh& treeB,
 }
 
 ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
-                              const MeshBvh& b, const MeshTopology& topoB,
-                              const Isometry3d& X_WB, MeshMeshCache* cache) {
+                              const MeshBvh& b, const MeshTopology& topoB, const Isometry3d& X_WB,
+                              MeshMeshCache* cache) {
   thread_local Scratch scratch;
   Intersector query(Body{a, topoA, X_WA, scratch.sides[0]}, Body{b, topoB, X_WB, scratch.sides[1]},
                     scratch);

@@ -90,7 +90,7 @@ struct MeshMeshCache {
 ///   up into segments (an internal invariant; it would mean a predicate bug)
 ContactVolume meshMeshContact(const geometry::MeshBvh& a, const geometry::MeshTopology& topoA,
                               const Eigen::Isometry3d& X_WA, const geometry::MeshBvh& b,
-                              const geometry::MeshTopology& topoB,
-                              const Eigen::Isometry3d& X_WB, MeshMeshCache* cache = nullptr);
+                              const geometry::MeshTopology& topoB, const Eigen::Isometry3d& X_WB,
+                              MeshMeshCache* cache = nullptr);
 
 }  // namespace vcontact::volume

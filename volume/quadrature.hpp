@@ -4,12 +4,11 @@
 // is bisected until every component meets the relative tolerance (Piessens et al.,
 // QUADPACK, 1983, §2.2; nodes and weights from there).
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <queue>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace vcontact::volume {
 

@@ -31,8 +31,8 @@ class Bristle final : public EffectBase<Bristle> {
     const double s = ctx.s, s0 = ctx.sigma0, s1 = ctx.sigma1;
     const Eigen::Vector3d& z = ctx.state.z_W;
     const Eigen::Vector3d z_dot =
-        s * ctx.v_t +
-        (1.0 - s) * ((ctx.C_v * ctx.mu_C / s1) * dirEps(ctx.v_t, ctx.settings.v_eps) - (s0 / s1) * z);
+        s * ctx.v_t + (1.0 - s) * ((ctx.C_v * ctx.mu_C / s1) * dirEps(ctx.v_t, ctx.settings.v_eps) -
+                                   (s0 / s1) * z);
     ctx.rates.z_W = z_dot;
     ctx.theta_dot = thetaRate(ctx);
     ctx.rates.theta_n = ctx.theta_dot;

@@ -1,11 +1,10 @@
 // The vcontact command as a user runs it: exit codes, messages, output files.
 
-#include <filesystem>
-#include <fstream>
-
+#include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <gtest/gtest.h>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "geometry/tessellate.hpp"
@@ -22,9 +21,9 @@ using test::CommandResult;
 CommandResult run(const std::string& args) {
   // One stderr file per test: CTest runs the tests of this file in parallel processes.
   const fs::path errFile =
-      fs::temp_directory_path() /
-      (std::string("vcontact_cli_") + testing::UnitTest::GetInstance()->current_test_info()->name() +
-       "_" + std::to_string(getpid()) + ".stderr");
+      fs::temp_directory_path() / (std::string("vcontact_cli_") +
+                                   testing::UnitTest::GetInstance()->current_test_info()->name() +
+                                   "_" + std::to_string(getpid()) + ".stderr");
   CommandResult r = test::runCommand(std::string(VCONTACT_BINARY) + " " + args, errFile);
   fs::remove(errFile);
   return r;

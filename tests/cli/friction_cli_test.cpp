@@ -1,6 +1,9 @@
 // vcontact friction-map as a user runs it: the CSV it writes and what its rows must show
 // (dynamics/DISTRIBUTED_FRICTION.md).
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -8,10 +11,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include "dynamics/distributed_friction.hpp"
 #include "support/run_command.hpp"
@@ -23,10 +22,9 @@ namespace fs = std::filesystem;
 
 test::CommandResult run(const std::string& args) {
   const fs::path errFile =
-      fs::temp_directory_path() /
-      (std::string("vcontact_friction_cli_") +
-       testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-       std::to_string(getpid()) + ".stderr");
+      fs::temp_directory_path() / (std::string("vcontact_friction_cli_") +
+                                   testing::UnitTest::GetInstance()->current_test_info()->name() +
+                                   "_" + std::to_string(getpid()) + ".stderr");
   test::CommandResult r = test::runCommand(std::string(VCONTACT_BINARY) + " " + args, errFile);
   fs::remove(errFile);
   return r;
@@ -100,14 +98,17 @@ TEST(FrictionMapCli, PunchSweepShowsWhereTheLumpedModelFails) {
 TEST(FrictionMapCli, ShapeSpecUsesItsOwnGyrationRadius) {
   // A box face down: r_gyr² = (a² + b²)/12 (MODEL.md §5), a = b = 0.02 m.
   const fs::path csv = tempCsv("vcontact_friction_box");
-  const test::CommandResult r = run("friction-map --shape box:0.02,0.02,0.01 --eps-min 0.1 "
-                                    "--eps-max 10 --per-decade 1 --out " + csv.string());
+  const test::CommandResult r =
+      run("friction-map --shape box:0.02,0.02,0.01 --eps-min 0.1 "
+          "--eps-max 10 --per-decade 1 --out " +
+          csv.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto rows = readCsv(csv);
   ASSERT_EQ(rows.size(), 5u);
   const double R = std::sqrt(2.0 * (0.02 * 0.02 + 0.02 * 0.02) / 12.0);
   for (const auto& row : rows) EXPECT_EQ(row.count("F_exact_N"), 0u) << "no closed form for a box";
-  for (std::size_t i = 1; i + 1 < rows.size(); ++i) {  // not pure spin (v = 0), pure sliding (ω = 0)
+  for (std::size_t i = 1; i + 1 < rows.size();
+       ++i) {  // not pure spin (v = 0), pure sliding (ω = 0)
     const auto& row = rows[i];
     const double eps = row.at("eps");
     // R = √2 r_gyr with r_gyr from the column grid: its tolerance (1e-3; measured 3.6e-5).

@@ -9,13 +9,13 @@
 
 #include "dynamics/distributed_friction.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "dynamics/model.hpp"
 #include "geometry/error.hpp"
@@ -71,7 +71,7 @@ void addRay(double eps, const Vector2d& s0, const Vector2d& e, double rho1, doub
     const Vector2d s = s0 + rho * e;
     const Vector2d v(eps - s.y(), s.x());  // v + ω ẑ × s
     const Vector2d dir = v.normalized();
-    sum.force += jac * dir.x();                          // |F| along −x
+    sum.force += jac * dir.x();                               // |F| along −x
     sum.torque += jac * (s.x() * dir.y() - s.y() * dir.x());  // |M| along −z
   }
 }
@@ -172,12 +172,12 @@ TEST(FlatPunchFriction, RejectsNegativeOrNanRatio) {
 // ---------------------------------------------------------------------------------------
 // (b), (c): a tessellated steel punch on a plate, both under a random rigid motion.
 
-constexpr double kRadius = 0.0123;   // m, not a binary fraction
-constexpr double kDepth = 1.37e-6;   // m
-constexpr int kSegments = 512;       // polygon of the cylinder
-constexpr double kKv = 5.17e12;      // N/m³ (MODEL.md §4)
+constexpr double kRadius = 0.0123;  // m, not a binary fraction
+constexpr double kDepth = 1.37e-6;  // m
+constexpr int kSegments = 512;      // polygon of the cylinder
+constexpr double kKv = 5.17e12;     // N/m³ (MODEL.md §4)
 constexpr double kMu = 0.2;
-constexpr double kVEps = 1e-5;       // m/s, ModelSettings default
+constexpr double kVEps = 1e-5;  // m/s, ModelSettings default
 
 /// The equal-area radius of the inscribed 512-gon: R √(N sin(2π/N)/(2π)) (1 − 2.5e-5 R); the
 /// closed form is compared for the disc of the same area, leaving an O(1/N²) shape difference.
@@ -274,15 +274,14 @@ TEST(DistributedFriction, RejectsAFieldOfAnotherContactAndBadParameters) {
   volume::ColumnField other = c.field;
   other.depth.back() *= 2.0;
   const RelativeMotion m = punchMotion(c, 1.0);
-  EXPECT_THROW(distributedFriction(c.cv, other, {kKv, 0.0}, m, kMu, kVEps),
-               std::invalid_argument);
+  EXPECT_THROW(distributedFriction(c.cv, other, {kKv, 0.0}, m, kMu, kVEps), std::invalid_argument);
   EXPECT_THROW(distributedFriction(c.cv, c.field, {kKv, 0.0}, m, NAN, kVEps),
                std::invalid_argument);
   EXPECT_THROW(distributedFriction(c.cv, c.field, {-kKv, 0.0}, m, kMu, kVEps),
                std::invalid_argument);
-  EXPECT_THROW(distributedFriction(c.cv, c.field, {kKv, 0.0}, {Vector3d(NAN, 0, 0), {}}, kMu,
-                                   kVEps),
-               std::invalid_argument);
+  EXPECT_THROW(
+      distributedFriction(c.cv, c.field, {kKv, 0.0}, {Vector3d(NAN, 0, 0), {}}, kMu, kVEps),
+      std::invalid_argument);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -329,8 +328,7 @@ TEST(LumpedVsDistributed, SpinTorqueIsTwiceTheExactOneWhenSlidingDominates) {
   const PunchContact& c = punchContact();
   const Compared got = lumpedOverDistributed(100.0);
   EXPECT_NEAR(got.torqueRatio, 2.0, 2.0 * (2.0 * c.cv.relative_error + 1e-3));
-  EXPECT_NEAR(lumpedPunchFriction(1e4, 1.0 / std::sqrt(2.0)).torque /
-                  flatPunchFriction(1e4).torque,
+  EXPECT_NEAR(lumpedPunchFriction(1e4, 1.0 / std::sqrt(2.0)).torque / flatPunchFriction(1e4).torque,
               2.0, 1e-7);
   // The force agrees in that limit, and its deficit 1 − F/μN is twice the exact one too
   // (lumped 1/(4ε²), exact 1/(8ε²)).
@@ -450,8 +448,8 @@ FixedGridErrors fixedGridErrors(int lines) {
     worst.volume = std::max(worst.volume, std::abs(cv.volume / exact.volume - 1.0));
     for (double eps : {0.1, 5.0}) {
       PunchContact placed{cv, field, ref.X_WH};
-      const DistributedFriction d = distributedFriction(cv, field, {kKv, 0.0},
-                                                        punchMotion(placed, eps), kMu, kVEps);
+      const DistributedFriction d =
+          distributedFriction(cv, field, {kKv, 0.0}, punchMotion(placed, eps), kMu, kVEps);
       const PunchFriction e = flatPunchFriction(eps);
       const double M = -d.wrench.tau_W.dot(cv.normal) / (kMu * d.f_n * R);
       worst.torque = std::max(worst.torque, std::abs(M / e.torque - 1.0));
@@ -473,8 +471,8 @@ TEST(FixedColumnGrid, AccuracyPerResolution) {
   for (const Case c : {Case{32, 1.5e-2, 1e-4, 1.5e-2}, Case{64, 5e-3, 3e-5, 5e-3},
                        Case{128, 3e-3, 1.5e-5, 3e-3}}) {
     const FixedGridErrors e = fixedGridErrors(c.lines);
-    std::printf("[measured] fixed grid %3d lines: |dV|/V %.2e  F %.2e  M %.2e\n", c.lines,
-                e.volume, e.force, e.torque);
+    std::printf("[measured] fixed grid %3d lines: |dV|/V %.2e  F %.2e  M %.2e\n", c.lines, e.volume,
+                e.force, e.torque);
     EXPECT_LT(e.volume, c.volume) << c.lines;
     EXPECT_LT(e.force, c.force) << c.lines;
     EXPECT_LT(e.torque, c.torque) << c.lines;
@@ -486,9 +484,9 @@ TEST(FixedColumnGrid, AccuracyPerResolution) {
 // contact in the punch's frame and the friction are the same to round-off (the adaptive
 // grid, laid over a world box, changes by its rim cells instead: 2e-4 in V here).
 TEST(FixedColumnGrid, MovesWithTheBody) {
-  const geometry::Mesh punch{std::make_shared<geometry::TriangleMesh>(
-                                 geometry::tessellateCylinder(kRadius, 0.02, 64)),
-                             "punch"};
+  const geometry::Mesh punch{
+      std::make_shared<geometry::TriangleMesh>(geometry::tessellateCylinder(kRadius, 0.02, 64)),
+      "punch"};
   struct Placed {
     volume::ContactVolume cv;
     DistributedFriction friction;
@@ -514,7 +512,8 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
   const Vector3d c_P = ref.X_WP.inverse() * ref.cv.centroid;
   const Vector3d f_P = ref.X_WP.linear().transpose() * ref.friction.wrench.f_W;
   for (unsigned seed = 1; seed <= 6; ++seed) {
-    const Eigen::Isometry3d X_WH = seed % 2 ? test::randomPose(seed) : Eigen::Isometry3d::Identity();
+    const Eigen::Isometry3d X_WH =
+        seed % 2 ? test::randomPose(seed) : Eigen::Isometry3d::Identity();
     const Placed p = place(X_WH, 0.37 * seed, Vector3d(1.1e-3 * seed, -0.7e-3 * seed, 0.0));
     // Round-off of the placed vertices and lines (~1e-16 m on 1e-2 m), over δ ~ 1e-6 m.
     EXPECT_NEAR(p.cv.volume / ref.cv.volume, 1.0, 1e-9) << seed;
@@ -522,8 +521,7 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
     EXPECT_NEAR(p.cv.r_gyr / ref.cv.r_gyr, 1.0, 1e-9) << seed;
     const Vector3d f = p.X_WP.linear().transpose() * p.friction.wrench.f_W;
     EXPECT_LT((f - f_P).norm(), 1e-9 * f_P.norm()) << seed;
-    EXPECT_NEAR(p.friction.wrench.tau_W.dot(X_WH.linear().col(2)) /
-                    ref.friction.wrench.tau_W.z(),
+    EXPECT_NEAR(p.friction.wrench.tau_W.dot(X_WH.linear().col(2)) / ref.friction.wrench.tau_W.z(),
                 1.0, 1e-9)
         << seed;
   }
@@ -534,14 +532,15 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
 // face first, which sets their winding. Both orders must give the same contact, on the fixed
 // grid and on the adaptive one, with the plate in random poses.
 TEST(FixedColumnGrid, PlateAsEitherBody) {
-  const geometry::Mesh punch{std::make_shared<geometry::TriangleMesh>(
-                                 geometry::tessellateCylinder(kRadius, 0.02, 64)),
-                             "punch"};
+  const geometry::Mesh punch{
+      std::make_shared<geometry::TriangleMesh>(geometry::tessellateCylinder(kRadius, 0.02, 64)),
+      "punch"};
   for (unsigned seed = 21; seed <= 23; ++seed) {
     const Eigen::Isometry3d X_WH = test::randomPose(seed);
     Eigen::Isometry3d X_WP = X_WH;
     X_WP.translation() = X_WH * Vector3d(0.0, 0.0, 0.01 - kDepth);
-    for (const volume::ColumnOptions& o : {volume::ColumnOptions::fixed(64), volume::ColumnOptions{}}) {
+    for (const volume::ColumnOptions& o :
+         {volume::ColumnOptions::fixed(64), volume::ColumnOptions{}}) {
       volume::ColumnField fieldAB, fieldBA;
       const volume::ContactVolume ab =
           volume::columnsContact(punch, X_WP, geometry::HalfSpace{}, X_WH, &fieldAB, o);
@@ -550,8 +549,7 @@ TEST(FixedColumnGrid, PlateAsEitherBody) {
       ASSERT_TRUE(ab.inContact() && ba.inContact()) << seed;
       // The fixed grid is the same lattice both ways (round-off); the adaptive one is laid
       // along ∓n, so the two differ within their estimates.
-      const double tolerance =
-          o.isFixed() ? 1e-12 : ab.relative_error + ba.relative_error;
+      const double tolerance = o.isFixed() ? 1e-12 : ab.relative_error + ba.relative_error;
       EXPECT_NEAR(ba.volume / ab.volume, 1.0, tolerance) << seed << " fixed " << o.isFixed();
       EXPECT_LT((ab.normal + ba.normal).norm(), 1e-15) << seed;  // the plane's, both ways
       EXPECT_NEAR(double(fieldBA.depth.size()) / fieldAB.depth.size(), 1.0,
@@ -579,8 +577,9 @@ TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
   EXPECT_GT(field.depth.size(), 0.7 * 64 * 64);
   // The plate as body A: the same columns, the normal out of B2 (the punch) into B1.
   volume::ColumnField swappedField;
-  const volume::ContactVolume swapped = volume::columnsContact(
-      geometry::HalfSpace{}, ref.X_WH, punch, X_WP, &swappedField, volume::ColumnOptions::fixed(64));
+  const volume::ContactVolume swapped =
+      volume::columnsContact(geometry::HalfSpace{}, ref.X_WH, punch, X_WP, &swappedField,
+                             volume::ColumnOptions::fixed(64));
   EXPECT_NEAR(swapped.volume / cv.volume, 1.0, 1e-12);
   EXPECT_LT((swapped.normal + cv.normal).norm(), 1e-15);
   EXPECT_LT((swapped.centroid - cv.centroid).norm(), 1e-12 * kRadius);

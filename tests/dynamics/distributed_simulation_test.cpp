@@ -19,10 +19,10 @@
 // - Dormand–Prince only: the BDF integrator forms Jacobians by 26 extra evaluations each, and
 //   the integrators are compared with each other in simulation_test.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "dynamics/distributed_friction.hpp"
 #include "dynamics_fixtures.hpp"
@@ -36,14 +36,14 @@ using dynamics::Model;
 using dynamics::Scenario;
 using dynamics::Snapshot;
 
-constexpr double kG = 9.81;          // m/s²
+constexpr double kG = 9.81;  // m/s²
 constexpr double kMu = 0.2;
-constexpr double kRadius = 0.01;     // m
-constexpr double kHeight = 0.002;    // m, a coin: see the header
-constexpr int kSegments = 64;        // the prism of the bundled punch
-constexpr double kSoftKv = 1e9;      // N/m³, see above
-constexpr double kV0 = 0.1;          // m/s
-constexpr int kFirst = 2, kLast = 8; // the output samples (ms) the decelerations are read over
+constexpr double kRadius = 0.01;      // m
+constexpr double kHeight = 0.002;     // m, a coin: see the header
+constexpr int kSegments = 64;         // the prism of the bundled punch
+constexpr double kSoftKv = 1e9;       // N/m³, see above
+constexpr double kV0 = 0.1;           // m/s
+constexpr int kFirst = 2, kLast = 8;  // the output samples (ms) the decelerations are read over
 
 /// The radius of the disc with the 64-gon's area, R √(N sin(2π/N)/(2π)) (1 − 8e-4 R): the
 /// closed forms are for a disc.
@@ -113,8 +113,8 @@ Decelerations decelerations(const Scenario& s) {
 TEST(DistributedSimulation, SlidingPunchDeceleratesAtMuG) {
   const Decelerations dist = decelerations(punchScenario(0.0, FrictionMode::kDistributed));
   const Decelerations lumped = decelerations(punchScenario(0.0, FrictionMode::kLumped));
-  std::printf("[measured] sliding: distributed %.6f, lumped %.6f, mu g %.6f m/s^2\n",
-              dist.linear, lumped.linear, kMu * kG);
+  std::printf("[measured] sliding: distributed %.6f, lumped %.6f, mu g %.6f m/s^2\n", dist.linear,
+              lumped.linear, kMu * kG);
   // The mean normal force over the window is m g up to the change of the vertical momentum
   // (the rocking started by the friction moment, ~1e-5 of m g here): 1e-4 leaves a margin.
   EXPECT_NEAR(dist.linear, kMu * kG, 1e-4 * kMu * kG);
@@ -139,10 +139,10 @@ TEST(DistributedSimulation, SpinDecelerationFollowsThePointwiseTorqueNotTheLumpe
   // g = r_gyr/R = 1/√2 for a disc (the 64-gon's differs by 3e-4).
   const double lumpedExpected =
       torqueDecel(lumped, dynamics::lumpedPunchFriction(lumped.eps, 1.0 / std::sqrt(2.0)).torque);
-  std::printf("[measured] eps %.3f: spin deceleration distributed %.4f (closed form %.4f), "
-              "lumped %.4f (closed form %.4f), lumped/distributed %.4f\n",
-              dist.eps, dist.angular, exact, lumped.angular, lumpedExpected,
-              lumped.angular / dist.angular);
+  std::printf(
+      "[measured] eps %.3f: spin deceleration distributed %.4f (closed form %.4f), "
+      "lumped %.4f (closed form %.4f), lumped/distributed %.4f\n",
+      dist.eps, dist.angular, exact, lumped.angular, lumpedExpected, lumped.angular / dist.angular);
   // Distributed: the 64-line grid's torque error (≤ 3.5e-3, distributed_friction_test,
   // FixedColumnGrid) plus the pressure shift (1.6e-3). Lumped (exact clip): the shift alone.
   EXPECT_NEAR(dist.angular / exact, 1.0, 5e-3);

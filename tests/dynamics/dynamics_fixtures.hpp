@@ -63,7 +63,9 @@ inline double sphereElasticEnergy(double kv, double R, double d) {
 /// α (1 + e) = ln((1 + α)/(1 − α e)), by bisection (the left side minus the right side is
 /// positive at e = 0 and changes sign once below min(1, 1/α)).
 inline double exactRestitution(double alpha) {
-  auto g = [alpha](double e) { return alpha * (1.0 + e) - std::log((1.0 + alpha) / (1.0 - alpha * e)); };
+  auto g = [alpha](double e) {
+    return alpha * (1.0 + e) - std::log((1.0 + alpha) / (1.0 - alpha * e));
+  };
   double lo = 0.0, hi = std::min(1.0, (1.0 - 1e-15) / alpha);
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);

@@ -1,10 +1,11 @@
 // Model files (DATASET.md "Model files"): a valid file builds the model; every kind of bad
 // input stops with a message naming the file, the place and what was expected.
 
+#include "io/model_file.hpp"
+
 #include <gtest/gtest.h>
 
 #include "geometry/error.hpp"
-#include "io/model_file.hpp"
 
 namespace vcontact::io {
 namespace {

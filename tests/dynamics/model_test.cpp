@@ -1,12 +1,13 @@
 // The force model as named parameters in, wrench out: parameters, composition of the effects
 // of MODEL.md §3 and their closed forms on given contact volumes and motions.
 
-#include <cmath>
+#include "dynamics/model.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "dynamics/effects/registry.hpp"
-#include "dynamics/model.hpp"
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
 #include "volume/analytic.hpp"
@@ -30,7 +31,7 @@ Eigen::Vector3d tangent(const Eigen::Vector3d& n) { return n.unitOrthogonal(); }
 
 TEST(Model, ParameterNamesFollowEffectStageOrderAndRoundTrip) {
   Model m = Model::withEffects({"coulomb", "stiffness", "damping", "bristle"});
-  const std::vector<std::string> expected = {"stiffness.kv", "damping.a", "bristle.sigma0",
+  const std::vector<std::string> expected = {"stiffness.kv",   "damping.a",  "bristle.sigma0",
                                              "bristle.sigma1", "coulomb.mu", "coulomb.v_s"};
   EXPECT_EQ(m.parameterNames(), expected);
   const std::vector<double> values = {1e12, 2.5, 1000.0, 50.0, 0.3, 2e-3};
@@ -128,11 +129,12 @@ TEST(Model, ContensouSharesOneFrictionBudget) {
     const ContactResult res = m.evaluate(cv, mo, PairState{});
     const Eigen::Vector3d f_t = res.wrench.f_W - res.wrench.f_W.dot(cv.normal) * cv.normal;
     EXPECT_LT((f_t + 0.25 * N * (v / v_avg) * t).norm(), kRoundOff * N) << ratio;
-    EXPECT_NEAR(res.wrench.tau_W.dot(cv.normal), -0.25 * N * r * (r * w / v_avg),
-                kRoundOff * N * r) << ratio;
+    EXPECT_NEAR(res.wrench.tau_W.dot(cv.normal), -0.25 * N * r * (r * w / v_avg), kRoundOff * N * r)
+        << ratio;
     EXPECT_NEAR(std::pow(f_t.norm() / (0.25 * N), 2) +
                     std::pow(res.wrench.tau_W.norm() / (0.25 * N * r), 2),
-                1.0, kRoundOff) << ratio;
+                1.0, kRoundOff)
+        << ratio;
   }
 }
 

@@ -2,14 +2,15 @@
 // the place and what was expected; a failing run stops with time, pair and quantity and keeps
 // the output up to the stop.
 
-#include <filesystem>
+#include "io/scenario_file.hpp"
 
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 #include "dynamics/simulator.hpp"
 #include "dynamics_fixtures.hpp"
 #include "geometry/error.hpp"
-#include "io/scenario_file.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -160,8 +161,8 @@ TEST(ScenarioFile, ContactsMakeEveryPairNotListed) {
 
 TEST(ScenarioFile, ContactsErrorsNameThePlaceAndTheBodies) {
   nlohmann::json spheres = ballOnPlate();  // two sphere primitives: no method handles them
-  spheres["bodies"].push_back({{"name", "ball2"}, {"shape", "sphere:0.01"}, {"density", 7900},
-                               {"pose", "0.1,0,0.0105"}});
+  spheres["bodies"].push_back(
+      {{"name", "ball2"}, {"shape", "sphere:0.01"}, {"density", 7900}, {"pose", "0.1,0,0.0105"}});
   spheres["contacts"] = spheres["pairs"][0];
   spheres["contacts"].erase("a");
   spheres["contacts"].erase("b");
@@ -190,8 +191,9 @@ TEST(ScenarioFile, ContactsErrorsNameThePlaceAndTheBodies) {
 
   nlohmann::json wrongMethod = binOfParts();
   wrongMethod["contacts"]["method"] = "fast";  // tray and punch against the half-space
-  EXPECT_NE(errorOf(wrongMethod).find("contacts.method: bodies 'tray' and 'plate': cannot "
-                                      "compute"),
+  EXPECT_NE(errorOf(wrongMethod)
+                .find("contacts.method: bodies 'tray' and 'plate': cannot "
+                      "compute"),
             std::string::npos)
       << errorOf(wrongMethod);
 
@@ -249,7 +251,8 @@ TEST(ScenarioFile, DistributedFrictionErrorsNameThePairAndKey) {
   for (const auto& c : cases) {
     nlohmann::json j = distributedPunch();
     j[nlohmann::json::json_pointer(c.pointer)] = c.value;
-    if (std::string(c.name) == "bristle") j["pairs"][0]["model"]["effects"]["stribeck"] = nlohmann::json::object();
+    if (std::string(c.name) == "bristle")
+      j["pairs"][0]["model"]["effects"]["stribeck"] = nlohmann::json::object();
     const std::string message = errorOf(j);
     EXPECT_NE(message.find(c.fragment), std::string::npos)
         << c.name << ": got \"" << message << "\"";
@@ -262,16 +265,18 @@ TEST(ScenarioFile, DistributedFrictionErrorsNameThePairAndKey) {
       << errorOf(primitive);
   nlohmann::json no_coulomb = distributedPunch();
   no_coulomb["pairs"][0]["model"]["effects"].erase("coulomb");
-  EXPECT_NE(errorOf(no_coulomb).find("pairs[0].friction: pair 'punch-plate': distributed friction "
-                                     "integrates coulomb's friction pointwise; add the coulomb "
-                                     "effect"),
+  EXPECT_NE(errorOf(no_coulomb)
+                .find("pairs[0].friction: pair 'punch-plate': distributed friction "
+                      "integrates coulomb's friction pointwise; add the coulomb "
+                      "effect"),
             std::string::npos)
       << errorOf(no_coulomb);
   nlohmann::json lumped_grid = distributedPunch();
   lumped_grid["pairs"][0]["friction"] = "lumped";
   lumped_grid["pairs"][0]["columns"] = 64;
-  EXPECT_NE(errorOf(lumped_grid).find("pairs[0].columns: pair 'punch-plate': the column grid "
-                                      "applies to \"friction\": \"distributed\" only"),
+  EXPECT_NE(errorOf(lumped_grid)
+                .find("pairs[0].columns: pair 'punch-plate': the column grid "
+                      "applies to \"friction\": \"distributed\" only"),
             std::string::npos)
       << errorOf(lumped_grid);
 }
@@ -372,9 +377,8 @@ TEST(ScenarioFile, TippeTopInverts) {
   dynamics::Simulator sim(f.scenario);
   double axis_z = 1.0;
   dynamics::SimulationSummary summary;
-  sim.run(
-      [&](const dynamics::Snapshot& s) { axis_z = s.bodies[1].X_WB.linear()(2, 2); },
-      [](double) {}, summary);
+  sim.run([&](const dynamics::Snapshot& s) { axis_z = s.bodies[1].X_WB.linear()(2, 2); },
+          [](double) {}, summary);
   EXPECT_LT(axis_z, -0.9);  // from +0.995; the scenario reaches −0.96 at 1 s, −0.99 at 2 s
 }
 

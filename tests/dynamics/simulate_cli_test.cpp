@@ -1,5 +1,9 @@
 // `vcontact simulate`: the files it writes, and its exit status when a run stops.
 
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -8,11 +12,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <gtest/gtest.h>
 
 namespace {
 
@@ -38,8 +37,8 @@ long lineCount(const fs::path& p) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("vcontact_simulate_cli_" + name + "_" +
-                                                    std::to_string(::getpid()));
+  const fs::path dir = fs::temp_directory_path() /
+                       ("vcontact_simulate_cli_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -131,10 +130,10 @@ void expectRefused(const std::string& name, const std::string& from, const std::
   ASSERT_NE(at, std::string::npos) << from;
   text.replace(at, from.size(), to);
   std::ofstream(scenario) << text;
-  EXPECT_EQ(runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() +
-                       "\"",
-                   dir / "err"),
-            2);
+  EXPECT_EQ(
+      runCli("simulate \"" + scenario.string() + "\" --out \"" + (dir / "out").string() + "\"",
+             dir / "err"),
+      2);
   const std::string err = readAll(dir / "err");
   EXPECT_NE(err.find(message), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "out" / "bodies.csv"));

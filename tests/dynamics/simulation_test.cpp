@@ -2,13 +2,13 @@
 // Coulomb and spin deceleration, bristle friction on a slope, invariance under rigid motion.
 // Each runs with both integrators (Dormand–Prince and BDF) at the same tolerances.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "dynamics_fixtures.hpp"
 #include "geometry/tessellate.hpp"
@@ -130,8 +130,8 @@ TEST_P(Simulation, CoulombBlockDecelerates) {
   model.setParameter("stiffness.kv", kSoftKv);
   model.setParameter("damping.a", 10.0);
   model.setParameter("coulomb.mu", kMu);
-  dynamics::RigidBody box =
-      freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)}, Eigen::Isometry3d::Identity());
+  dynamics::RigidBody box = freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)},
+                                     Eigen::Isometry3d::Identity());
   // Start at the static penetration d = m g / (kv A), so the box does not bounce.
   const double d = box.mass * kG / (model.parameter("stiffness.kv") * kSide * kSide);
   box.X_WB0 = at({0.0, 0.0, kSide / 2 - d});
@@ -155,8 +155,8 @@ TEST_P(Simulation, SpinningPunchDecelerates) {
   model.setParameter("stiffness.kv", kSoftKv);
   model.setParameter("damping.a", 10.0);
   model.setParameter("coulomb.mu", kMu);
-  const auto prism = std::make_shared<const geometry::TriangleMesh>(
-      geometry::tessellateCylinder(R, L, 64));
+  const auto prism =
+      std::make_shared<const geometry::TriangleMesh>(geometry::tessellateCylinder(R, L, 64));
   dynamics::RigidBody punch =
       freeBody("punch", geometry::Mesh{prism, "punch"}, Eigen::Isometry3d::Identity());
   const double face = 0.5 * 64 * R * R * std::sin(2.0 * std::numbers::pi / 64);  // m²
@@ -188,9 +188,10 @@ std::vector<Snapshot> boxOnSlope(double tan_theta, double duration, Integrator i
   // tan θ/σ1 ≈ 0.5 mm/s, which must count as stuck for the static limit to be tested.
   model.setParameter("coulomb.v_s", 0.01);
   Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
-  X_WP.linear() = Eigen::AngleAxisd(std::atan(tan_theta), Eigen::Vector3d::UnitX()).toRotationMatrix();
-  dynamics::RigidBody box =
-      freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)}, Eigen::Isometry3d::Identity());
+  X_WP.linear() =
+      Eigen::AngleAxisd(std::atan(tan_theta), Eigen::Vector3d::UnitX()).toRotationMatrix();
+  dynamics::RigidBody box = freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)},
+                                     Eigen::Isometry3d::Identity());
   const double cos_theta = 1.0 / std::sqrt(1.0 + tan_theta * tan_theta);
   const double d = box.mass * kG * cos_theta / (model.parameter("stiffness.kv") * kSide * kSide);
   box.X_WB0 = X_WP * at({0.0, 0.0, kSide / 2 - d});
@@ -217,8 +218,8 @@ TEST_P(Simulation, BristleSlidesAboveTheStaticLimit) {
   const double theta = std::atan(kTan);
   const double expected = kG * (std::sin(theta) - 0.1 * std::cos(theta));
   // Sliding (v ≫ v_s, s = 0): σ0 z + σ1 ż = μ_C exactly, so a = g (sin θ − μ_C cos θ).
-  const double a = (out[20].bodies[1].v_WBcm.norm() - out[10].bodies[1].v_WBcm.norm()) /
-                   (out[20].t - out[10].t);
+  const double a =
+      (out[20].bodies[1].v_WBcm.norm() - out[10].bodies[1].v_WBcm.norm()) / (out[20].t - out[10].t);
   EXPECT_NEAR(a, expected, 1e-4 * expected);  // rocking averages out, as for the block
 }
 
@@ -226,14 +227,15 @@ TEST_P(Simulation, BristleSlidesAboveTheStaticLimit) {
 // the friction limit after a stop of length T is μ_S − (μ_S − μ_C) exp(−T/τ_dw).
 TEST_P(Simulation, DwellStrengthensStaticFriction) {
   constexpr double kSide = 0.02, kTau = 0.05, kMuC = 0.2, kMuS = 0.35;  // τ_dw in s
-  Model model = Model::withEffects({"stiffness", "damping", "coulomb", "stribeck", "bristle", "dwell"});
+  Model model =
+      Model::withEffects({"stiffness", "damping", "coulomb", "stribeck", "bristle", "dwell"});
   model.setParameter("stiffness.kv", kSoftKv);
   model.setParameter("damping.a", 10.0);
   model.setParameter("coulomb.mu", kMuC);
   model.setParameter("stribeck.mu_s", kMuS);
   model.setParameter("dwell.tau_dw", kTau);
-  dynamics::RigidBody box =
-      freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)}, Eigen::Isometry3d::Identity());
+  dynamics::RigidBody box = freeBody("box", geometry::Box{Eigen::Vector3d::Constant(kSide)},
+                                     Eigen::Isometry3d::Identity());
   const double d = box.mass * kG / (kSoftKv * kSide * kSide);
   box.X_WB0 = at({0.0, 0.0, kSide / 2 - d});
   Scenario s = onPlate(box, model);
@@ -250,8 +252,7 @@ TEST_P(Simulation, DwellStrengthensStaticFriction) {
     const double T = snap.t;
     // s = exp(−v²/v_s²) = 1 to ~1e-12 for the box at rest (|v| < 1e-9 m/s).
     EXPECT_NEAR(snap.pairs[0].state.s_dw, 1.0 - std::exp(-T / kTau), 1e-8) << T;
-    EXPECT_NEAR(snap.pairs[0].result.mu_max, kMuS - (kMuS - kMuC) * std::exp(-T / kTau), 1e-8)
-        << T;
+    EXPECT_NEAR(snap.pairs[0].result.mu_max, kMuS - (kMuS - kMuC) * std::exp(-T / kTau), 1e-8) << T;
   }
 }
 
@@ -296,7 +297,8 @@ TEST_P(Simulation, InvariantUnderRigidMotion) {
   model.setParameter("viscous.sigma2", 0.5);
   const auto scenarioIn = [&](const Eigen::Isometry3d& X) {
     // Start at the static penetration (m g = kv π R d², d ≈ 1.42 µm): no bounce.
-    dynamics::RigidBody ball = freeBody("ball", geometry::Sphere{0.01}, X * at({0, 0, 0.01 - 1.42e-6}));
+    dynamics::RigidBody ball =
+        freeBody("ball", geometry::Sphere{0.01}, X * at({0, 0, 0.01 - 1.42e-6}));
     ball.v_WBcm0 = X.linear() * Eigen::Vector3d(0.05, 0.02, 0.0);
     ball.w_WB0 = X.linear() * Eigen::Vector3d(1.0, -3.0, 8.0);
     Scenario s = onPlate(ball, model, X);
@@ -359,9 +361,9 @@ TEST(SimulationBroadPhase, PairApartIsNeverQueriedAndChangesNothing) {
   }
   // Both balls did bounce: the runs compared are not free falls.
   for (std::size_t b = 1; b < 3; ++b) {
-    EXPECT_TRUE(std::any_of(with.begin(), with.end(),
-                            [b](const Snapshot& o) { return o.bodies[b].v_WBcm.z() > 0.0; }))
-        << b;
+    EXPECT_TRUE(std::any_of(with.begin(), with.end(), [b](const Snapshot& o) {
+      return o.bodies[b].v_WBcm.z() > 0.0;
+    })) << b;
   }
 }
 
@@ -384,9 +386,10 @@ TEST(SimulationBroadPhase, PairIsQueriedOnceTheBoxesMeet) {
   const auto out = run(s, &summary);
   EXPECT_EQ(out.back().pairs[0].cv.volume, 0.0) << "still in contact";
   const Eigen::Vector3d vA = out.back().bodies[0].v_WBcm, vB = out.back().bodies[1].v_WBcm;
-  std::printf("[measured] after the collision: moving %.3e m/s, resting %.9f m/s; %ld of %ld "
-              "right-hand sides queried\n",
-              vA.x(), vB.x(), summary.contact_evaluations, summary.rhs_evaluations);
+  std::printf(
+      "[measured] after the collision: moving %.3e m/s, resting %.9f m/s; %ld of %ld "
+      "right-hand sides queried\n",
+      vA.x(), vB.x(), summary.contact_evaluations, summary.rhs_evaluations);
   EXPECT_NEAR(vA.x(), 0.0, 1e-6 * v);
   EXPECT_NEAR(vB.x(), v, 1e-6 * v);
   EXPECT_LT((vA + vB - Eigen::Vector3d(v, 0, 0)).norm(), 1e-12 * v);

@@ -6,11 +6,11 @@
 
 #include "geometry/bvh.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-
-#include <gtest/gtest.h>
 
 #include "geometry/tessellate.hpp"
 
@@ -36,8 +36,8 @@ TriangleMesh joined(const TriangleMesh& a, const TriangleMesh& b, const Vector3d
 /// A 40 x 40 x 2 mm plate (12 triangles) with a 1 mm sphere of about 1,000 triangles resting
 /// above its centre: a CAD part's flat face beside a finely faceted pin.
 TriangleMesh plateWithBead() {
-  return joined(tessellateBox(Vector3d(0.04, 0.04, 0.002)),
-                tessellateSphere(0.001, 32, 17), Vector3d(0.0, 0.0, 0.0025));
+  return joined(tessellateBox(Vector3d(0.04, 0.04, 0.002)), tessellateSphere(0.001, 32, 17),
+                Vector3d(0.0, 0.0, 0.0025));
 }
 
 double sizeOf(const TriangleMesh& m) { return bounds(m).size().norm(); }

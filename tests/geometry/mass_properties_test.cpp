@@ -3,9 +3,9 @@
 
 #include "geometry/mass_properties.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "geometry/tessellate.hpp"
 #include "support/test_support.hpp"

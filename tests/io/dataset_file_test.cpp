@@ -4,11 +4,11 @@
 
 #include "io/dataset_file.hpp"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
-
-#include <gtest/gtest.h>
 
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
@@ -21,9 +21,9 @@ namespace fs = std::filesystem;
 class DatasetFiles : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           (std::string("vcontact_dataset_") +
-            testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() / (std::string("vcontact_dataset_") +
+                                     testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -35,7 +35,8 @@ class DatasetFiles : public testing::Test {
     return write("rig.json", R"({"format": "vcontact.dataset/1", "name": "rig", "data": ")" + data +
                                  R"(", "mode": "kinematic",
       "payload": {"shape": "cylinder", "radius": 0.01, "length": 0.02},
-      "plate": {"shape": "halfspace"}, "outputs": ["fz", "tz"])" + extra + "}");
+      "plate": {"shape": "halfspace"}, "outputs": ["fz", "tz"])" +
+                                 extra + "}");
   }
   // Parabolic drop x = (0, 0, 1 − t²) with constant spin 2 rad/s about z, on a
   // non-uniform time grid, plus an extra column the reader must keep.
@@ -113,11 +114,13 @@ TEST_F(DatasetFiles, EachCsvDefectHasItsMessage) {
        "line 4, column 'fz': 'inf' is not finite"},
       {"time", [](std::string s) { return replaceFirst(s, "\n0.01,", "\n0,"); },
        "line 3, column 't': time 0 is not after the previous sample's 0"},
-      {"quaternion", [](std::string s) { return replaceFirst(s, "\n0,0,0,1,1,", "\n0,0,0,1,1.1,"); },
+      {"quaternion",
+       [](std::string s) { return replaceFirst(s, "\n0,0,0,1,1,", "\n0,0,0,1,1.1,"); },
        "line 2, columns 'qw'..'qz': quaternion length"},
       {"width", [](std::string s) { return replaceFirst(s, ",20\n", ",20,99\n"); },
        "line 2: 18 fields, but the header names 17 columns"},
-      {"no wrench", [](std::string s) { return replaceFirst(replaceFirst(s, "fz,", "a,"), "tz,", "b,"); },
+      {"no wrench",
+       [](std::string s) { return replaceFirst(replaceFirst(s, "fz,", "a,"), "tz,", "b,"); },
        "line 1: no wrench column"},
       {"half a velocity", [](std::string s) { return replaceFirst(s, "vy,", "vq,"); },
        "columns vx, vy, vz come together"},
@@ -134,24 +137,29 @@ TEST_F(DatasetFiles, EachCsvDefectHasItsMessage) {
 TEST_F(DatasetFiles, EachSidecarDefectHasItsMessage) {
   write("rig.csv", csv(true));
   const std::string path = (dir_ / "rig.json").string();
-  EXPECT_NE(rejection([&] { readDataset(write("rig.json", "{\"format\": ")); })
-                .find(path + ": not valid JSON"),
+  EXPECT_NE(rejection([&] {
+              readDataset(write("rig.json", "{\"format\": "));
+            }).find(path + ": not valid JSON"),
             std::string::npos);
-  EXPECT_NE(rejection([&] { readDataset(sidecar("", "gone.csv")); })
-                .find("data file \"gone.csv\" not found"),
+  EXPECT_NE(rejection([&] {
+              readDataset(sidecar("", "gone.csv"));
+            }).find("data file \"gone.csv\" not found"),
             std::string::npos);
   EXPECT_NE(rejection([&] { readDataset((dir_ / "nothing.json").string()); }).find("no such file"),
             std::string::npos);
-  EXPECT_NE(rejection([&] { readDataset(sidecar(R"(, "noise": {"fx": 0.1})")); })
-                .find("noise: \"fx\" is not one of the outputs"),
+  EXPECT_NE(rejection([&] {
+              readDataset(sidecar(R"(, "noise": {"fx": 0.1})"));
+            }).find("noise: \"fx\" is not one of the outputs"),
             std::string::npos);
-  EXPECT_NE(rejection([&] { readDataset(sidecar(R"(, "noise": {"fz": -1})")); })
-                .find("must be a positive number"),
+  EXPECT_NE(rejection([&] {
+              readDataset(sidecar(R"(, "noise": {"fz": -1})"));
+            }).find("must be a positive number"),
             std::string::npos);
   const std::string wrongFormat = write(
       "v2.json", R"({"format": "vcontact.dataset/2", "data": "rig.csv", "mode": "kinematic"})");
-  EXPECT_NE(rejection([&] { readDataset(wrongFormat); }).find("format must be \"vcontact.dataset/1\""),
-            std::string::npos);
+  EXPECT_NE(
+      rejection([&] { readDataset(wrongFormat); }).find("format must be \"vcontact.dataset/1\""),
+      std::string::npos);
   const std::string dynamic = write(
       "dyn.json", R"({"format": "vcontact.dataset/1", "data": "rig.csv", "mode": "dynamic"})");
   EXPECT_NE(rejection([&] { readDataset(dynamic); }).find("reserved for a later version"),

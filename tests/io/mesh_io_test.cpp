@@ -3,10 +3,10 @@
 
 #include "io/mesh_io.hpp"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
@@ -25,9 +25,10 @@ constexpr double kFloatVolumeTolerance = 1e-6;
 class MeshFiles : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vcontact_mesh_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() /
+        ("vcontact_mesh_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -58,8 +59,8 @@ std::string ply(const TriangleMesh& m) {
   std::ostringstream os;
   os.precision(9);
   os << "ply\nformat ascii 1.0\nelement vertex " << m.vertexCount()
-     << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
-     << m.triangleCount() << "\nproperty list uchar int vertex_indices\nend_header\n";
+     << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m.triangleCount()
+     << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (Eigen::Index i = 0; i < m.vertexCount(); ++i) os << m.vertex(i).transpose() << "\n";
   for (Eigen::Index f = 0; f < m.triangleCount(); ++f) os << "3 " << m.triangles.row(f) << "\n";
   return os.str();
@@ -116,8 +117,8 @@ std::string gltf(const TriangleMesh& m) {
      << R"(},{"buffer":0,"byteOffset":)" << positions << R"(,"byteLength":)"
      << bytes.size() - positions << R"(}],)"
      << R"("accessors":[{"bufferView":0,"componentType":5126,"count":)" << m.vertexCount()
-     << R"(,"type":"VEC3","min":[)" << lo.x() << "," << lo.y() << "," << lo.z()
-     << R"(],"max":[)" << hi.x() << "," << hi.y() << "," << hi.z() << R"(]},)"
+     << R"(,"type":"VEC3","min":[)" << lo.x() << "," << lo.y() << "," << lo.z() << R"(],"max":[)"
+     << hi.x() << "," << hi.y() << "," << hi.z() << R"(]},)"
      << R"({"bufferView":1,"componentType":5125,"count":)" << 3 * m.triangleCount()
      << R"(,"type":"SCALAR"}]})";
   return os.str();
@@ -126,9 +127,12 @@ std::string gltf(const TriangleMesh& m) {
 TEST_F(MeshFiles, EveryFormatReadsTheSameSolid) {
   writeStl(box_, path("box_binary.stl"));
   writeObj(box_, path("box.obj"));
-  const std::vector<std::string> files = {
-      path("box_binary.stl"), write("box_ascii.stl", asciiStl(box_)), path("box.obj"),
-      write("box.ply", ply(box_)), write("box.off", off(box_)), write("box.gltf", gltf(box_))};
+  const std::vector<std::string> files = {path("box_binary.stl"),
+                                          write("box_ascii.stl", asciiStl(box_)),
+                                          path("box.obj"),
+                                          write("box.ply", ply(box_)),
+                                          write("box.off", off(box_)),
+                                          write("box.gltf", gltf(box_))};
   for (const auto& file : files) {
     SCOPED_TRACE(file);
     const MeshReadResult r = readMesh(file);
@@ -172,9 +176,9 @@ TEST_F(MeshFiles, OpenMeshIsRejectedNamingFileAndDefect) {
   open.triangles.conservativeResize(11, 3);
   writeObj(open, path("part.obj"));
   const std::string msg = rejection(path("part.obj"));
-  EXPECT_EQ(msg.rfind(path("part.obj") + ": 3 boundary edges, mesh is not closed; first at vertex (",
-                      0),
-            0u)
+  EXPECT_EQ(
+      msg.rfind(path("part.obj") + ": 3 boundary edges, mesh is not closed; first at vertex (", 0),
+      0u)
       << msg;
 }
 

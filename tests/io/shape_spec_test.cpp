@@ -26,8 +26,7 @@ TEST(ShapeSpec, BadShapesNameTheSourceAndTheExpectedForm) {
             "A: sphere radius must be a finite positive length in metres, got -1");
   EXPECT_EQ(rejection([] { parseShape("cylinder:1", "B"); }),
             "B: expected cylinder:R,L, got 'cylinder:1'");
-  EXPECT_EQ(rejection([] { parseShape("box:1,x,3", "A"); }),
-            "A: 'x' is not a number (in '1,x,3')");
+  EXPECT_EQ(rejection([] { parseShape("box:1,x,3", "A"); }), "A: 'x' is not a number (in '1,x,3')");
   EXPECT_EQ(rejection([] { parseShape("sphere:nan", "A"); }), "A: 'nan' is not finite");
 }
 
@@ -44,11 +43,13 @@ TEST(Pose, TranslationRpyAndQuaternionForms) {
 }
 
 TEST(Pose, BadPoses) {
-  EXPECT_NE(rejection([] { parsePose("1,2", "--pose-b"); })
-                .find("--pose-b: a pose is x,y,z or x,y,z,roll,pitch,yaw"),
+  EXPECT_NE(rejection([] {
+              parsePose("1,2", "--pose-b");
+            }).find("--pose-b: a pose is x,y,z or x,y,z,roll,pitch,yaw"),
             std::string::npos);
-  EXPECT_NE(rejection([] { parsePose("0,0,0,1,1,0,0", "--pose-b"); })
-                .find("quaternion (w, x, y, z) must be unit length"),
+  EXPECT_NE(rejection([] {
+              parsePose("0,0,0,1,1,0,0", "--pose-b");
+            }).find("quaternion (w, x, y, z) must be unit length"),
             std::string::npos);
   EXPECT_NE(rejection([] { parsePose("0,0,inf", "--pose-b"); }).find("not finite"),
             std::string::npos);

@@ -3,9 +3,9 @@
 
 #include "io/svg_chart.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace vcontact::io {
 namespace {

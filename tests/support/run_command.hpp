@@ -2,14 +2,14 @@
 // Runs a command as a user would, capturing its exit code, standard output and standard
 // error. Each caller names its own stderr file: CTest runs tests as parallel processes.
 
+#include <sys/wait.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
-
-#include <sys/wait.h>
 
 namespace vcontact::test {
 

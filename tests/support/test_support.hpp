@@ -1,12 +1,11 @@
 #pragma once
 // Helpers shared by the tests: reproducible poses and tensor comparisons.
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
 #include <random>
 #include <string>
-
-#include <Eigen/Geometry>
 
 #include "geometry/error.hpp"
 

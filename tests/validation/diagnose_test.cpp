@@ -1,10 +1,11 @@
 // diagnose names the effect hidden from the model, and adding it explains the data (issue #5).
 
-#include <set>
+#include "validation/diagnose.hpp"
 
 #include <gtest/gtest.h>
 
-#include "validation/diagnose.hpp"
+#include <set>
+
 #include "validation/effect_cases.hpp"
 
 namespace vcontact::validation {

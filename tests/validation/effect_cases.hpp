@@ -16,9 +16,9 @@ namespace vcontact::test {
 /// the library defaults so that a fit has to move).
 inline const std::map<std::string, double>& trueParameters() {
   static const std::map<std::string, double> p = {
-      {"stiffness.kv", 4.2e12}, {"damping.a", 400.0},       {"coulomb.mu", 0.15},
-      {"coulomb.v_s", 1.5e-3},  {"stribeck.mu_s", 0.3},     {"bristle.sigma0", 6000.0},
-      {"bristle.sigma1", 300.0}, {"viscous.sigma2", 4.0},   {"dwell.tau_dw", 0.4},
+      {"stiffness.kv", 4.2e12},    {"damping.a", 400.0},      {"coulomb.mu", 0.15},
+      {"coulomb.v_s", 1.5e-3},     {"stribeck.mu_s", 0.3},    {"bristle.sigma0", 6000.0},
+      {"bristle.sigma1", 300.0},   {"viscous.sigma2", 4.0},   {"dwell.tau_dw", 0.4},
       {"misalignment.rx", 1.5e-6}, {"misalignment.ry", -1e-6}};
   return p;
 }
@@ -31,9 +31,9 @@ inline dynamics::Model trueModel(const std::vector<std::string>& ids) {
 }
 
 struct EffectCase {
-  std::string effect;               ///< hidden in the start model
-  std::string profile;              ///< rig profile that exercises it
-  std::vector<std::string> truth;   ///< effects of the simulated data
+  std::string effect;              ///< hidden in the start model
+  std::string profile;             ///< rig profile that exercises it
+  std::vector<std::string> truth;  ///< effects of the simulated data
   std::size_t samples;
 };
 
@@ -56,7 +56,8 @@ inline const std::vector<EffectCase>& effectCases() {
 }
 
 /// The true effects without `hidden`, at the library defaults (a fit has to find the values).
-inline dynamics::Model startModel(const std::vector<std::string>& truth, const std::string& hidden) {
+inline dynamics::Model startModel(const std::vector<std::string>& truth,
+                                  const std::string& hidden) {
   std::vector<std::string> ids;
   for (const auto& id : truth) {
     if (id != hidden) ids.push_back(id);

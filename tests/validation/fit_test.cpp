@@ -1,12 +1,13 @@
 // fit: robust losses, identifiability warnings, covariance against the scatter of refits.
 
-#include <cmath>
-#include <random>
+#include "validation/fit.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "validation/effect_cases.hpp"
-#include "validation/fit.hpp"
 
 namespace vcontact::validation {
 namespace {
@@ -46,7 +47,8 @@ TEST(Fit, ParametersTheDataCannotSeeAreFlaggedNotGivenFalsePrecision) {
       EXPECT_TRUE(std::isfinite(p.stdError)) << p.name;
     }
   }
-  for (const auto& w : r.warnings) warned |= w.rfind("coulomb.v_s: the data cannot identify it", 0) == 0;
+  for (const auto& w : r.warnings)
+    warned |= w.rfind("coulomb.v_s: the data cannot identify it", 0) == 0;
   EXPECT_TRUE(warned);
 }
 

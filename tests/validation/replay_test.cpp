@@ -1,11 +1,12 @@
 // Replay: wrench at the payload origin from the analytic volumes, friction states, noise σ̂.
 
-#include <cmath>
-#include <random>
+#include "validation/replay.hpp"
 
 #include <gtest/gtest.h>
 
-#include "validation/replay.hpp"
+#include <cmath>
+#include <random>
+
 #include "validation/residuals.hpp"
 #include "validation/synthetic.hpp"
 
@@ -89,7 +90,8 @@ TEST(Synthetic, NoiselessReplayOfTheTrueModelHasZeroResiduals) {
   synthesizeMeasurement(d, truth, 1);
   Replayer replayer(d);
   const Prediction p = replayer.run(truth);
-  for (const auto& o : d.outputs) EXPECT_EQ((d.measured(o) - p.column(o)).cwiseAbs().maxCoeff(), 0.0);
+  for (const auto& o : d.outputs)
+    EXPECT_EQ((d.measured(o) - p.column(o)).cwiseAbs().maxCoeff(), 0.0);
 }
 
 }  // namespace

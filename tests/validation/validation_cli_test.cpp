@@ -2,21 +2,21 @@
 // bad input of DATASET.md a message, exit code 2 and nothing in --out; the report renders
 // every chart in headless Chromium.
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <array>
-#include <functional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <unistd.h>
-
 #include "io/model_file.hpp"
-#include "support/run_command.hpp"
 #include "io/validation_output.hpp"
+#include "support/run_command.hpp"
 #include "validation/effect_cases.hpp"
 
 namespace vcontact {
@@ -37,12 +37,14 @@ void writeText(const fs::path& p, const std::string& text) { std::ofstream(p) <<
 class ValidationCli : public ::testing::Test {
  public:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vcontact_validation_cli_" + std::to_string(getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("vcontact_validation_cli_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     const auto truth = test::trueModel({"stiffness", "coulomb", "viscous"});
-    io::writeDataset(test::syntheticDataset("drive", 200, truth, 3), (dir_ / "drive.json").string());
+    io::writeDataset(test::syntheticDataset("drive", 200, truth, 3),
+                     (dir_ / "drive.json").string());
     writeText(dir_ / "model.json",
               R"({"format": "vcontact.model/1", "effects": {"stiffness": {}, "coulomb": {}},
                   "fixed": ["coulomb.v_s"]})");
@@ -66,7 +68,8 @@ class ValidationCli : public ::testing::Test {
     std::vector<std::string> header;
     std::stringstream hs(lines[0]);
     for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
-    const auto col = static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin());
+    const auto col =
+        static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin());
     std::vector<std::string> cells;
     std::stringstream ls(lines[line - 1]);
     for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
@@ -86,7 +89,8 @@ class ValidationCli : public ::testing::Test {
     std::stringstream hs(lines[0]), ls(lines[line - 1]);
     for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
     for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
-    return cells[static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin())];
+    return cells[static_cast<std::size_t>(std::find(header.begin(), header.end(), column) -
+                                          header.begin())];
   }
 
   fs::path dir_;
@@ -96,7 +100,8 @@ TEST_F(ValidationCli, CompareFitAndDiagnoseWriteTheirFiles) {
   const CommandResult c = run(standardArgs("compare"));
   ASSERT_EQ(c.exitCode, 0) << c.err;
   EXPECT_NE(c.out.find("sigma fx = 0.03 (from the sidecar's noise)"), std::string::npos) << c.out;
-  for (const char* f : {"residuals.csv", "compare.json", "report.html"}) EXPECT_TRUE(fs::exists(out() / f)) << f;
+  for (const char* f : {"residuals.csv", "compare.json", "report.html"})
+    EXPECT_TRUE(fs::exists(out() / f)) << f;
   const auto cmp = nlohmann::json::parse(readText(out() / "compare.json"));
   EXPECT_GT(cmp["chi"].get<double>(), 1.2);  // default parameters do not explain the data
 
@@ -134,9 +139,13 @@ TEST_F(ValidationCli, BadDatasetsAndModelFilesGiveAMessageExitTwoAndWriteNothing
   const fs::path model = dir_ / "model.json";
   const std::vector<BadInput> cases = {
       {"sidecar not JSON", [&](auto&, auto&) { writeText(ds, "{\"format\": "); }, "not valid JSON"},
-      {"wrong format", [&](auto&, auto&) {
-         auto j = nlohmann::json::parse(readText(ds)); j["format"] = "vcontact.dataset/9";
-         writeText(ds, j.dump()); }, "format must be \"vcontact.dataset/1\""},
+      {"wrong format",
+       [&](auto&, auto&) {
+         auto j = nlohmann::json::parse(readText(ds));
+         j["format"] = "vcontact.dataset/9";
+         writeText(ds, j.dump());
+       },
+       "format must be \"vcontact.dataset/1\""},
       {"missing data file", [&](auto&, auto&) { fs::remove(dir_ / "drive.csv"); }, "not found"},
       {"missing required column", [](auto& t, auto&) { t.editCsv(1, "qz", "qq"); },
        "missing required column 'qz'"},
@@ -146,13 +155,19 @@ TEST_F(ValidationCli, BadDatasetsAndModelFilesGiveAMessageExitTwoAndWriteNothing
        "time must increase strictly"},
       {"quaternion far from unit", [](auto& t, auto&) { t.editCsv(5, "qw", "1.5"); }, "far from 1"},
       {"model not JSON", [&](auto&, auto&) { writeText(model, "{"); }, "not valid JSON"},
-      {"model wrong format", [&](auto&, auto&) {
-         writeText(model, R"({"format": "vcontact.model/0", "effects": {}})"); }, "vcontact.model/1"},
-      {"model unknown effect", [&](auto&, auto&) {
-         writeText(model, R"({"format": "vcontact.model/1", "effects": {"glue": {}}})"); },
+      {"model wrong format",
+       [&](auto&, auto&) { writeText(model, R"({"format": "vcontact.model/0", "effects": {}})"); },
+       "vcontact.model/1"},
+      {"model unknown effect",
+       [&](auto&, auto&) {
+         writeText(model, R"({"format": "vcontact.model/1", "effects": {"glue": {}}})");
+       },
        "unknown effect"},
-      {"model value out of range", [&](auto&, auto&) {
-         writeText(model, R"({"format": "vcontact.model/1", "effects": {"stiffness": {"kv": -1}}})"); },
+      {"model value out of range",
+       [&](auto&, auto&) {
+         writeText(model,
+                   R"({"format": "vcontact.model/1", "effects": {"stiffness": {"kv": -1}}})");
+       },
        "outside its physical range"},
   };
   for (const auto& c : cases) {
@@ -174,21 +189,24 @@ TEST_F(ValidationCli, BadDatasetsAndModelFilesGiveAMessageExitTwoAndWriteNothing
 
 TEST_F(ValidationCli, ReportRendersEveryChartInHeadlessChromium) {
   const fs::path chromium = "/usr/bin/chromium";
-  if (!fs::exists(chromium)) GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
+  if (!fs::exists(chromium))
+    GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
   ASSERT_EQ(run(standardArgs("diagnose") + " --iterate").exitCode, 0);
   const std::string html = readText(out() / "report.html");
   EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org/2000/svg"));  // no network
   std::ptrdiff_t charts = 0;
   for (std::size_t p = html.find("<svg class=\"chart\""); p != std::string::npos;
-       p = html.find("<svg class=\"chart\"", p + 1)) ++charts;
+       p = html.find("<svg class=\"chart\"", p + 1))
+    ++charts;
   // chi bars + 2 outputs × (measured/model + residuals) + 6 regime plots.
   EXPECT_EQ(charts, 1 + 2 * 2 + 6);
   const fs::path profile = dir_ / "chromium-profile";
   const std::string cmd = "timeout 120 " + chromium.string() +
                           " --headless --no-sandbox --disable-gpu --disable-background-networking"
                           " --disable-component-update --disable-sync --no-first-run"
-                          " --user-data-dir=" + profile.string() +
-                          " --dump-dom file://" + (out() / "report.html").string();
+                          " --user-data-dir=" +
+                          profile.string() + " --dump-dom file://" +
+                          (out() / "report.html").string();
   const CommandResult r = runCommand(cmd, dir_ / "chromium.txt");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::smatch m;

@@ -4,13 +4,13 @@
 
 #include "volume/analytic.hpp"
 
+#include <gtest/gtest.h>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <vector>
-
-#include <boost/math/quadrature/gauss_kronrod.hpp>
-#include <gtest/gtest.h>
 
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
@@ -48,8 +48,7 @@ class AccuracyLog : public testing::Environment {
     return t;
   }
 };
-const testing::Environment* const kAccuracyLog =
-    testing::AddGlobalTestEnvironment(new AccuracyLog);
+const testing::Environment* const kAccuracyLog = testing::AddGlobalTestEnvironment(new AccuracyLog);
 
 // x − sin x by its Taylor series: no cancellation for small x, exact coefficients.
 LD xMinusSin(LD x) {
@@ -90,18 +89,20 @@ TEST(AnalyticSphere, ClosedFormsFromShallowToFullySunk) {
   for (double d : {R * 0x1p-30, R * 0x1p-20, R * 0x1p-10, R * 0x1p-4, R / 2, R, 1.5 * R, 2 * R}) {
     SCOPED_TRACE(testing::Message() << "d/R = " << d / R);
     const auto e = sphereClosedForm(R, d);
-    const ContactVolume cv = sphereHalfspace(R, translation({0.125, -0.25, R - d}),
-                                             Isometry3d::Identity());
+    const ContactVolume cv =
+        sphereHalfspace(R, translation({0.125, -0.25, R - d}), Isometry3d::Identity());
     EXPECT_NEAR(cv.volume / e.V, 1.0, kPromised);
     AccuracyLog::record("sphere V", cv.volume / e.V - 1.0);
     AccuracyLog::record("sphere centroid depth", cv.centroid.z() / -e.depthOfCentroid - 1.0);
-    AccuracyLog::record("sphere J_s", relativeDifference(
-        cv.J_s, Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal().toDenseMatrix()));
+    AccuracyLog::record(
+        "sphere J_s",
+        relativeDifference(cv.J_s,
+                           Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal().toDenseMatrix()));
     EXPECT_NEAR(cv.centroid.z(), -e.depthOfCentroid, kPromised * e.depthOfCentroid);
     EXPECT_DOUBLE_EQ(cv.centroid.x(), 0.125);
     EXPECT_DOUBLE_EQ(cv.centroid.y(), -0.25);
-    EXPECT_LT(relativeDifference(cv.J_s, Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal()
-                                             .toDenseMatrix()),
+    EXPECT_LT(relativeDifference(
+                  cv.J_s, Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal().toDenseMatrix()),
               kPromised);
     const Matrix3d Jv = Vector3d(e.Jnn / 2 + e.Suu, e.Jnn / 2 + e.Suu, e.Jnn).asDiagonal();
     EXPECT_LT(relativeDifference(cv.J_v, Jv), kPromised);
@@ -114,8 +115,7 @@ TEST(AnalyticSphere, ClosedFormsFromShallowToFullySunk) {
 TEST(AnalyticSphere, SmallDepthRadiusOfGyrationTendsToContactRadius) {
   // r_gyr² → a²/3 as d → 0 (MODEL.md §5); at d = 2⁻³⁰R the correction is O(d/R).
   const double R = 0.75, d = R * 0x1p-30;
-  const ContactVolume cv =
-      sphereHalfspace(R, translation({0, 0, R - d}), Isometry3d::Identity());
+  const ContactVolume cv = sphereHalfspace(R, translation({0, 0, R - d}), Isometry3d::Identity());
   EXPECT_NEAR(cv.r_gyr * cv.r_gyr / ((2 * R * d) / 3), 1.0, 1e-8);
 }
 
@@ -158,15 +158,15 @@ TEST(AnalyticCylinder, SideLyingClosedForms) {
     const LD depthC = 4 * LD(R) * std::pow(std::sin(theta), 3) / (3 * xMinusSin(2 * theta)) -
                       LD(R) * std::cos(theta);
 
-    const ContactVolume cv =
-        cylinderHalfspace(R, L, sideLying(R - d), Isometry3d::Identity());
+    const ContactVolume cv = cylinderHalfspace(R, L, sideLying(R - d), Isometry3d::Identity());
     EXPECT_NEAR(double(cv.volume / (L * A)), 1.0, kPromised);
     AccuracyLog::record("side-lying cylinder V", double(cv.volume / (L * A)) - 1.0);
     AccuracyLog::record("side-lying centroid depth", cv.centroid.z() / -double(depthC) - 1.0);
-    AccuracyLog::record("side-lying J_s",
-                        relativeDifference(cv.J_s, Vector3d(double(Syy), double(Sxx),
-                                                            double(Sxx + Syy)).asDiagonal()
-                                                       .toDenseMatrix()));
+    AccuracyLog::record(
+        "side-lying J_s",
+        relativeDifference(
+            cv.J_s,
+            Vector3d(double(Syy), double(Sxx), double(Sxx + Syy)).asDiagonal().toDenseMatrix()));
     EXPECT_NEAR(cv.centroid.z(), -double(depthC), kPromised * double(depthC));
     EXPECT_NEAR(cv.centroid.x(), 0.0, kPromised * L);
     const Matrix3d Js = Vector3d(double(Syy), double(Sxx), double(Sxx + Syy)).asDiagonal();
@@ -184,8 +184,8 @@ TEST(AnalyticCylinder, AlignedPunch) {
   const double R = 0.75, L = 0.5;
   for (double d : {R * 0x1p-30, R * 0x1p-8, 0.25, L}) {
     SCOPED_TRACE(testing::Message() << "d = " << d);
-    const ContactVolume cv = cylinderHalfspace(R, L, translation({0.5, 0.25, L / 2 - d}),
-                                               Isometry3d::Identity());
+    const ContactVolume cv =
+        cylinderHalfspace(R, L, translation({0.5, 0.25, L / 2 - d}), Isometry3d::Identity());
     const double V = M_PI * R * R * d;
     EXPECT_NEAR(cv.volume / V, 1.0, kPromised);
     AccuracyLog::record("aligned punch V", cv.volume / V - 1.0);
@@ -223,16 +223,20 @@ struct Reference {
 
 Reference integrateCylinderRegion(double R, double L, const Vector3d& n_C, double h) {
   const LD s = std::hypot(LD(n_C.x()), LD(n_C.y())), nz = n_C.z();
-  const Vector3d u = s > 0 ? Vector3d(n_C.x() / double(s), n_C.y() / double(s), 0) : Vector3d::UnitX();
+  const Vector3d u =
+      s > 0 ? Vector3d(n_C.x() / double(s), n_C.y() / double(s), 0) : Vector3d::UnitX();
   const Vector3d v = Vector3d::UnitZ().cross(u);
   const LD zDeep = nz > 0 ? -L / 2.0L : L / 2.0L;
   auto interval = [&](LD x, LD& lo, LD& hi) {  // ζ with n_z ζ ≤ h − s x, within ±L/2
     lo = -L / 2.0L;
     hi = L / 2.0L;
     const LD rhs = h - s * x;
-    if (nz > 0) hi = std::min(hi, rhs / nz);
-    else if (nz < 0) lo = std::max(lo, rhs / nz);
-    else if (rhs < 0) hi = lo;
+    if (nz > 0)
+      hi = std::min(hi, rhs / nz);
+    else if (nz < 0)
+      lo = std::max(lo, rhs / nz);
+    else if (rhs < 0)
+      hi = lo;
     if (hi < lo) hi = lo;
   };
   // Quantities in (x' = x + R, ζ' = ζ − ζ_deep): 0 ∫1, 1 ∫x', 2 ∫ζ', 3 ∫x'², 4 ∫y², 5 ∫ζ'²,
@@ -246,8 +250,9 @@ Reference integrateCylinderRegion(double R, double L, const Vector3d& n_C, doubl
       const LD len = b - a, z1 = (b * b - a * a) / 2, z2 = (b * b * b - a * a * a) / 3;
       const LD jac = R * std::sin(phi);  // dx/dφ
       const LD chord = 2 * c;
-      const LD values[7] = {chord * len, xp * chord * len, chord * z1, xp * xp * chord * len,
-                            2 * c * c * c / 3 * len, chord * z2, xp * chord * z1};
+      const LD values[7] = {chord * len,           xp * chord * len,        chord * z1,
+                            xp * xp * chord * len, 2 * c * c * c / 3 * len, chord * z2,
+                            xp * chord * z1};
       return values[k] * jac;
     };
   };
@@ -267,8 +272,8 @@ Reference integrateCylinderRegion(double R, double L, const Vector3d& n_C, doubl
   LD m[7] = {};
   for (int k = 0; k < 7; ++k) {
     for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-      m[k] += boost::math::quadrature::gauss_kronrod<LD, 61>::integrate(
-          moment(k), cuts[i], cuts[i + 1], 12, 1e-14L);
+      m[k] += boost::math::quadrature::gauss_kronrod<LD, 61>::integrate(moment(k), cuts[i],
+                                                                        cuts[i + 1], 12, 1e-14L);
     }
   }
   Reference ref;
@@ -279,7 +284,8 @@ Reference integrateCylinderRegion(double R, double L, const Vector3d& n_C, doubl
   ref.centroid_C = q + double(cx) * u + double(cz) * Vector3d::UnitZ();
   const Vector3d e = Vector3d::UnitZ();
   ref.Sigma_C = double(Sxx) * u * u.transpose() + double(m[4]) * v * v.transpose() +
-                double(Szz) * e * e.transpose() + double(Sxz) * (u * e.transpose() + e * u.transpose());
+                double(Szz) * e * e.transpose() +
+                double(Sxz) * (u * e.transpose() + e * u.transpose());
   return ref;
 }
 
@@ -319,12 +325,15 @@ TEST_P(AnalyticCylinderTilted, MatchesIndependentIntegrationUnderARigidMotion) {
   AccuracyLog::record("tilted cylinder V", cv.volume / ref.V - 1.0);
   AccuracyLog::record("tilted cylinder centroid/V^1/3",
                       (cv.centroid - X_WC * ref.centroid_C).norm() / size);
-  AccuracyLog::record("tilted cylinder J_v",
-                      relativeDifference(cv.J_v, R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() -
-                                                          ref.Sigma_C)) * R_WC.transpose()));
+  AccuracyLog::record(
+      "tilted cylinder J_v",
+      relativeDifference(
+          cv.J_v,
+          R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() - ref.Sigma_C)) * R_WC.transpose()));
   EXPECT_LT((cv.centroid - X_WC * ref.centroid_C).norm(), kPromised * size);
-  EXPECT_LT(relativeDifference(cv.J_v, R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() -
-                                                ref.Sigma_C)) * R_WC.transpose()),
+  EXPECT_LT(relativeDifference(cv.J_v,
+                               R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() - ref.Sigma_C)) *
+                                   R_WC.transpose()),
             kPromised);
   EXPECT_NEAR(cv.normal.dot(X_WH.linear().col(2)), 1.0, 1e-15);
 }
@@ -341,17 +350,21 @@ TEST(AnalyticCylinder, TiltedPunchMatchesMODELClosedForm) {
     X_HC.translation() = -h0 * axis + (L / 2) * axis;  // face centre = centre − (L/2) axis
     const ContactVolume cv = cylinderHalfspace(R, L, X_HC, Isometry3d::Identity());
     EXPECT_NEAR(cv.volume / tiltedPunchVolume(R, t, h0), 1.0, kPromised);
-    AccuracyLog::record("tilted punch V (MODEL form)", cv.volume / tiltedPunchVolume(R, t, h0) - 1.0);
+    AccuracyLog::record("tilted punch V (MODEL form)",
+                        cv.volume / tiltedPunchVolume(R, t, h0) - 1.0);
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cases, AnalyticCylinderTilted,
-    testing::Values(TiltCase{"punch_rim_shallow", 3.0, 1e-6}, TiltCase{"punch_rim", 7.0, 0.05},
-                    TiltCase{"punch_face_wet", 2.0, 0.3}, TiltCase{"side_tilted_shallow", 87.0, 1e-5},
-                    TiltCase{"side_tilted_deep", 84.0, 0.6}, TiltCase{"oblique", 45.0, 0.2},
-                    TiltCase{"almost_aligned", 1e-7, 1e-3}, TiltCase{"almost_side", 89.99999, 1e-3}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Cases, AnalyticCylinderTilted,
+                         testing::Values(TiltCase{"punch_rim_shallow", 3.0, 1e-6},
+                                         TiltCase{"punch_rim", 7.0, 0.05},
+                                         TiltCase{"punch_face_wet", 2.0, 0.3},
+                                         TiltCase{"side_tilted_shallow", 87.0, 1e-5},
+                                         TiltCase{"side_tilted_deep", 84.0, 0.6},
+                                         TiltCase{"oblique", 45.0, 0.2},
+                                         TiltCase{"almost_aligned", 1e-7, 1e-3},
+                                         TiltCase{"almost_side", 89.99999, 1e-3}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 // ---------------------------------------------------------------------------------------
 // Box. Face down: V = a b d, r_gyr² = (a² + b²)/12. Corner down along the body diagonal
@@ -360,8 +373,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(AnalyticBox, FaceDown) {
   const Vector3d size(0.03, 0.05, 0.07);
   for (double d : {0.07 * 0x1p-30, 0.001, 0.07}) {
-    const ContactVolume cv = boxHalfspace(size, translation({0.1, 0.2, 0.035 - d}),
-                                          Isometry3d::Identity());
+    const ContactVolume cv =
+        boxHalfspace(size, translation({0.1, 0.2, 0.035 - d}), Isometry3d::Identity());
     const double dUsed = 0.035 - (0.035 - d);  // the depth the pose represents
     EXPECT_NEAR(cv.volume / (0.03 * 0.05 * dUsed), 1.0, 1e-12);
     AccuracyLog::record("box face-down V", cv.volume / (0.03 * 0.05 * dUsed) - 1.0);
@@ -392,8 +405,7 @@ TEST(AnalyticBox, CornerDown) {
 // Invariance: moving both bodies by one rigid motion moves the result with them.
 
 TEST(AnalyticContact, InvariantUnderRigidMotionOfBothBodies) {
-  const geometry::Shape shapes[] = {geometry::Sphere{0.0111},
-                                    geometry::Cylinder{0.0123, 0.0371},
+  const geometry::Shape shapes[] = {geometry::Sphere{0.0111}, geometry::Cylinder{0.0123, 0.0371},
                                     geometry::Box{Vector3d(0.021, 0.033, 0.017)}};
   const Isometry3d X_HB = test::randomPose(3, 0.0) * translation({0, 0, 0});
   for (const auto& shape : shapes) {
@@ -404,8 +416,7 @@ TEST(AnalyticContact, InvariantUnderRigidMotionOfBothBodies) {
     ASSERT_TRUE(base.inContact());
     for (unsigned seed : {21u, 22u, 23u}) {
       const Isometry3d X = test::randomPose(seed);
-      const ContactVolume moved =
-          analyticContact(shape, X * X_HA, geometry::HalfSpace{}, X * X_HB);
+      const ContactVolume moved = analyticContact(shape, X * X_HA, geometry::HalfSpace{}, X * X_HB);
       const Matrix3d R = X.linear();
       // Rounding of the composed poses: ~1e-16 × |t| / depth, far below 1e-9.
       EXPECT_NEAR(moved.volume / base.volume, 1.0, kPromised);
@@ -420,8 +431,10 @@ TEST(AnalyticContact, InvariantUnderRigidMotionOfBothBodies) {
 TEST(AnalyticContact, SwappingTheBodiesFlipsOnlyTheNormal) {
   const geometry::Shape ball = geometry::Sphere{0.01};
   const Isometry3d X_WS = translation({0, 0, 0.0095});
-  const ContactVolume ab = analyticContact(ball, X_WS, geometry::HalfSpace{}, Isometry3d::Identity());
-  const ContactVolume ba = analyticContact(geometry::HalfSpace{}, Isometry3d::Identity(), ball, X_WS);
+  const ContactVolume ab =
+      analyticContact(ball, X_WS, geometry::HalfSpace{}, Isometry3d::Identity());
+  const ContactVolume ba =
+      analyticContact(geometry::HalfSpace{}, Isometry3d::Identity(), ball, X_WS);
   EXPECT_EQ(ab.volume, ba.volume);
   EXPECT_EQ(ab.normal, -ba.normal);
   EXPECT_EQ(ab.J_s, ba.J_s);

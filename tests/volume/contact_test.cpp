@@ -92,8 +92,8 @@ TEST(ComputeContact, HandlesSaysWhatTheQueryDoes) {
       geometry::Box{Vector3d(0.01, 0.02, 0.03)}, geometry::HalfSpace{}, torusShape()};
   const Isometry3d far = test::translation({0.0, 0.0, 0.5});
   int handled = 0;
-  for (Method m : {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast,
-                   Method::kColumns}) {
+  for (Method m :
+       {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast, Method::kColumns}) {
     for (const auto& a : shapes) {
       for (const auto& b : shapes) {
         const std::string what =

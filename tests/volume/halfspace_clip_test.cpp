@@ -149,9 +149,9 @@ TEST(BvhClip, FlatFaceNearlyParallelToThePlane) {
   for (double tilt : {0.0, 1e-12, 1e-10, 3e-9, 1e-8, 3e-8, 1e-7, 1e-6}) {
     for (int k = 0; k < 8; ++k) {
       const double azimuth = 0.37 + 0.785 * k;
-      const Matrix3d R_HM = Matrix3d(Eigen::AngleAxisd(
-                                tilt, Vector3d(std::cos(azimuth), std::sin(azimuth), 0.0))) *
-                            Eigen::AngleAxisd(0.1 * k, Vector3d::UnitZ()).toRotationMatrix();
+      const Matrix3d R_HM =
+          Matrix3d(Eigen::AngleAxisd(tilt, Vector3d(std::cos(azimuth), std::sin(azimuth), 0.0))) *
+          Eigen::AngleAxisd(0.1 * k, Vector3d::UnitZ()).toRotationMatrix();
       for (double d : {1e-10, 3e-10, 1e-8}) {
         std::ostringstream where;
         where << "tilt " << tilt << " rad, azimuth " << azimuth << " rad, d " << d << " m";
@@ -251,8 +251,7 @@ TEST(BvhClip, PlacedVertexCacheAcrossMeshesAndPoses) {
     for (const auto* c : {&cases[0], &cases[1]}) {
       const MeshBvh& bvh = c == &cases[0] ? a : b;
       SCOPED_TRACE(c->name + " seed " + std::to_string(seed));
-      const Isometry3d X_HM =
-          poseAtDepth(c->mesh, test::randomPose(seed).linear(), 0.01 * c->size);
+      const Isometry3d X_HM = poseAtDepth(c->mesh, test::randomPose(seed).linear(), 0.01 * c->size);
       const ClippedMoments ref = clipMeshByHalfspace(c->mesh, X_HM);
       const ClippedMoments fast = clipMeshByHalfspace(bvh, X_HM);
       const ClippedMoments again = clipMeshByHalfspace(bvh, X_HM);

@@ -114,7 +114,8 @@ std::vector<Case> cases() {
   const auto torus = std::make_shared<const Body>(geometry::tessellateTorus(0.021, 0.0071, 48, 16));
   const auto box = std::make_shared<const Body>(test::subdividedBox(Vector3d(0.06, 0.06, 0.02), 6));
   const auto bracket = std::make_shared<const Body>(test::lBracket(0.04, 0.008, 0.03));
-  const auto cube = std::make_shared<const Body>(geometry::tessellateBox(Vector3d(0.015, 0.013, 0.011)));
+  const auto cube =
+      std::make_shared<const Body>(geometry::tessellateBox(Vector3d(0.015, 0.013, 0.011)));
   const auto plate = std::make_shared<const Body>(test::plateWithHole(0.02, 0.006, 0.005, 48));
   const auto peg = std::make_shared<const Body>(geometry::tessellateCylinder(0.0049, 0.03, 40));
   const auto big = std::make_shared<const Body>(geometry::tessellateSphere(0.015, 40, 21));
@@ -123,7 +124,8 @@ std::vector<Case> cases() {
       // Ring-shaped region: the sphere sits in the torus' hole, touching the tube all round.
       {"sphere in torus hole", big, torus, pose({1, 0, 0}, 0.02, {0.0011, 0.0007, 0.0013}), I},
       // Ring-shaped region: the torus lies on the box's top face (z = 0.01), tilted.
-      {"torus on box", torus, box, pose({1, 0.3, 0}, 0.05, {0.0017, -0.0023, 0.01 + 0.0071 - 0.0009}), I},
+      {"torus on box", torus, box,
+       pose({1, 0.3, 0}, 0.05, {0.0017, -0.0023, 0.01 + 0.0071 - 0.0009}), I},
       // L-shaped region: a block pushed into the bracket's inner corner (x, y = 0.008).
       {"block in L-bracket corner", cube, bracket,
        pose({0, 0, 1}, 0.1, {0.008 + 0.0075 - 0.0006, 0.008 + 0.0065 - 0.0004, 0.0151}), I},
@@ -154,7 +156,8 @@ TEST(FastMeshMesh, FinelyFacetedShallowPairUnderRigidMotion) {
     expectAgree(s, P * X_WA, s, P, "10k spheres, moved " + std::to_string(seed));
     Isometry3d turned = X_WA;
     turned.linear() = X_WA.linear() * test::randomPose(seed + 100).linear();
-    expectAgree(s, turned, s, Isometry3d::Identity(), "10k spheres, A turned " + std::to_string(seed));
+    expectAgree(s, turned, s, Isometry3d::Identity(),
+                "10k spheres, A turned " + std::to_string(seed));
   }
 }
 
@@ -168,8 +171,8 @@ TEST(FastMeshMesh, CachedLeafPairsGiveTheFreshResultAlongAPath) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     MeshMeshCache cache;
-    const double reach = MeshMeshCache::kReach * (c.a->bvh.root().halfExtent.norm() +
-                                                  c.b->bvh.root().halfExtent.norm());
+    const double reach = MeshMeshCache::kReach *
+                         (c.a->bvh.root().halfExtent.norm() + c.b->bvh.root().halfExtent.norm());
     Isometry3d X_WA = c.X_WA;
     int jumps = 0, inContact = 0;
     for (int k = 0; k < 60; ++k) {
@@ -179,9 +182,10 @@ TEST(FastMeshMesh, CachedLeafPairsGiveTheFreshResultAlongAPath) {
       // A small rigid motion of A about its pose: translation `step` along a random
       // direction (bounded so that A stays near the contact), rotation of step / 0.05 m.
       const Vector3d t = P.linear().col(0) * step;
-      X_WA.translation() = c.X_WA.translation() + 0.5 * (X_WA.translation() - c.X_WA.translation()) + t;
-      X_WA.linear() = Eigen::AngleAxisd(step / 0.05, P.linear().col(1)).toRotationMatrix() *
-                      X_WA.linear();
+      X_WA.translation() =
+          c.X_WA.translation() + 0.5 * (X_WA.translation() - c.X_WA.translation()) + t;
+      X_WA.linear() =
+          Eigen::AngleAxisd(step / 0.05, P.linear().col(1)).toRotationMatrix() * X_WA.linear();
       jumps += jump ? 1 : 0;
       const ContactVolume fresh = fast(*c.a, X_WA, *c.b, c.X_WB);
       const ContactVolume cached =
@@ -214,8 +218,7 @@ TEST(FastMeshMesh, CacheIsForItsOwnTrees) {
       meshMeshContact(d.a->bvh, d.a->topo, d.X_WA, d.b->bvh, d.b->topo, d.X_WB, &cache);
   EXPECT_EQ(cache.refreshes, 2);
   EXPECT_EQ(cache.reuses, 0);
-  EXPECT_NEAR(other.volume, fast(*d.a, d.X_WA, *d.b, d.X_WB).volume,
-              kVolumeTol * other.volume);
+  EXPECT_NEAR(other.volume, fast(*d.a, d.X_WA, *d.b, d.X_WB).volume, kVolumeTol * other.volume);
   EXPECT_FALSE(cache.covers(d.b->bvh, d.a->bvh, cache.X_BA));
 }
 
@@ -232,7 +235,8 @@ TEST(FastMeshMesh, InvariantUnderMovingBothBodies) {
     SCOPED_TRACE(c.name);
     ASSERT_GT(ref.volume, 0.0);
     EXPECT_NEAR(moved.volume, ref.volume, kTol * ref.volume);
-    EXPECT_LE((moved.centroid - P * ref.centroid).norm(), kTol * std::cbrt(ref.volume) + 1e-15 * 0.37);
+    EXPECT_LE((moved.centroid - P * ref.centroid).norm(),
+              kTol * std::cbrt(ref.volume) + 1e-15 * 0.37);
     EXPECT_LE((moved.normal - P.linear() * ref.normal).norm(), kTol);
     const Eigen::Matrix3d R = P.linear();
     EXPECT_LE(test::relativeDifference(moved.J_v, R * ref.J_v * R.transpose()), kTol);
@@ -268,7 +272,8 @@ TEST(FastMeshMesh, ApartIsZero) {
   EXPECT_EQ(cv.volume, 0.0);
   EXPECT_FALSE(cv.inContact());
   EXPECT_EQ(cv.method, Method::kFast);
-  const ContactVolume far = fast(s, pose({0, 0, 1}, 0.0, {1.0, 0.0, 0.0}), s, Isometry3d::Identity());
+  const ContactVolume far =
+      fast(s, pose({0, 0, 1}, 0.0, {1.0, 0.0, 0.0}), s, Isometry3d::Identity());
   EXPECT_EQ(far.volume, 0.0);
 }
 
@@ -318,7 +323,8 @@ TEST(FastMeshMesh, TouchingFacesAreZero) {
   expectFinite(ba);
   EXPECT_EQ(ab.volume, 0.0);
   EXPECT_EQ(ba.volume, 0.0);
-  const ContactVolume c = cgalMeshMeshContact(box.mesh(), above, box.mesh(), Isometry3d::Identity());
+  const ContactVolume c =
+      cgalMeshMeshContact(box.mesh(), above, box.mesh(), Isometry3d::Identity());
   EXPECT_EQ(c.volume, 0.0);
 }
 
@@ -331,9 +337,11 @@ TEST(FastMeshMesh, CoplanarFacesMatchCgal) {
   const Isometry3d X_WA = pose({0, 0, 1}, 0.0, {0.0, 0.0, 0.017});
   for (bool swap : {false, true}) {
     SCOPED_TRACE(swap);
-    const ContactVolume f = swap ? fast(b, Isometry3d::Identity(), a, X_WA) : fast(a, X_WA, b, Isometry3d::Identity());
-    const ContactVolume c = swap ? cgalMeshMeshContact(b.mesh(), Isometry3d::Identity(), a.mesh(), X_WA)
-                                 : cgalMeshMeshContact(a.mesh(), X_WA, b.mesh(), Isometry3d::Identity());
+    const ContactVolume f =
+        swap ? fast(b, Isometry3d::Identity(), a, X_WA) : fast(a, X_WA, b, Isometry3d::Identity());
+    const ContactVolume c =
+        swap ? cgalMeshMeshContact(b.mesh(), Isometry3d::Identity(), a.mesh(), X_WA)
+             : cgalMeshMeshContact(a.mesh(), X_WA, b.mesh(), Isometry3d::Identity());
     expectFinite(f);
     EXPECT_NEAR(f.volume, 0.02 * 0.02 * 0.003, 1e-12 * f.volume);
     EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
@@ -417,7 +425,8 @@ TEST(FastMeshMesh, VertexExactlyOnAFace) {
 // The dispatcher: two meshes default to fast; fast refuses a half-space, naming both shapes.
 TEST(FastMeshMesh, Dispatcher) {
   const geometry::Shape s = geometry::Mesh{
-      std::make_shared<const geometry::TriangleMesh>(geometry::tessellateSphere(0.01, 32, 17)), "ball"};
+      std::make_shared<const geometry::TriangleMesh>(geometry::tessellateSphere(0.01, 32, 17)),
+      "ball"};
   const Isometry3d X_WA = pose({1, 2, 0}, 0.3, {0.0013, -0.0007, 0.0198});
   EXPECT_EQ(defaultMethod(s, s), Method::kFast);
   const ContactVolume d = computeContact(s, X_WA, s, Isometry3d::Identity());

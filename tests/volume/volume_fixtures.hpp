@@ -97,8 +97,8 @@ inline geometry::TriangleMesh plateWithHole(double half, double thickness, doubl
   for (int i = 0; i < n; ++i) {
     const double t = 2.0 * M_PI * i / n, c = std::cos(t), s = std::sin(t);
     const double k = half / std::max(std::abs(c), std::abs(s));  // circle pushed onto the square
-    m.vertices.row(i) << holeRadius * c, holeRadius * s, 0.0;      // hole, bottom
-    m.vertices.row(n + i) << k * c, k * s, 0.0;                      // outer, bottom
+    m.vertices.row(i) << holeRadius * c, holeRadius * s, 0.0;    // hole, bottom
+    m.vertices.row(n + i) << k * c, k * s, 0.0;                  // outer, bottom
     m.vertices.row(2 * n + i) << holeRadius * c, holeRadius * s, thickness;  // hole, top
     m.vertices.row(3 * n + i) << k * c, k * s, thickness;                    // outer, top
   }
