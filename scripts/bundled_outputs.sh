@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Runs every bundled example through the engine and writes what it produced under OUT_DIR, so
+# that two builds can be compared file by file (a refactoring must leave them byte-identical):
+#
+#   bash scripts/bundled_outputs.sh OUT_DIR [VCONTACT_BINARY]
+#   diff -rq OUT_A OUT_B        # or: cmp each file
+#
+# - every scenario of assets/scenarios/ (simulate: bodies.csv, pair_*.csv);
+# - every dataset of assets/datasets/: compare with its true model, fit and diagnose --iterate
+#   from the bare model (the JSON files and residuals.csv);
+# - synth of every profile with its true model and the bundled seed;
+# - volume of the demo's ball as a mesh and as a sphere (--json), and friction-map.
+# Files that carry wall-clock times (summary.json, report.html, the printed logs) are left in
+# OUT_DIR/logs and are not meant to compare equal.
+#
+# Environment: VCONTACT_SKIP_SLOW=1 leaves out punch_lumped_vs_distributed (about 8 minutes).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+out="${1:?usage: bundled_outputs.sh OUT_DIR [VCONTACT_BINARY]}"
+bin="${2:-build/bin/vcontact}"
+mkdir -p "$out/logs"
+log() { echo "bundled_outputs: $*" >&2; }
+
+for s in assets/scenarios/*.json; do
+  name=$(basename "$s" .json)
+  case "$name" in *.model) continue ;; esac
+  if [ "${VCONTACT_SKIP_SLOW:-0}" = 1 ] && [ "$name" = punch_lumped_vs_distributed ]; then
+    continue
+  fi
+  log "simulate $name"
+  "$bin" simulate "$s" --out "$out/simulate/$name" --quiet >"$out/logs/simulate_$name.txt"
+  mv "$out/simulate/$name/summary.json" "$out/logs/summary_$name.json"
+done
+
+bare=assets/datasets/models/bare.model.json
+for d in assets/datasets/*.json; do
+  name=$(basename "$d" .json)
+  truth=assets/datasets/models/$name-truth.model.json
+  log "compare/fit/diagnose $name"
+  "$bin" compare "$d" --model "$truth" --out "$out/compare/$name" >"$out/logs/compare_$name.txt"
+  "$bin" fit "$d" --model "$bare" --out "$out/fit/$name" >"$out/logs/fit_$name.txt"
+  "$bin" diagnose "$d" --model "$bare" --out "$out/diagnose/$name" --iterate \
+    >"$out/logs/diagnose_$name.txt"
+  for dir in compare fit diagnose; do
+    mv "$out/$dir/$name/report.html" "$out/logs/report_${dir}_$name.html"
+  done
+  log "synth $name"
+  "$bin" synth --profile "$name" --model "$truth" --samples 1200 --seed 2026 \
+    --out "$out/synth/$name.json" >"$out/logs/synth_$name.txt"
+done
+
+log "volume"
+mkdir -p "$out/volume"
+"$bin" volume assets/meshes/ball_r10mm.stl halfspace --pose-a 0,0,0.0095 --json \
+  >"$out/volume/ball_mesh.json"
+"$bin" volume sphere:0.01 halfspace --pose-a 0,0,0.0095 --json >"$out/volume/ball_sphere.json"
+log "friction-map"
+"$bin" friction-map --out "$out/friction_map.csv" >"$out/logs/friction_map.txt"
+log "done: $out"
