@@ -1,5 +1,5 @@
 #pragma once
-// Reads a measurement dataset (shared/spec/DATASET.md, format vcontact.dataset/1): the JSON
+// Reads a measurement dataset (docs/DATASET.md, format vcontact.dataset/1): the JSON
 // sidecar and the CSV it names. Every defect the spec lists stops the read with one
 // InputError naming the file, the line and the column where there is one:
 //   sidecar not JSON, wrong format, missing or unknown field values, a data file or mesh

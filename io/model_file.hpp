@@ -1,5 +1,5 @@
 #pragma once
-// Model files (shared/spec/DATASET.md "Model files"):
+// Model files (docs/DATASET.md "Model files"):
 //
 //   {"format": "vcontact.model/1",
 //    "effects": {"stiffness": {"kv": 5.17e12}, "coulomb": {"mu": 0.2}, "spin": {}},

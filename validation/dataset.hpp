@@ -1,5 +1,5 @@
 #pragma once
-// A rig measurement (shared/spec/DATASET.md): how the payload moved against the plate and
+// A rig measurement (docs/DATASET.md): how the payload moved against the plate and
 // the wrench that was measured. The reader (io/dataset_file.hpp) checks the files; this
 // layer holds the samples and derives what the file may omit (velocities).
 //

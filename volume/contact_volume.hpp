@@ -1,6 +1,6 @@
 #pragma once
 // The seam between geometry and forces (ARCHITECTURE.md): every volume backend fills this
-// struct, every force model reads it. Definitions follow shared/spec/MODEL.md §1.
+// struct, every force model reads it. Definitions follow docs/MODEL.md §1.
 //
 // Frames: all quantities are in the world frame W. Body B1 ("a", the payload) and body B2
 // ("b", the plate); the normal n points out of B2 into B1.

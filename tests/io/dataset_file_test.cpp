@@ -1,4 +1,4 @@
-// The dataset reader (shared/spec/DATASET.md): a good dataset reads with derived velocities
+// The dataset reader (docs/DATASET.md): a good dataset reads with derived velocities
 // where the file omits them; each listed defect gives its message naming file, line and
 // column.
 
