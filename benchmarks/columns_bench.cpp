@@ -10,7 +10,9 @@
 //     distributed friction at every right-hand side;
 //   punch_plate_fixed64: on a tessellated plate (two meshes), the same grid;
 //   punch_halfspace_refined, punch_plate_refined: the refined default (to 1e-3);
-//   sphere10k_pair_refined: two 10k-triangle spheres, 0.2 mm overlap, the refined default.
+//   sphere10k_pair_refined: two 10k-triangle spheres, 0.2 mm overlap, the refined default;
+//   sphere{10k,100k}_halfspace_deep_fixed64: a sphere of R = 10 mm 3 mm into a half-space,
+//     fixed(64): many triangles a line, where a ray's logarithmic traversal could pay.
 
 #include <benchmark/benchmark.h>
 
@@ -60,6 +62,11 @@ const Solid& plate() {
 
 const Solid& sphere10k() {
   static const Solid s(vcontact::geometry::tessellateSphere(0.01, 100, 51));
+  return s;
+}
+
+const Solid& sphere100k() {
+  static const Solid s(vcontact::geometry::tessellateSphere(0.01, 316, 159));
   return s;
 }
 
@@ -128,6 +135,14 @@ void buildScene(benchmark::State& state, const Solid& solid) {
   registerCase("punch_plate_fixed64", onPlate(fixed));
   registerCase("punch_halfspace_refined", onHalfspace(refined));
   registerCase("punch_plate_refined", onPlate(refined));
+  for (const auto& [name, sphere] :
+       {std::pair{"sphere10k", &sphere10k}, {"sphere100k", &sphere100k}}) {
+    registerCase(std::string(name) + "_halfspace_deep_fixed64", [=] {
+      Isometry3d X_WS = Isometry3d::Identity();
+      X_WS.translation() = Vector3d(0.0013, -0.0007, 0.01 - 0.003);
+      return Case{&sphere(), X_WS, nullptr, Isometry3d::Identity(), fixed};
+    });
+  }
   registerCase("sphere10k_pair_refined", [=] {
     Isometry3d X_WA = Isometry3d::Identity();
     X_WA.linear() = Eigen::AngleAxisd(0.3, Vector3d(1, 2, 0).normalized()).toRotationMatrix();

@@ -19,6 +19,10 @@ using Eigen::Vector3d;
 // and vertices (a few ulps), far below any triangle.
 constexpr double kNearEdge = 1e-5;
 
+// Rays are cast this many at a time (Embree's stream API; coherent: neighbouring lines),
+// through one buffer of ~80 kB that is reused.
+constexpr int kRaysPerBatch = 1024;
+
 // The rays start and end this fraction of the radius outside the mesh's bounding sphere.
 constexpr double kRayMargin = 1e-2;
 
@@ -33,15 +37,15 @@ RTCDevice device() {
   return holder.device;
 }
 
-/// A triangle that Embree's ray of a line hit.
-struct LineHit {
-  int line, face;
+/// A triangle that Embree's ray `ray` (of a batch) hit.
+struct RayHit {
+  int ray, face;
 };
 
 /// The intersection context of the rays, with the triangles their filter has seen.
 struct HitCollector {
   RTCIntersectContext context;  // first member: the filter receives its address
-  std::vector<LineHit>* hits;
+  std::vector<RayHit>* hits;
 };
 
 /// Records every hit and rejects it, so that each ray's traversal goes on to the next one.
@@ -88,39 +92,42 @@ struct Projected {
   double edge[3];  ///< edge[k]: the projected edge opposite corner k
 };
 
-/// The triangles of a mesh projected onto a grid, each on first use.
+/// The triangles of a mesh projected onto a grid, each on first use, stored in the order
+/// they are first used (a query touches few of a large mesh's triangles).
 class Projections {
  public:
   Projections(const geometry::TriangleMesh& mesh, const Isometry3d& X_WM, const LineGrid& g)
       : mesh_(mesh),
         X_WM_(X_WM),
         g_(g),
-        done_(static_cast<std::size_t>(mesh.triangleCount()), false),
-        projected_(static_cast<std::size_t>(mesh.triangleCount())) {}
+        slot_(static_cast<std::size_t>(mesh.triangleCount()), -1) {}
 
+  /// Valid until the next call.
   const Projected& operator[](int f) {
-    const auto i = static_cast<std::size_t>(f);
-    if (!done_[i]) {
-      project(f, projected_[i]);
-      done_[i] = true;
+    int& slot = slot_[static_cast<std::size_t>(f)];
+    if (slot < 0) {
+      slot = static_cast<int>(projected_.size());
+      projected_.push_back(project(f));
     }
-    return projected_[i];
+    return projected_[static_cast<std::size_t>(slot)];
   }
 
  private:
-  void project(int f, Projected& t) const {
+  Projected project(int f) const {
+    Projected t;
     for (int k = 0; k < 3; ++k) {
       const Vector3d p = X_WM_ * mesh_.corner(f, k) - g_.o;
       t.q[k] = {p.dot(g_.e1), p.dot(g_.e2)};
       t.z[k] = p.dot(g_.u);
     }
     for (int k = 0; k < 3; ++k) t.edge[k] = (t.q[(k + 2) % 3] - t.q[(k + 1) % 3]).norm();
+    return t;
   }
 
   const geometry::TriangleMesh& mesh_;
   const Isometry3d& X_WM_;
   const LineGrid& g_;
-  std::vector<bool> done_;
+  std::vector<int> slot_;  ///< index into projected_, −1 before the first use
   std::vector<Projected> projected_;
 };
 
@@ -155,9 +162,10 @@ struct EmbreeLines::Impl {
 
   void buildScene();
   void buildCornerFaces();
-  std::vector<RTCRayHit> rays(const Isometry3d& X_MW, const LineGrid& g) const;
+  void fillRays(const Isometry3d& X_MW, const LineGrid& g, int first,
+                std::span<RTCRayHit> rays) const;
   bool resolveLine(Projections& projections, const LineGrid& g, int line,
-                   std::span<const LineHit> hits, std::vector<int>& tested,
+                   std::span<const RayHit> hits, std::vector<int>& tested,
                    std::vector<LineCrossing>& out) const;
   int triangles(int f, int k) const { return mesh.triangles(f, k); }
   std::span<const int> facesAt(int v) const {
@@ -208,28 +216,28 @@ void EmbreeLines::Impl::buildCornerFaces() {
   }
 }
 
-/// One ray per line of g, in M, from outside the mesh's bounding sphere through it.
-std::vector<RTCRayHit> EmbreeLines::Impl::rays(const Isometry3d& X_MW, const LineGrid& g) const {
+/// One ray per line first, first + 1, ... of g (as many as `rays` holds), in M, from outside
+/// the mesh's bounding sphere through it.
+void EmbreeLines::Impl::fillRays(const Isometry3d& X_MW, const LineGrid& g, int first,
+                                 std::span<RTCRayHit> rays) const {
   const Vector3d u_M = X_MW.linear() * g.u;
   const double reach = (1.0 + kRayMargin) * radius;
-  std::vector<RTCRayHit> out(static_cast<std::size_t>(g.n) * g.n);
-  for (int i = 0; i < g.n; ++i) {
-    for (int j = 0; j < g.n; ++j) {
-      const Vector2d s = plate(g, i, j);
-      const Vector3d p_M = X_MW * Vector3d(g.o + s.x() * g.e1 + s.y() * g.e2);
-      const Vector3d start_M = p_M + ((c_M - p_M).dot(u_M) - reach) * u_M;
-      RTCRayHit& rh = out[static_cast<std::size_t>(i) * g.n + j];
-      rh.ray.org_x = float(start_M.x()), rh.ray.org_y = float(start_M.y());
-      rh.ray.org_z = float(start_M.z());
-      rh.ray.dir_x = float(u_M.x()), rh.ray.dir_y = float(u_M.y()), rh.ray.dir_z = float(u_M.z());
-      rh.ray.tnear = 0.0f;
-      rh.ray.tfar = float(2.0 * reach);
-      rh.ray.mask = ~0u;
-      rh.ray.id = static_cast<unsigned>(i * g.n + j);
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    }
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    const int line = first + static_cast<int>(k);
+    const Vector2d s = plate(g, line / g.n, line % g.n);
+    const Vector3d p_M = X_MW * Vector3d(g.o + s.x() * g.e1 + s.y() * g.e2);
+    const Vector3d start_M = p_M + ((c_M - p_M).dot(u_M) - reach) * u_M;
+    RTCRayHit& rh = rays[k];
+    rh.ray.org_x = float(start_M.x()), rh.ray.org_y = float(start_M.y());
+    rh.ray.org_z = float(start_M.z());
+    rh.ray.dir_x = float(u_M.x()), rh.ray.dir_y = float(u_M.y()), rh.ray.dir_z = float(u_M.z());
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = float(2.0 * reach);
+    rh.ray.mask = ~0u;
+    rh.ray.id = static_cast<unsigned>(k);
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   }
-  return out;
 }
 
 /// Tests every triangle Embree reported for `line` once, and, where the line passes near one
@@ -238,7 +246,7 @@ std::vector<RTCRayHit> EmbreeLines::Impl::rays(const Isometry3d& X_MW, const Lin
 /// @return whether the line's crossings balance (it enters the closed mesh as often as it
 ///   leaves)
 bool EmbreeLines::Impl::resolveLine(Projections& projections, const LineGrid& g, int line,
-                                    std::span<const LineHit> hits, std::vector<int>& tested,
+                                    std::span<const RayHit> hits, std::vector<int>& tested,
                                     std::vector<LineCrossing>& out) const {
   const Vector2d s = plate(g, line / g.n, line % g.n);
   const double near = kNearEdge * (c_M.norm() + 3.0 * radius);
@@ -254,7 +262,7 @@ bool EmbreeLines::Impl::resolveLine(Projections& projections, const LineGrid& g,
     }
     return r;
   };
-  for (const LineHit& h : hits) {
+  for (const RayHit& h : hits) {
     if (std::find(tested.begin(), tested.end(), h.face) != tested.end()) continue;
     const TriangleTest r = visit(h.face);
     const bool lost = r.misses && !r.nearEdge[0] && !r.nearEdge[1] && !r.nearEdge[2];
@@ -285,29 +293,36 @@ EmbreeLines::~EmbreeLines() { rtcReleaseScene(impl_->scene); }
 
 bool EmbreeLines::cross(const Isometry3d& X_WM, const LineGrid& grid,
                         std::vector<LineCrossing>& out) const {
-  std::vector<RTCRayHit> rays = impl_->rays(X_WM.inverse(), grid);
-  std::vector<LineHit> hits;
-  HitCollector collector{{}, &hits};
-  rtcInitIntersectContext(&collector.context);
-  collector.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcIntersect1M(impl_->scene, &collector.context, rays.data(), static_cast<unsigned>(rays.size()),
-                 sizeof(RTCRayHit));
-  // Counting sort of the hits by line.
-  std::vector<int> start(rays.size() + 1, 0);
-  for (const LineHit& h : hits) ++start[static_cast<std::size_t>(h.line) + 1];
-  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-  std::vector<LineHit> byLine(hits.size());
-  std::vector<int> next(start.begin(), start.end() - 1);
-  for (const LineHit& h : hits) byLine[static_cast<std::size_t>(next[h.line]++)] = h;
+  const Isometry3d X_MW = X_WM.inverse();
+  const int lines = grid.n * grid.n;
+  std::vector<RTCRayHit> rays(static_cast<std::size_t>(std::min(lines, kRaysPerBatch)));
+  std::vector<RayHit> hits, byRay;
+  std::vector<int> start, tested;
   Projections projections(impl_->mesh, X_WM, grid);
-  std::vector<int> tested;
   out.clear();
-  for (std::size_t line = 0; line + 1 < start.size(); ++line) {
-    const std::span<const LineHit> lineHits(byLine.data() + start[line],
-                                            byLine.data() + start[line + 1]);
-    if (lineHits.empty()) continue;
-    if (!impl_->resolveLine(projections, grid, static_cast<int>(line), lineHits, tested, out)) {
-      return false;
+  for (int first = 0; first < lines; first += kRaysPerBatch) {
+    const std::span<RTCRayHit> batch(rays.data(),
+                                     std::min(rays.size(), std::size_t(lines - first)));
+    impl_->fillRays(X_MW, grid, first, batch);
+    hits.clear();
+    HitCollector collector{{}, &hits};
+    rtcInitIntersectContext(&collector.context);
+    collector.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(impl_->scene, &collector.context, batch.data(),
+                   static_cast<unsigned>(batch.size()), sizeof(RTCRayHit));
+    // Counting sort of the batch's hits by ray.
+    start.assign(batch.size() + 1, 0);
+    for (const RayHit& h : hits) ++start[static_cast<std::size_t>(h.ray) + 1];
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    byRay.resize(hits.size());
+    for (const RayHit& h : hits) byRay[static_cast<std::size_t>(start[h.ray]++)] = h;
+    for (std::size_t k = 0, begin = 0; k < batch.size(); begin = start[k++]) {
+      const std::span<const RayHit> rayHits(byRay.data() + begin, byRay.data() + start[k]);
+      if (rayHits.empty()) continue;
+      if (!impl_->resolveLine(projections, grid, first + static_cast<int>(k), rayHits, tested,
+                              out)) {
+        return false;
+      }
     }
   }
   return true;

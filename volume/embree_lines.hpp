@@ -9,12 +9,13 @@
 // rule as the tree rasteriser (volume/columns.cpp), which also gives the crossing parameter
 // t, so interval lengths keep the rasteriser's accuracy and, for the same set of crossings,
 // its bits. Where Embree and the double test may disagree (the line passes within
-// kNearEdge of an edge or vertex of the reported triangle in the plate plane), every
-// triangle sharing a corner with it is tested too, and each (line, triangle) pair is tested
-// once: a line exactly through a shared edge or vertex therefore crosses once, the one
-// triangle the tie rule picks. Embree's robust mode is not fully watertight (a ray through an
-// edge can miss both triangles, embree issue #387), so a line whose crossings of the closed
-// mesh do not sum to zero is reported as unresolved, and the caller rasterises instead.
+// kNearEdge of an edge of the reported triangle in the plate plane, or outside it), the
+// triangle across that edge is tested too (near two edges: every triangle at their common
+// corner), and each (line, triangle) pair is tested once: a line exactly through a shared
+// edge or vertex therefore crosses once, at the one triangle the tie rule picks. Embree's
+// robust mode is not fully watertight (a ray through an edge can miss both triangles, embree
+// issue #387), so a line whose crossings of the closed mesh do not sum to zero is reported as
+// unresolved, and the caller rasterises instead.
 
 #include <Eigen/Geometry>
 #include <memory>
