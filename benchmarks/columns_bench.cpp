@@ -1,7 +1,6 @@
-// columns/<case>/<caster>: the columns method with its lines rasterised from the tree ("tree")
-// and cast on Embree ("embree", volume/embree_lines.hpp), on the same poses in one run. Both
-// give the same V (counter V, m³, beside the time); the Embree scene is built once per mesh
-// outside the timed loop, like the tree (columns/<mesh>/embree_scene_build times it).
+// columns/<case>: the columns method (volume/columns.hpp) on the cases where its line casting
+// was measured against Embree's (benchmarks/README.md, "Columns line casting"), with the volume
+// found (counter V, m³) beside the time; the trees are built once, outside the timed loop.
 //
 // Cases, the bundled punch (assets/scenarios/meshes/punch.stl: R = 10 mm, L = 8 mm, 64-sided
 // prism, 256 triangles) 0.6 µm into its support (the static penetration of
@@ -23,31 +22,17 @@
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
 #include "volume/columns.hpp"
-#include "volume/embree_lines.hpp"
 
 namespace {
 
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
 using vcontact::geometry::MeshBvh;
-using vcontact::geometry::TriangleMesh;
 using vcontact::volume::ColumnBody;
 using vcontact::volume::ColumnOptions;
-using vcontact::volume::EmbreeLines;
 
-/// A mesh with its tree and its Embree scene, built once.
-struct Solid {
-  TriangleMesh mesh;
-  MeshBvh tree;
-  EmbreeLines embree;
-  explicit Solid(TriangleMesh m) : mesh(std::move(m)), tree(mesh), embree(mesh) {}
-  ColumnBody body(const Isometry3d& X_WB, bool withEmbree) const {
-    return {&tree, X_WB, withEmbree ? &embree : nullptr};
-  }
-};
-
-const Solid& punch() {
-  static const Solid s(
+const MeshBvh& punch() {
+  static const MeshBvh s(
       vcontact::io::readMesh((std::filesystem::path(__FILE__).parent_path().parent_path() /
                               "assets/scenarios/meshes/punch.stl")
                                  .string())
@@ -55,18 +40,18 @@ const Solid& punch() {
   return s;
 }
 
-const Solid& plate() {
-  static const Solid s(vcontact::geometry::tessellateBox(Vector3d(0.06, 0.05, 0.01)));
+const MeshBvh& plate() {
+  static const MeshBvh s(vcontact::geometry::tessellateBox(Vector3d(0.06, 0.05, 0.01)));
   return s;
 }
 
-const Solid& sphere10k() {
-  static const Solid s(vcontact::geometry::tessellateSphere(0.01, 100, 51));
+const MeshBvh& sphere10k() {
+  static const MeshBvh s(vcontact::geometry::tessellateSphere(0.01, 100, 51));
   return s;
 }
 
-const Solid& sphere100k() {
-  static const Solid s(vcontact::geometry::tessellateSphere(0.01, 316, 159));
+const MeshBvh& sphere100k() {
+  static const MeshBvh s(vcontact::geometry::tessellateSphere(0.01, 316, 159));
   return s;
 }
 
@@ -83,9 +68,9 @@ Isometry3d punchPose() {
 }
 
 struct Case {
-  const Solid* a;
+  const MeshBvh* a;
   Isometry3d X_WA;
-  const Solid* b;  ///< null: the half-space z ≤ 0
+  const MeshBvh* b;  ///< null: the half-space z ≤ 0
   Isometry3d X_WB;
   ColumnOptions options;
 };
@@ -94,10 +79,10 @@ struct Case {
 /// initialisation).
 using CaseMaker = std::function<Case()>;
 
-void run(benchmark::State& state, const CaseMaker& make, bool withEmbree) {
+void run(benchmark::State& state, const CaseMaker& make) {
   const Case c = make();
-  const ColumnBody a = c.a->body(c.X_WA, withEmbree);
-  const ColumnBody b = c.b ? c.b->body(c.X_WB, withEmbree) : ColumnBody{nullptr, c.X_WB};
+  const ColumnBody a{c.a, c.X_WA};
+  const ColumnBody b{c.b, c.X_WB};
   vcontact::volume::ContactVolume cv;
   for (auto _ : state) {
     cv = vcontact::volume::columnsContact(a, b, c.options);
@@ -107,19 +92,9 @@ void run(benchmark::State& state, const CaseMaker& make, bool withEmbree) {
 }
 
 void registerCase(const std::string& name, const CaseMaker& c) {
-  for (const bool withEmbree : {false, true}) {
-    benchmark::RegisterBenchmark(("columns/" + name + (withEmbree ? "/embree" : "/tree")).c_str(),
-                                 [=](benchmark::State& s) { run(s, c, withEmbree); })
-        ->Unit(benchmark::kMicrosecond);
-  }
-}
-
-void buildScene(benchmark::State& state, const Solid& solid) {
-  for (auto _ : state) {
-    const EmbreeLines embree(solid.mesh);
-    benchmark::DoNotOptimize(&embree);
-  }
-  state.counters["triangles"] = double(solid.mesh.triangleCount());
+  benchmark::RegisterBenchmark(("columns/" + name).c_str(), [=](benchmark::State& s) {
+    run(s, c);
+  })->Unit(benchmark::kMicrosecond);
 }
 
 [[maybe_unused]] const bool kRegistered = [] {
@@ -149,12 +124,6 @@ void buildScene(benchmark::State& state, const Solid& solid) {
     X_WA.translation() = Vector3d(0.0013, -0.0007, 0.02 - 0.0002);
     return Case{&sphere10k(), X_WA, &sphere10k(), Isometry3d::Identity(), refined};
   });
-  benchmark::RegisterBenchmark("columns/punch/embree_scene_build", [](benchmark::State& s) {
-    buildScene(s, punch());
-  })->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark("columns/sphere10k/embree_scene_build", [](benchmark::State& s) {
-    buildScene(s, sphere10k());
-  })->Unit(benchmark::kMicrosecond);
   return true;
 }();
 

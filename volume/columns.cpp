@@ -9,8 +9,6 @@
 #include <span>
 #include <stdexcept>
 
-#include "volume/embree_lines.hpp"
-
 namespace vcontact::volume {
 namespace {
 
@@ -110,11 +108,7 @@ class GridCrossings {
         cullAbove_(!other.bvh && other.X_WB.linear().col(2).dot(g.u) >= 0.0),
         X_WH_(other.X_WB) {
     std::vector<std::pair<int, Crossing>> hits;
-    std::vector<LineCrossing> cast;
-    if (body.embree &&
-        body.embree->cross(body.X_WB, {g.o, g.u, g.e1, g.e2, g.r1, g.r2, g.n}, cast)) {
-      for (const LineCrossing& x : cast) hits.push_back({x.line, {x.t, x.delta}});
-    } else if (body.bvh) {
+    if (body.bvh) {
       rasterize(*body.bvh, body.X_WB, body.bvh->root(), hits);
     } else {
       halfspace(body.X_WB, hits);

@@ -21,16 +21,11 @@
 
 namespace vcontact::volume {
 
-class EmbreeLines;
-
 /// A body for the column method: a meshed solid, or the half-space z ≤ 0 of its frame when
-/// `bvh` is null. `X_WB` is its pose. When `embree` (built from the same mesh) is set, the
-/// lines are cast through it with Embree instead of rasterised from the tree
-/// (volume/embree_lines.hpp).
+/// `bvh` is null. `X_WB` is its pose.
 struct ColumnBody {
   const geometry::MeshBvh* bvh = nullptr;
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-  const EmbreeLines* embree = nullptr;
 };
 
 struct ColumnOptions {

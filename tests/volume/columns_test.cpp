@@ -4,18 +4,15 @@
 #include "volume/columns.hpp"
 
 #include <gtest/gtest.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/bvh.hpp"
 #include "support/test_support.hpp"
 #include "volume/cgal_reference.hpp"
-#include "volume/embree_lines.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume_fixtures.hpp"
 
@@ -194,142 +191,6 @@ TEST(Columns, NoContactGivesZeroWithoutNaN) {
         columnsContact({&box, test::translation({0.002, 0.001, 0.01 + gap})}, {&box, {}});
     EXPECT_EQ(cv.volume, 0.0);
     EXPECT_TRUE(cv.centroid.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
-  }
-}
-
-// ---------------------------------------------------------------------------------------
-// Line casting on Embree (volume/embree_lines.hpp) against the tree rasteriser.
-
-/// The crossings of the single line along z through the origin (a 1 × 1 grid) with `mesh`.
-std::vector<LineCrossing> crossingsOfAxisLine(const TriangleMesh& mesh) {
-  const EmbreeLines embree(mesh);
-  const LineGrid g{
-      Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(), 1e-3, 1e-3, 1};
-  std::vector<LineCrossing> out;
-  EXPECT_TRUE(embree.cross(Isometry3d::Identity(), g, out));
-  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
-  return out;
-}
-
-// A line exactly through the shared diagonal edge of the top and bottom faces of a box (each
-// face two triangles split along the diagonal through its centre) enters and leaves once,
-// at z = ∓h/2 exactly (the vertices are ±h/2, the edge functions exact there).
-TEST(ColumnsEmbree, LineThroughASharedEdgeCrossesOnce) {
-  const double h = 0.0123;
-  const std::vector<LineCrossing> x = crossingsOfAxisLine(geometry::tessellateBox({h, h, h}));
-  ASSERT_EQ(x.size(), 2u);
-  EXPECT_EQ(x[0].delta, +1);
-  EXPECT_EQ(x[0].t, -h / 2);
-  EXPECT_EQ(x[1].delta, -1);
-  EXPECT_EQ(x[1].t, h / 2);
-}
-
-// A line exactly through the centre vertex of a cylinder's cap fans (64 triangles meet
-// there) also crosses each cap once.
-TEST(ColumnsEmbree, LineThroughASharedVertexCrossesOnce) {
-  const double length = 0.0087;
-  const std::vector<LineCrossing> x =
-      crossingsOfAxisLine(geometry::tessellateCylinder(0.0101, length, 64));
-  ASSERT_EQ(x.size(), 2u);
-  EXPECT_EQ(x[0].delta, +1);
-  EXPECT_EQ(x[0].t, -length / 2);
-  EXPECT_EQ(x[1].delta, -1);
-  EXPECT_EQ(x[1].t, length / 2);
-}
-
-/// The columns of a, b with the lines rasterised and cast on Embree, on one thread: the lines'
-/// sums are reduced by TBB in an order that varies between runs on several threads (two runs
-/// of the tree path differ by up to 3e-13 in V), and on one it is the same for both.
-std::pair<ContactVolume, ContactVolume> bothCasters(const TriangleMesh& a, const Isometry3d& X_WA,
-                                                    const TriangleMesh* b, const Isometry3d& X_WB,
-                                                    const ColumnOptions& options) {
-  const MeshBvh treeA(a);
-  const EmbreeLines embreeA(a);
-  const std::optional<MeshBvh> treeB = b ? std::optional<MeshBvh>(*b) : std::nullopt;
-  const std::optional<EmbreeLines> embreeB =
-      b ? std::optional<EmbreeLines>(std::in_place, *b) : std::nullopt;
-  const MeshBvh* pb = treeB ? &*treeB : nullptr;
-  const EmbreeLines* eb = embreeB ? &*embreeB : nullptr;
-  tbb::task_arena serial(1);
-  return serial.execute([&] {
-    return std::pair(columnsContact({&treeA, X_WA}, {pb, X_WB}, options),
-                     columnsContact({&treeA, X_WA, &embreeA}, {pb, X_WB, eb}, options));
-  });
-}
-
-/// Embree only finds the triangles; the double test that decides each crossing and its t is
-/// the rasteriser's, so the same crossings summed in the same order give the same bits.
-void expectSameResult(const ContactVolume& tree, const ContactVolume& embree) {
-  ASSERT_GT(tree.volume, 0.0);
-  EXPECT_EQ(embree.volume, tree.volume);
-  EXPECT_EQ(embree.centroid, tree.centroid);
-  EXPECT_EQ(embree.J_v, tree.J_v);
-  EXPECT_EQ(embree.normal, tree.normal);
-  EXPECT_EQ(embree.relative_error, tree.relative_error);
-}
-
-TEST(ColumnsEmbree, SameAsRasteriserOnNamedPairs) {
-  const Isometry3d X_WB = test::randomPose(13);
-  for (const PairCase& c : pairCases()) {
-    SCOPED_TRACE(c.name);
-    const auto [tree, embree] = bothCasters(c.a, X_WB * c.X_BA, &c.b, X_WB, {});
-    expectSameResult(tree, embree);
-  }
-}
-
-TEST(ColumnsEmbree, SameAsRasteriserOnAHalfspace) {
-  const TriangleMesh sphere = geometry::tessellateSphere(0.0137, 64, 33);
-  const Isometry3d X_WH = test::randomPose(5);
-  for (double d : {1e-4, 1e-3, 5e-3}) {
-    SCOPED_TRACE(d);
-    const Isometry3d X_WM = X_WH * pose({0.001, 0.0, 0.0137 - d}, 0.4, {0, 1, 1});
-    const auto [tree, embree] = bothCasters(sphere, X_WM, nullptr, X_WH, {});
-    expectSameResult(tree, embree);
-  }
-}
-
-// The fixed grid of distributed friction (ColumnOptions::fixed(64)) on the bundled punch's
-// shape (R = 10 mm, L = 8 mm, 64-sided prism), slightly tilted, on a half-space and on a
-// tessellated plate; and the thin axis-aligned layer, whose grid lines run through edges.
-TEST(ColumnsEmbree, SameAsRasteriserOnTheFixedGrid) {
-  const TriangleMesh punch = geometry::tessellateCylinder(0.01, 0.008, 64);
-  const TriangleMesh plate = geometry::tessellateBox(Vector3d(0.06, 0.05, 0.01));
-  const Isometry3d X_WH = test::randomPose(7);
-  const Isometry3d X_WP = X_WH * pose({0.0003, -0.0002, 0.004 - 2.3e-6}, 1e-4, {1, 2, 0});
-  const Isometry3d X_WPlate = X_WH * test::translation({0.001, 0.0, -0.005});
-  const ColumnOptions fixed = ColumnOptions::fixed(64);
-  {
-    SCOPED_TRACE("punch on half-space");
-    const auto [tree, embree] = bothCasters(punch, X_WP, nullptr, X_WH, fixed);
-    expectSameResult(tree, embree);
-  }
-  {
-    SCOPED_TRACE("punch on plate");
-    const auto [tree, embree] = bothCasters(punch, X_WP, &plate, X_WPlate, fixed);
-    expectSameResult(tree, embree);
-  }
-  {
-    SCOPED_TRACE("cube face down on plate");
-    const double s = 0.02;
-    const TriangleMesh cube = geometry::tessellateBox(Vector3d::Constant(s));
-    const auto [tree, embree] = bothCasters(cube, test::translation({0.001, -0.002, s / 2 - 1e-5}),
-                                            &plate, test::translation({0, 0, -0.005}), {});
-    expectSameResult(tree, embree);
-  }
-}
-
-// Embree resolves every line itself (no fallback to the rasteriser): on a dense grid along a
-// generic direction through a sphere and the punch, each line's crossings balance.
-TEST(ColumnsEmbree, ResolvesEveryLineOfADenseGrid) {
-  const Vector3d u = Vector3d(0.3, -0.5, 0.8).normalized();
-  const Vector3d e1 = u.unitOrthogonal();
-  const LineGrid g{Vector3d(0.0011, -0.0007, 0.0003), u, e1, u.cross(e1), 0.015, 0.015, 256};
-  for (const TriangleMesh& mesh : {geometry::tessellateSphere(0.0137, 64, 33),
-                                   geometry::tessellateCylinder(0.01, 0.008, 64)}) {
-    const EmbreeLines embree(mesh);
-    std::vector<LineCrossing> out;
-    EXPECT_TRUE(embree.cross(test::randomPose(3, 0.01), g, out));
-    EXPECT_GT(out.size(), 1000u);  // the grid is wider than the bodies: many lines cross
   }
 }
 
