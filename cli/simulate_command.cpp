@@ -7,9 +7,9 @@
 
 #include "cli/commands.hpp"
 #include "dynamics/simulator.hpp"
+#include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
-#include "io/scenario_file.hpp"
-#include "io/simulation_csv.hpp"
+#include "report/simulation_csv.hpp"
 
 namespace vcontact::cli {
 namespace {

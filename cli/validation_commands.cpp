@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "formats/dataset_file.hpp"
+#include "formats/model_file.hpp"
 #include "geometry/error.hpp"
-#include "io/dataset_file.hpp"
-#include "io/model_file.hpp"
-#include "io/report_html.hpp"
-#include "io/validation_output.hpp"
+#include "report/report_html.hpp"
+#include "report/validation_output.hpp"
 #include "validation/diagnose.hpp"
 #include "validation/synthetic.hpp"
 

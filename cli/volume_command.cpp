@@ -5,8 +5,8 @@
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
-#include "io/contact_volume_format.hpp"
 #include "io/shape_spec.hpp"
+#include "report/contact_volume_format.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::cli {

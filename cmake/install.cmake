@@ -5,7 +5,7 @@
 # GNUInstallDirs is included at the top level: geometry/ names the installed include folder.
 include(CMakePackageConfigHelpers)
 
-set(VCONTACT_LAYERS geometry volume dynamics validation io)
+set(VCONTACT_LAYERS geometry io volume dynamics validation formats report)
 set(VCONTACT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/vcontact)
 
 foreach(layer IN LISTS VCONTACT_LAYERS)

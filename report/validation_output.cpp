@@ -1,12 +1,12 @@
-#include "io/validation_output.hpp"
+#include "report/validation_output.hpp"
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 
+#include "formats/model_file.hpp"
 #include "geometry/error.hpp"
-#include "io/model_file.hpp"
 
 namespace vcontact::io {
 namespace {

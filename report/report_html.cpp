@@ -1,10 +1,10 @@
-#include "io/report_html.hpp"
+#include "report/report_html.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "io/svg_chart.hpp"
+#include "report/svg_chart.hpp"
 
 namespace vcontact::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/dataset_file.hpp"
+#include "formats/dataset_file.hpp"
 
 #include <algorithm>
 #include <charconv>
