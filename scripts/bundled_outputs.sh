@@ -18,7 +18,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 out="${1:?usage: bundled_outputs.sh OUT_DIR [VCONTACT_BINARY]}"
 bin="${2:-build/bin/vcontact}"
-mkdir -p "$out/logs"
+mkdir -p "$out/logs" "$out/synth"
 log() { echo "bundled_outputs: $*" >&2; }
 
 for s in assets/scenarios/*.json; do
