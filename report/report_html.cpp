@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
+#include "geometry/error.hpp"
 #include "report/svg_chart.hpp"
 
 namespace vcontact::io {
@@ -210,6 +212,12 @@ std::string reportHtml(const ReportInput& in) {
   parameterTable(h, in);
   h << kCheckScript << "\n</body></html>\n";
   return h.str();
+}
+
+void writeReportHtml(const ReportInput& input, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, "cannot open for writing");
+  out << reportHtml(input);
 }
 
 }  // namespace vcontact::io

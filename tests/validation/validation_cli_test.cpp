@@ -14,8 +14,8 @@
 #include <regex>
 #include <sstream>
 
+#include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
-#include "report/validation_output.hpp"
 #include "support/run_command.hpp"
 #include "validation/effect_cases.hpp"
 
