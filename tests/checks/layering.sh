@@ -32,13 +32,14 @@ for layer in "${layers[@]}"; do
     file=${hit%%:*}
     rest=${hit#*:}
     line=${rest%%:*}
-    included=$(sed -E 's/.*#include "([a-z_]+)\/.*/\1/' <<<"$rest")
+    included=${rest#*\"}
+    included=${included%%/*}
     [ -n "${rank[$included]:-}" ] || continue
     if ((rank[$included] > rank[$layer])); then
       echo "${file#"$src"/}:$line: $layer/ must not include $included/ (layers, lowest first: $order)"
       violations=$((violations + 1))
     fi
-  done < <(grep -rnE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"[a-z_]+/' \
+  done < <(grep -rnoE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"[a-z_]+/' \
     --include='*.hpp' --include='*.cpp' "$src/$layer" || true)
 done
 if ((violations)); then
