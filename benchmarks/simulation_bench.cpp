@@ -12,7 +12,7 @@
 #include <string>
 
 #include "dynamics/simulator.hpp"
-#include "io/scenario_file.hpp"
+#include "formats/scenario_file.hpp"
 
 namespace {
 

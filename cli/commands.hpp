@@ -2,6 +2,11 @@
 // Each subcommand registers itself on the application; main() only dispatches.
 
 #include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "geometry/error.hpp"
 
 namespace vcontact::cli {
 
@@ -16,5 +21,19 @@ void addFrictionMapCommand(CLI::App& app);
 
 /// Prints warnings to standard error, one per line, prefixed "vcontact: warning: ".
 void printWarnings(const std::vector<std::string>& warnings);
+
+/// Returns `run()`. The layers below name the quantity in their errors ("robust loss"); an
+/// InputError whose source is a key of `optionOf` is re-thrown with the option that sets it
+/// ("--loss"), so that the message names what the user typed.
+template <class Run>
+auto namingOptions(const std::map<std::string, std::string>& optionOf, Run run) -> decltype(run()) {
+  try {
+    return run();
+  } catch (const InputError& e) {
+    const auto it = optionOf.find(e.source());
+    if (it == optionOf.end()) throw;
+    throw e.withSource(it->second);
+  }
+}
 
 }  // namespace vcontact::cli

@@ -5,6 +5,32 @@
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
 
+namespace {
+
+constexpr int kBadInputExitCode = 2;  // simulate_command.cpp uses 3 for a stopped run
+
+/// A command line CLI11 cannot parse (a value of the wrong type or out of a set, a missing or
+/// extra argument, a missing subcommand) is bad input like any other: exit 2, not CLI11's
+/// 104-114. Help, version and a subcommand's own exit code pass through.
+int exitCode(const CLI::App& app, const CLI::ParseError& e) {
+  using CLI::ExitCodes;
+  const int code = app.exit(e);
+  switch (static_cast<ExitCodes>(code)) {
+    case ExitCodes::ConversionError:
+    case ExitCodes::ValidationError:
+    case ExitCodes::RequiredError:
+    case ExitCodes::RequiresError:
+    case ExitCodes::ExcludesError:
+    case ExitCodes::ExtrasError:
+    case ExitCodes::ArgumentMismatch:
+      return kBadInputExitCode;
+    default:
+      return code;
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{
       "vcontact: volumetric contact between rigid bodies (Gonthier-McPhee model).\n"
@@ -21,10 +47,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return exitCode(app, e);
   } catch (const vcontact::InputError& e) {
     std::cerr << "vcontact: error: " << e.what() << '\n';
-    return 2;
+    return kBadInputExitCode;
   } catch (const std::exception& e) {
     std::cerr << "vcontact: internal error: " << e.what() << '\n';
     return 1;

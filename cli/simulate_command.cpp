@@ -3,13 +3,14 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "dynamics/simulator.hpp"
+#include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
-#include "io/scenario_file.hpp"
-#include "io/simulation_csv.hpp"
+#include "io/json_file.hpp"
+#include "report/simulation_csv.hpp"
+#include "report/simulation_summary.hpp"
 
 namespace vcontact::cli {
 namespace {
@@ -47,16 +48,7 @@ class Progress {
 
 void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
                   const std::string& status) {
-  const nlohmann::json j = {{"status", status},
-                            {"simulated_time_s", s.simulated_time},
-                            {"wall_time_s", s.wall_time},
-                            {"real_time_factor", s.realTimeFactor()},
-                            {"steps", s.steps},
-                            {"rejected_steps", s.rejected_steps},
-                            {"rhs_evaluations", s.rhs_evaluations},
-                            {"contact_evaluations", s.contact_evaluations},
-                            {"jacobian_evaluations", s.jacobian_evaluations}};
-  std::ofstream(dir + "/summary.json") << j.dump(2) << '\n';
+  io::writeJson(io::simulationSummaryJson(s, status), dir + "/summary.json");
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
             << s.rejected_steps << " rejected), " << s.contact_evaluations

@@ -9,11 +9,12 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "formats/dataset_file.hpp"
+#include "formats/model_file.hpp"
 #include "geometry/error.hpp"
-#include "io/dataset_file.hpp"
-#include "io/model_file.hpp"
-#include "io/report_html.hpp"
-#include "io/validation_output.hpp"
+#include "io/json_file.hpp"
+#include "report/report_html.hpp"
+#include "report/validation_output.hpp"
 #include "validation/diagnose.hpp"
 #include "validation/synthetic.hpp"
 
@@ -41,7 +42,9 @@ Inputs readInputs(const ValidationOptions& o) {
     throw InputError("--out", o.out + " exists and is not a directory");
   }
   if (o.maxIterations < 1) throw InputError("--max-iterations", "expected a positive count");
-  Inputs in{io::readDataset(o.dataset), io::readModelFile(o.model), validation::parseLoss(o.loss)};
+  Inputs in{
+      io::readDataset(o.dataset), io::readModelFile(o.model),
+      namingOptions({{"robust loss", "--loss"}}, [&] { return validation::parseLoss(o.loss); })};
   printWarnings(in.data.warnings);
   return in;
 }
@@ -73,7 +76,7 @@ std::string label(const std::vector<std::string>& effects) {
 }
 
 void writeReport(const std::string& dir, const io::ReportInput& report) {
-  std::ofstream(dir + "/report.html") << io::reportHtml(report);
+  io::writeReportHtml(report, dir + "/report.html");
 }
 
 // Every parameter held: the model exactly as given.
@@ -184,7 +187,9 @@ void runSynth(const SynthOptions& o) {
   }
   if (!(o.noiseScale >= 0.0)) throw InputError("--noise-scale", "expected a number >= 0");
   const dynamics::Model truth = io::readModelFile(o.model);
-  validation::Dataset d = validation::rigMotion(o.profile, o.samples);
+  validation::Dataset d =
+      namingOptions({{"rig profile", "--profile"}, {"sample count", "--samples"}},
+                    [&] { return validation::rigMotion(o.profile, o.samples); });
   for (auto& [output, sigma] : d.noise) sigma *= o.noiseScale;
   if (o.noiseScale == 0.0) d.noise.clear();
   d.name = out.stem().string();

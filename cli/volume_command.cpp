@@ -1,12 +1,13 @@
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
-#include "io/contact_volume_format.hpp"
+#include "io/json_file.hpp"
 #include "io/shape_spec.hpp"
+#include "report/contact_volume_format.hpp"
+#include "report/depth_map_csv.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::cli {
@@ -26,18 +27,6 @@ struct VolumeOptions {
   std::string field;
 };
 
-/// The δ map as CSV: one row per column line with δ > 0, where it meets the plate (W, m).
-void writeField(const volume::ColumnField& field, const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw InputError(path, "cannot open for writing");
-  f.precision(17);
-  f << "x_m,y_m,z_m,delta_m\n";
-  for (std::size_t i = 0; i < field.depth.size(); ++i) {
-    const Eigen::Vector3d& p = field.points_W[i];
-    f << p.x() << ',' << p.y() << ',' << p.z() << ',' << field.depth[i] << '\n';
-  }
-}
-
 /// The contact by the chosen method; with --field, the column method and its δ map.
 volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
                               const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
@@ -50,7 +39,7 @@ volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
   }
   volume::ColumnField field;
   const volume::ContactVolume cv = volume::columnsContact(a.shape, X_WA, b.shape, X_WB, &field);
-  writeField(field, o.field);
+  io::writeDepthMapCsv(field, o.field);
   return cv;
 }
 
@@ -66,11 +55,7 @@ void runVolume(const VolumeOptions& o) {
   nlohmann::json j = io::toJson(cv);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
-  if (!o.out.empty()) {
-    std::ofstream f(o.out);
-    if (!f) throw InputError(o.out, "cannot open for writing");
-    f << j.dump(2) << '\n';
-  }
+  if (!o.out.empty()) io::writeJson(j, o.out);
   if (o.json) {
     std::cout << j.dump(2) << '\n';
   } else {

@@ -1,11 +1,11 @@
 # Installation and the CMake package: `find_package(vcontact)` then link vcontact::geometry,
-# vcontact::volume, vcontact::dynamics, vcontact::validation or vcontact::io (STYLE.md §9).
+# vcontact::io, vcontact::volume, vcontact::dynamics, vcontact::validation, vcontact::formats
+# or vcontact::report (STYLE.md §9); VCONTACT_LAYERS is set at the top level.
 # Headers keep their layer folders, so an installed include reads as in the source tree:
 # #include "volume/contact.hpp".
 # GNUInstallDirs is included at the top level: geometry/ names the installed include folder.
 include(CMakePackageConfigHelpers)
 
-set(VCONTACT_LAYERS geometry volume dynamics validation io)
 set(VCONTACT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/vcontact)
 
 foreach(layer IN LISTS VCONTACT_LAYERS)

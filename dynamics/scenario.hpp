@@ -1,6 +1,6 @@
 #pragma once
 // A simulation scenario in memory: bodies, contact pairs with their models, gravity and
-// integration settings. File formats live in io/scenario_file (dynamics/SCENARIO.md).
+// integration settings. File formats live in formats/scenario_file (dynamics/SCENARIO.md).
 
 #include <optional>
 #include <string>

@@ -22,4 +22,10 @@ nlohmann::json readJsonFile(const std::string& path) {
   }
 }
 
+void writeJson(const nlohmann::json& j, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, "cannot open for writing");
+  out << j.dump(2) << '\n';
+}
+
 }  // namespace vcontact::io

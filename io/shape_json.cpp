@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <type_traits>
+#include <variant>
 
 #include "geometry/error.hpp"
 #include "io/mesh_io.hpp"
@@ -59,6 +61,25 @@ JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
   }
   geometry::validate(out.shape, where);
   return out;
+}
+
+nlohmann::json shapeJson(const geometry::Shape& shape, const std::string& which) {
+  return std::visit(
+      [&](const auto& s) -> nlohmann::json {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, geometry::Sphere>) {
+          return {{"shape", "sphere"}, {"radius", s.radius}};
+        } else if constexpr (std::is_same_v<T, geometry::Cylinder>) {
+          return {{"shape", "cylinder"}, {"radius", s.radius}, {"length", s.length}};
+        } else if constexpr (std::is_same_v<T, geometry::Box>) {
+          return {{"shape", "box"}, {"size", {s.size.x(), s.size.y(), s.size.z()}}};
+        } else if constexpr (std::is_same_v<T, geometry::HalfSpace>) {
+          return {{"shape", "halfspace"}};
+        } else {
+          throw InputError(which, "a mesh shape cannot be written into a synthetic dataset");
+        }
+      },
+      shape);
 }
 
 }  // namespace vcontact::io

@@ -25,6 +25,10 @@ struct JsonShape {
 JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
                          const std::string& baseDir);
 
+/// The JSON object of a primitive shape (the inverse of parseShapeJson).
+/// @throws InputError naming `which` for a mesh, which has no file to name
+nlohmann::json shapeJson(const geometry::Shape& shape, const std::string& which);
+
 /// A required finite number member; throws InputError naming `where` and the key.
 double requireNumber(const nlohmann::json& j, const std::string& key, const std::string& where);
 

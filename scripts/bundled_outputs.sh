@@ -13,13 +13,22 @@
 # Files that carry wall-clock times (summary.json, report.html, the printed logs) are left in
 # OUT_DIR/logs and are not meant to compare equal.
 #
+# Every run is pinned to one CPU (taskset, where installed): the columns method sums its grid
+# rows in a TBB reduction whose order follows the thread scheduling, so with several threads
+# the last digits of friction_map.csv change from run to run even with the same binary.
+#
 # Environment: VCONTACT_SKIP_SLOW=1 leaves out punch_lumped_vs_distributed (about 8 minutes).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 out="${1:?usage: bundled_outputs.sh OUT_DIR [VCONTACT_BINARY]}"
 bin="${2:-build/bin/vcontact}"
-mkdir -p "$out/logs"
+mkdir -p "$out/logs" "$out/synth"
 log() { echo "bundled_outputs: $*" >&2; }
+pin=()
+if command -v taskset >/dev/null; then  # the first CPU this shell may run on
+  pin=(taskset -c "$(taskset -pc $$ | sed 's/.*: //; s/[,-].*//')")
+fi
+run() { "${pin[@]}" "$bin" "$@"; }
 
 for s in assets/scenarios/*.json; do
   name=$(basename "$s" .json)
@@ -28,7 +37,7 @@ for s in assets/scenarios/*.json; do
     continue
   fi
   log "simulate $name"
-  "$bin" simulate "$s" --out "$out/simulate/$name" --quiet >"$out/logs/simulate_$name.txt"
+  run simulate "$s" --out "$out/simulate/$name" --quiet >"$out/logs/simulate_$name.txt"
   mv "$out/simulate/$name/summary.json" "$out/logs/summary_$name.json"
 done
 
@@ -37,23 +46,23 @@ for d in assets/datasets/*.json; do
   name=$(basename "$d" .json)
   truth=assets/datasets/models/$name-truth.model.json
   log "compare/fit/diagnose $name"
-  "$bin" compare "$d" --model "$truth" --out "$out/compare/$name" >"$out/logs/compare_$name.txt"
-  "$bin" fit "$d" --model "$bare" --out "$out/fit/$name" >"$out/logs/fit_$name.txt"
-  "$bin" diagnose "$d" --model "$bare" --out "$out/diagnose/$name" --iterate \
+  run compare "$d" --model "$truth" --out "$out/compare/$name" >"$out/logs/compare_$name.txt"
+  run fit "$d" --model "$bare" --out "$out/fit/$name" >"$out/logs/fit_$name.txt"
+  run diagnose "$d" --model "$bare" --out "$out/diagnose/$name" --iterate \
     >"$out/logs/diagnose_$name.txt"
   for dir in compare fit diagnose; do
     mv "$out/$dir/$name/report.html" "$out/logs/report_${dir}_$name.html"
   done
   log "synth $name"
-  "$bin" synth --profile "$name" --model "$truth" --samples 1200 --seed 2026 \
+  run synth --profile "$name" --model "$truth" --samples 1200 --seed 2026 \
     --out "$out/synth/$name.json" >"$out/logs/synth_$name.txt"
 done
 
 log "volume"
 mkdir -p "$out/volume"
-"$bin" volume assets/meshes/ball_r10mm.stl halfspace --pose-a 0,0,0.0095 --json \
+run volume assets/meshes/ball_r10mm.stl halfspace --pose-a 0,0,0.0095 --json \
   >"$out/volume/ball_mesh.json"
-"$bin" volume sphere:0.01 halfspace --pose-a 0,0,0.0095 --json >"$out/volume/ball_sphere.json"
+run volume sphere:0.01 halfspace --pose-a 0,0,0.0095 --json >"$out/volume/ball_sphere.json"
 log "friction-map"
-"$bin" friction-map --out "$out/friction_map.csv" >"$out/logs/friction_map.txt"
+run friction-map --out "$out/friction_map.csv" >"$out/logs/friction_map.txt"
 log "done: $out"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages vcontact needs (only those missing; chromium is for the
-# test that renders the HTML report headless), then configures and
-# builds in Release. Safe to run again: it installs nothing and rebuilds nothing that is
-# already up to date.
+# test that renders the HTML report headless, clang-format for the format check), then
+# configures and builds in Release. Safe to run again: it installs nothing and rebuilds
+# nothing that is already up to date.
 #
 # Environment: VCONTACT_BUILD_DIR (default: build), VCONTACT_JOBS (default: nproc).
 set -euo pipefail
@@ -13,10 +13,12 @@ PACKAGES=(
   libeigen3-dev libboost-dev libtbb-dev
   libassimp-dev nlohmann-json3-dev libcli11-dev
   libcgal-dev libgmp-dev libmpfr-dev
-  libfcl-dev libccd-dev libembree-dev
+  libfcl-dev libembree-dev
+  # fcl's CMake package finds and links libccd (fcl-config.cmake: find_dependency(ccd)).
+  libccd-dev
   libceres-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  chromium
+  chromium clang-format
 )
 
 missing=()

@@ -1,6 +1,6 @@
 #pragma once
 // A rig measurement (docs/DATASET.md): how the payload moved against the plate and
-// the wrench that was measured. The reader (io/dataset_file.hpp) checks the files; this
+// the wrench that was measured. The reader (formats/dataset_file.hpp) checks the files; this
 // layer holds the samples and derives what the file may omit (velocities).
 //
 // Frames: P is the plate frame, B the payload frame. Each sample holds X_PB (pose of the

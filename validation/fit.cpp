@@ -240,7 +240,7 @@ Loss parseLoss(const std::string& name) {
   if (name == "none" || name == "squared") return Loss::kSquared;
   if (name == "huber") return Loss::kHuber;
   if (name == "cauchy") return Loss::kCauchy;
-  throw InputError("--loss", "unknown loss '" + name + "'; expected none, huber or cauchy");
+  throw InputError("robust loss", "unknown loss '" + name + "'; expected none, huber or cauchy");
 }
 
 std::string lossName(Loss loss) {

@@ -117,7 +117,7 @@ const Profile& profileNamed(const std::string& name) {
   std::ostringstream s;
   s << "unknown rig profile '" << name << "'; expected one of:";
   for (const auto& p : profiles()) s << ' ' << p.name;
-  throw InputError("--profile", s.str());
+  throw InputError("rig profile", s.str());
 }
 
 void setColumn(Dataset& d, const std::string& name, std::size_t i, double v) {
@@ -139,7 +139,7 @@ const std::vector<std::string>& rigProfileNames() {
 
 Dataset rigMotion(const std::string& name, std::size_t n) {
   const Profile& profile = profileNamed(name);
-  if (n < 3) throw InputError("--samples", "a record needs at least 3 samples");
+  if (n < 3) throw InputError("sample count", "a record needs at least 3 samples");
   Dataset d;
   d.name = profile.name;
   d.notes = "synthetic: rig profile '" + profile.name +

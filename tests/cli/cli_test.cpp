@@ -87,5 +87,24 @@ TEST(Cli, BadPoseNamesTheOption) {
   EXPECT_NE(r.err.find("--pose-a: a pose is"), std::string::npos) << r.err;
 }
 
+TEST(Cli, CommandLinesThatDoNotParseExitWith2) {
+  // CLI11's own codes (104-114) would tell a script nothing more than "bad input" does.
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"", "A subcommand is required"},                   // no subcommand
+      {"volume sphere:0.01", "B is required"},            // a missing positional
+      {"friction-map --mu abc --out /dev/null", "--mu"},  // a value of the wrong type
+      {"volume sphere:0.01 halfspace --no-such-flag", "--no-such-flag"},  // an unknown option
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = run(c.args);
+    EXPECT_EQ(r.exitCode, 2) << c.args;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+  }
+  EXPECT_EQ(run("--version").exitCode, 0);
+}
+
 }  // namespace
 }  // namespace vcontact

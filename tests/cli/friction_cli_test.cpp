@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/distributed_friction.hpp"
 #include "support/run_command.hpp"
+#include "validation/punch_friction.hpp"
 
 namespace vcontact {
 namespace {
@@ -71,8 +71,9 @@ TEST(FrictionMapCli, PunchSweepShowsWhereTheLumpedModelFails) {
   EXPECT_NEAR(fn / 10.0, 1.0, 2e-3);
   for (const auto& row : rows) {
     const double eps = row.at("eps");
-    const dynamics::PunchFriction exact = dynamics::flatPunchFriction(eps);
-    const dynamics::PunchFriction lumped = dynamics::lumpedPunchFriction(eps, 1.0 / std::sqrt(2.0));
+    const validation::PunchFriction exact = validation::flatPunchFriction(eps);
+    const validation::PunchFriction lumped =
+        validation::lumpedPunchFriction(eps, 1.0 / std::sqrt(2.0));
     // The command's exact columns are the closed form (written to 12 digits).
     EXPECT_NEAR(row.at("F_exact_N"), 0.2 * fn * exact.force, 1e-11 * fn) << eps;
     EXPECT_NEAR(row.at("M_exact_Nm"), 0.2 * fn * 0.01 * exact.torque, 1e-11 * fn * 0.01) << eps;
@@ -127,6 +128,10 @@ TEST(FrictionMapCli, BadOptionsGiveOneMessageAndExitCode2) {
   const test::CommandResult m = run("friction-map --mu -1 --out /dev/null");
   EXPECT_EQ(m.exitCode, 2);
   EXPECT_NE(m.err.find("--mu"), std::string::npos) << m.err;
+  // validation::frictionMap names the quantity ("shape"); the command names the option.
+  const test::CommandResult s = run("friction-map --shape halfspace --out /dev/null");
+  EXPECT_EQ(s.exitCode, 2);
+  EXPECT_NE(s.err.find("--shape (halfspace): expected a mesh file"), std::string::npos) << s.err;
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "geometry/error.hpp"
 #include "geometry/tessellate.hpp"
 #include "support/test_support.hpp"
+#include "validation/punch_friction.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
@@ -28,6 +29,9 @@ namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
+using validation::flatPunchFriction;
+using validation::lumpedPunchFriction;
+using validation::PunchFriction;
 
 constexpr double kPi = std::numbers::pi;
 

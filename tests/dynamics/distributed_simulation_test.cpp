@@ -27,6 +27,7 @@
 #include "dynamics/distributed_friction.hpp"
 #include "dynamics_fixtures.hpp"
 #include "geometry/tessellate.hpp"
+#include "validation/punch_friction.hpp"
 
 namespace vcontact::test {
 namespace {
@@ -135,10 +136,10 @@ TEST(DistributedSimulation, SpinDecelerationFollowsThePointwiseTorqueNotTheLumpe
   const auto torqueDecel = [&](const Decelerations& d, double m) {
     return kMu * d.mass * kG * R * m / d.inertia;  // I ω̇ = −μ N R m(ε), N = m g
   };
-  const double exact = torqueDecel(dist, dynamics::flatPunchFriction(dist.eps).torque);
+  const double exact = torqueDecel(dist, validation::flatPunchFriction(dist.eps).torque);
   // g = r_gyr/R = 1/√2 for a disc (the 64-gon's differs by 3e-4).
   const double lumpedExpected =
-      torqueDecel(lumped, dynamics::lumpedPunchFriction(lumped.eps, 1.0 / std::sqrt(2.0)).torque);
+      torqueDecel(lumped, validation::lumpedPunchFriction(lumped.eps, 1.0 / std::sqrt(2.0)).torque);
   std::printf(
       "[measured] eps %.3f: spin deceleration distributed %.4f (closed form %.4f), "
       "lumped %.4f (closed form %.4f), lumped/distributed %.4f\n",
@@ -151,12 +152,12 @@ TEST(DistributedSimulation, SpinDecelerationFollowsThePointwiseTorqueNotTheLumpe
   // dominates, by the closed forms' ratio in the same state (→ 2 as ε → ∞; 1.97 at ε = 4.76),
   // far beyond both tolerances above. The two runs' decelerations differ by less (1.88):
   // the lumped run's spin falls faster, so its ε grows and its torque falls.
-  const double ratio = dynamics::lumpedPunchFriction(dist.eps, 1.0 / std::sqrt(2.0)).torque /
-                       dynamics::flatPunchFriction(dist.eps).torque;
+  const double ratio = validation::lumpedPunchFriction(dist.eps, 1.0 / std::sqrt(2.0)).torque /
+                       validation::flatPunchFriction(dist.eps).torque;
   std::printf("[measured] closed forms' torque ratio at eps %.3f: %.4f\n", dist.eps, ratio);
   EXPECT_GT(lumped.angular / dist.angular, 1.8);
   // The force hardly differs at this ε (closed forms: 0.9951 vs 0.9955 of μ N).
-  const double forceExact = kMu * kG * dynamics::flatPunchFriction(dist.eps).force;
+  const double forceExact = kMu * kG * validation::flatPunchFriction(dist.eps).force;
   EXPECT_NEAR(dist.linear / forceExact, 1.0, 2e-3);
 }
 

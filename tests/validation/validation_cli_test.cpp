@@ -14,8 +14,8 @@
 #include <regex>
 #include <sstream>
 
-#include "io/model_file.hpp"
-#include "io/validation_output.hpp"
+#include "formats/dataset_file.hpp"
+#include "formats/model_file.hpp"
 #include "support/run_command.hpp"
 #include "validation/effect_cases.hpp"
 

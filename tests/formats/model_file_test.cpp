@@ -1,7 +1,7 @@
 // Model files (DATASET.md "Model files"): a valid file builds the model; every kind of bad
 // input stops with a message naming the file, the place and what was expected.
 
-#include "io/model_file.hpp"
+#include "formats/model_file.hpp"
 
 #include <gtest/gtest.h>
 

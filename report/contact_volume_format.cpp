@@ -1,4 +1,4 @@
-#include "io/contact_volume_format.hpp"
+#include "report/contact_volume_format.hpp"
 
 #include <cmath>
 #include <iomanip>

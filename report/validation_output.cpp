@@ -1,17 +1,16 @@
-#include "io/validation_output.hpp"
+#include "report/validation_output.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 
+#include "formats/model_file.hpp"
 #include "geometry/error.hpp"
-#include "io/model_file.hpp"
+#include "io/json_file.hpp"
 
 namespace vcontact::io {
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 using validation::Comparison;
 using validation::FitResult;
@@ -32,25 +31,6 @@ json parametersJson(const FitResult& fit) {
     params[p.name] = p.value;
   }
   return params;
-}
-
-json shapeJson(const geometry::Shape& shape, const std::string& which) {
-  return std::visit(
-      [&](const auto& s) -> json {
-        using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, geometry::Sphere>) {
-          return {{"shape", "sphere"}, {"radius", s.radius}};
-        } else if constexpr (std::is_same_v<T, geometry::Cylinder>) {
-          return {{"shape", "cylinder"}, {"radius", s.radius}, {"length", s.length}};
-        } else if constexpr (std::is_same_v<T, geometry::Box>) {
-          return {{"shape", "box"}, {"size", {s.size.x(), s.size.y(), s.size.z()}}};
-        } else if constexpr (std::is_same_v<T, geometry::HalfSpace>) {
-          return {{"shape", "halfspace"}};
-        } else {
-          throw InputError(which, "a mesh shape cannot be written into a synthetic dataset");
-        }
-      },
-      shape);
 }
 
 json stageSummary(const validation::DiagnosisStage& s) {
@@ -94,6 +74,7 @@ json whereJson(const validation::DiagnosisStage& s) {
 
 void writeResidualsCsv(const validation::Dataset& d, const Comparison& c, const std::string& path) {
   std::ofstream out(path);
+  if (!out) throw InputError(path, "cannot open for writing");
   out.precision(std::numeric_limits<double>::max_digits10);
   out << "t";
   for (const auto& o : c.outputs) {
@@ -180,37 +161,5 @@ json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels
   }
   return j;
 }
-
-void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) {
-  const fs::path sidecar(sidecarPath);
-  const fs::path csv = fs::path(sidecar).replace_extension(".csv");
-  json j = {{"format", "vcontact.dataset/1"},
-            {"name", d.name},
-            {"data", csv.filename().string()},
-            {"mode", "kinematic"},
-            {"payload", shapeJson(d.payload, "payload")},
-            {"plate", shapeJson(d.plate, "plate")},
-            {"outputs", d.outputs},
-            {"notes", d.notes}};
-  if (!d.noise.empty()) j["noise"] = d.noise;
-  std::vector<std::string> names = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
-                                    "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
-  for (const auto& o : d.outputs) names.push_back(o);
-  for (const auto& n : names) {
-    if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
-  }
-  writeJson(j, sidecar.string());
-  std::ofstream out(csv);
-  out.precision(std::numeric_limits<double>::max_digits10);
-  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
-  out << '\n';
-  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(d.size()); ++i) {
-    for (std::size_t c = 0; c < names.size(); ++c)
-      out << (c ? "," : "") << d.columns.at(names[c])[i];
-    out << '\n';
-  }
-}
-
-void writeJson(const json& j, const std::string& path) { std::ofstream(path) << j.dump(2) << '\n'; }
 
 }  // namespace vcontact::io

@@ -1,7 +1,7 @@
 // The report's SVG charts: tick choice, escaping, one drawn element per series and window,
 // non-finite samples skipped rather than written as "nan".
 
-#include "io/svg_chart.hpp"
+#include "report/svg_chart.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "io/model_file.hpp"
+#include "formats/model_file.hpp"
 
 #include <algorithm>
 #include <cmath>

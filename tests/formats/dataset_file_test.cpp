@@ -2,7 +2,7 @@
 // where the file omits them; each listed defect gives its message naming file, line and
 // column.
 
-#include "io/dataset_file.hpp"
+#include "formats/dataset_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -27,4 +27,8 @@ inline constexpr double kDatasetQuaternionTolerance = 1e-3;
 /// @param sidecarPath the NAME.json the user named
 DatasetReadResult readDataset(const std::string& sidecarPath);
 
+/// Writes NAME.json and NAME.csv (all columns, 17 significant digits).
+/// @throws InputError when the payload or plate is a mesh (only primitives are written)
+void writeDataset(const validation::Dataset& dataset, const std::string& sidecarPath);
+
 }  // namespace vcontact::io

@@ -1,10 +1,11 @@
-#include "io/dataset_file.hpp"
+#include "formats/dataset_file.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -254,6 +255,37 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
         ": no wx, wy, wz columns; angular velocities differentiated from the quaternions");
   }
   return result;
+}
+
+void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) {
+  const fs::path sidecar(sidecarPath);
+  const fs::path csv = fs::path(sidecar).replace_extension(".csv");
+  json j = {{"format", kFormat},
+            {"name", d.name},
+            {"data", csv.filename().string()},
+            {"mode", "kinematic"},
+            {"payload", shapeJson(d.payload, "payload")},
+            {"plate", shapeJson(d.plate, "plate")},
+            {"outputs", d.outputs},
+            {"notes", d.notes}};
+  if (!d.noise.empty()) j["noise"] = d.noise;
+  std::vector<std::string> names = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
+                                    "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
+  for (const auto& o : d.outputs) names.push_back(o);
+  for (const auto& n : names) {
+    if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
+  }
+  writeJson(j, sidecar.string());
+  std::ofstream out(csv);
+  if (!out) throw InputError(csv.string(), "cannot open for writing");
+  out.precision(std::numeric_limits<double>::max_digits10);
+  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
+  out << '\n';
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(d.size()); ++i) {
+    for (std::size_t c = 0; c < names.size(); ++c)
+      out << (c ? "," : "") << d.columns.at(names[c])[i];
+    out << '\n';
+  }
 }
 
 }  // namespace vcontact::io

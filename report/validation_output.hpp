@@ -27,11 +27,4 @@ nlohmann::json fitJson(const validation::FitResult& fit, const validation::Noise
 nlohmann::json diagnosisJson(const validation::Diagnosis& diagnosis,
                              const validation::NoiseLevels& noise);
 
-/// Writes NAME.json and NAME.csv (all columns, 17 significant digits).
-/// @throws InputError when the payload or plate is a mesh (only primitives are written)
-void writeDataset(const validation::Dataset& dataset, const std::string& sidecarPath);
-
-/// Writes `j` with two-space indentation and a final newline.
-void writeJson(const nlohmann::json& j, const std::string& path);
-
 }  // namespace vcontact::io

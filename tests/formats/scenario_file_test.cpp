@@ -2,14 +2,14 @@
 // the place and what was expected; a failing run stops with time, pair and quantity and keeps
 // the output up to the stop.
 
-#include "io/scenario_file.hpp"
+#include "formats/scenario_file.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
+#include "dynamics/dynamics_fixtures.hpp"
 #include "dynamics/simulator.hpp"
-#include "dynamics_fixtures.hpp"
 #include "geometry/error.hpp"
 
 namespace vcontact::io {

@@ -1,4 +1,4 @@
-#include "io/simulation_csv.hpp"
+#include "report/simulation_csv.hpp"
 
 #include <cctype>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "io/scenario_file.hpp"
+#include "formats/scenario_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <map>
 #include <sstream>
 
+#include "formats/model_file.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
-#include "io/model_file.hpp"
 #include "io/shape_spec.hpp"
 #include "volume/contact.hpp"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "dynamics/simulator.hpp"
-#include "io/scenario_file.hpp"
+#include "formats/scenario_file.hpp"
 
 namespace vcontact::io {
 

@@ -31,4 +31,8 @@ struct ReportInput {
 
 std::string reportHtml(const ReportInput& input);
 
+/// Writes reportHtml(input) to `path`.
+/// @throws InputError naming `path` when it cannot be opened for writing
+void writeReportHtml(const ReportInput& input, const std::string& path);
+
 }  // namespace vcontact::io

@@ -1,10 +1,12 @@
-#include "io/report_html.hpp"
+#include "report/report_html.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
-#include "io/svg_chart.hpp"
+#include "geometry/error.hpp"
+#include "report/svg_chart.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -210,6 +212,12 @@ std::string reportHtml(const ReportInput& in) {
   parameterTable(h, in);
   h << kCheckScript << "\n</body></html>\n";
   return h.str();
+}
+
+void writeReportHtml(const ReportInput& input, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, "cannot open for writing");
+  out << reportHtml(input);
 }
 
 }  // namespace vcontact::io

@@ -1,4 +1,4 @@
-#include "io/svg_chart.hpp"
+#include "report/svg_chart.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,4 @@
 // The FCL broad phase against brute-force box overlap, before and after bodies move.
-// (Kept with the volume tests: tests/geometry/ belongs to the geometry-core suite.)
 
 #include "geometry/broad_phase.hpp"
 

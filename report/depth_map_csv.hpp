@@ -1,0 +1,14 @@
+#pragma once
+// The columns method's δ map as CSV: one row per column line with δ > 0, the point where it
+// meets the contact plate (world frame, m) and its depth (m), 17 significant digits.
+
+#include <string>
+
+#include "volume/columns.hpp"
+
+namespace vcontact::io {
+
+/// @throws InputError naming `path` when it cannot be opened for writing
+void writeDepthMapCsv(const volume::ColumnField& field, const std::string& path);
+
+}  // namespace vcontact::io

@@ -1,0 +1,20 @@
+#include "report/simulation_summary.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace vcontact::io {
+
+nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
+                                     const std::string& status) {
+  return {{"status", status},
+          {"simulated_time_s", s.simulated_time},
+          {"wall_time_s", s.wall_time},
+          {"real_time_factor", s.realTimeFactor()},
+          {"steps", s.steps},
+          {"rejected_steps", s.rejected_steps},
+          {"rhs_evaluations", s.rhs_evaluations},
+          {"contact_evaluations", s.contact_evaluations},
+          {"jacobian_evaluations", s.jacobian_evaluations}};
+}
+
+}  // namespace vcontact::io
