@@ -13,7 +13,7 @@ PACKAGES=(
   libeigen3-dev libboost-dev libtbb-dev
   libassimp-dev nlohmann-json3-dev libcli11-dev
   libcgal-dev libgmp-dev libmpfr-dev
-  libfcl-dev libembree-dev
+  libfcl-dev
   # fcl's CMake package finds and links libccd (fcl-config.cmake: find_dependency(ccd)).
   libccd-dev
   libceres-dev libsundials-dev
