@@ -18,6 +18,7 @@
 #include "geometry/error.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/shape_spec.hpp"
+#include "volume/columns.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::cli {
@@ -50,7 +51,7 @@ struct FrictionMapOptions {
 struct SweepContact {
   Eigen::Isometry3d X_WH;  // the plate's frame, its z along n
   volume::ContactVolume cv;
-  volume::ColumnField field;
+  volume::DepthField field;
   double R = 0.0;  // m
   bool punch = false;
   std::string description;

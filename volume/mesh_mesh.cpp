@@ -1,15 +1,19 @@
 #include "volume/mesh_mesh.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "geometry/moments.hpp"
+#include "volume/bvh_cache.hpp"
 #include "volume/exact_predicates.hpp"
+#include "volume/mesh_topology_cache.hpp"
 #include "volume/stamp_set.hpp"
 
 namespace vcontact::volume {
@@ -878,8 +882,7 @@ class Intersector {
         hi = std::max(hi, n.dot(*p - o));
       }
     }
-    return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n, 0.5 * area2,
-                                 hi - lo, Method::kFast);
+    return contactFromMoments(M, o, n, 0.5 * area2, hi - lo, Method::kFast);
   }
 
   /// n from the area vectors; when they cancel (the region is bounded by one body's surface
@@ -918,6 +921,15 @@ ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const
   Intersector query(Body{a, topoA, X_WA, scratch.sides[0]}, Body{b, topoB, X_WB, scratch.sides[1]},
                     scratch);
   return query.run(cache);
+}
+
+ContactVolume fastContact(const geometry::Shape& a, const Isometry3d& X_WA,
+                          const geometry::Shape& b, const Isometry3d& X_WB, MeshMeshCache* cache) {
+  assert(std::holds_alternative<geometry::Mesh>(a) && std::holds_alternative<geometry::Mesh>(b));
+  const auto& meshA = std::get<geometry::Mesh>(a).mesh;
+  const auto& meshB = std::get<geometry::Mesh>(b).mesh;
+  return meshMeshContact(*bvhOf(meshA), *topologyOf(meshA), X_WA, *bvhOf(meshB), *topologyOf(meshB),
+                         X_WB, cache);
 }
 
 }  // namespace vcontact::volume

@@ -42,6 +42,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/mesh_topology.hpp"
+#include "geometry/primitives.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::volume {
@@ -92,5 +93,12 @@ ContactVolume meshMeshContact(const geometry::MeshBvh& a, const geometry::MeshTo
                               const Eigen::Isometry3d& X_WA, const geometry::MeshBvh& b,
                               const geometry::MeshTopology& topoB, const Eigen::Isometry3d& X_WB,
                               MeshMeshCache* cache = nullptr);
+
+/// The method table's backend of `fast` (methods.hpp): meshMeshContact of two mesh shapes,
+/// their trees and topologies from bvh_cache.hpp and mesh_topology_cache.hpp.
+/// @pre a and b both meshes
+ContactVolume fastContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                          const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                          MeshMeshCache* cache);
 
 }  // namespace vcontact::volume

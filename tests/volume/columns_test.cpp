@@ -172,7 +172,7 @@ TEST(Columns, InvariantUnderCommonMotion) {
 TEST(Columns, FieldIntegratesToVolume) {
   const PairCase c = pairCases()[1];
   const MeshBvh a(c.a), b(c.b);
-  ColumnField field;
+  DepthField field;
   const ContactVolume cv = columnsContact({&a, c.X_BA}, {&b, Isometry3d::Identity()}, {}, &field);
   ASSERT_FALSE(field.depth.empty());
   double sum = 0.0;

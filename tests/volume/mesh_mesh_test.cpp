@@ -436,10 +436,10 @@ TEST(FastMeshMesh, Dispatcher) {
   ASSERT_GT(f.volume, 0.0);
   EXPECT_EQ(d.volume, f.volume);
   const std::string msg = test::inputErrorMessage([&] {
-    computeContact(s, X_WA, geometry::HalfSpace{}, Isometry3d::Identity(), Method::kFast);
+    computeContact(s, X_WA, geometry::HalfSpace{}, Isometry3d::Identity(), {Method::kFast});
   });
   EXPECT_NE(msg.find("ball"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("--method fast"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("volume method fast"), std::string::npos) << msg;
 }
 
 }  // namespace
