@@ -164,12 +164,14 @@ class Intersector {
     Vector3d center, axis;
     double lo, hi;
   };
-  PlacedSlab placedSlab(const Body& m, const BvhNode& n) const;
-  static bool faceMeetsSlab(const PlacedFace& F, const PlacedSlab& S);
-  void testLeaves(const BvhNode& na, const BvhNode& nb);
-  void testFaces(int tA, const PlacedFace& FA, int tB, const PlacedFace& FB);
-  void flagIfCoplanar(int tA, const Vector3d* A, int tB, const Vector3d* B);
-  void testEdge(int side, int e, int face, int s0, int s1);
+  // The inner loop of the query, defined and used in mesh_mesh.cpp only: inline, so that it
+  // is inlined as if it were file-local (a call per face pair costs ~4 % of a query).
+  inline PlacedSlab placedSlab(const Body& m, const BvhNode& n) const;
+  static inline bool faceMeetsSlab(const PlacedFace& F, const PlacedSlab& S);
+  inline void testLeaves(const BvhNode& na, const BvhNode& nb);
+  inline void testFaces(int tA, const PlacedFace& FA, int tB, const PlacedFace& FB);
+  inline void flagIfCoplanar(int tA, const Vector3d* A, int tB, const Vector3d* B);
+  inline void testEdge(int side, int e, int face, int s0, int s1);
 
   // --- 3: boundary pieces (mesh_mesh_boundary.cpp) ------------------------------------------
   void emitAlongEdge(int side, const MeshEdge& E, const Vector3d& from, const Vector3d& to);

@@ -9,6 +9,8 @@
 #include <limits>
 #include <utility>
 
+#include "volume/exact_predicates.hpp"
+
 namespace vcontact::volume::internal {
 
 /// A double orient3d det[u, v, w] of rounded differences is within this factor times
@@ -71,8 +73,21 @@ inline int loneCorner(const int* side) {
 /// also under the perturbation: none of its edge–face tests could report a crossing.
 /// @param sideA, sideB  certain sides (±1, none 0, not all equal) of A's corners against B's
 ///   plane and of B's against A's
-bool certainlyDisjoint(const Eigen::Vector3d* A, const int* sideA, const Eigen::Vector3d* B,
-                       const int* sideB);
+inline bool certainlyDisjoint(const Eigen::Vector3d* A, const int* sideA, const Eigen::Vector3d* B,
+                              const int* sideB) {
+  const int i = loneCorner(sideA);
+  const Eigen::Vector3d* T1[3] = {&A[i], &A[(i + 1) % 3], &A[(i + 2) % 3]};
+  int b[3] = {0, 1, 2};                     // B's corners in T2's order
+  if (sideA[i] < 0) std::swap(b[1], b[2]);  // flip T2 so that p1 is on its positive side
+  const int sideT2[3] = {sideB[b[0]], sideB[b[1]], sideB[b[2]]};
+  const int j = loneCorner(sideT2);
+  const Eigen::Vector3d& p2 = B[b[j]];
+  const Eigen::Vector3d& q2 = B[b[(j + 1) % 3]];
+  const Eigen::Vector3d& r2 = B[b[(j + 2) % 3]];
+  if (sideT2[j] < 0) std::swap(T1[1], T1[2]);  // flip T1 so that p2 is on its positive side
+  const Eigen::Vector3d &p1 = *T1[0], &q1 = *T1[1], &r1 = *T1[2];
+  return orient3dFiltered(q1, p2, p1, q2) > 0 || orient3dFiltered(p1, p2, r1, r2) > 0;
+}
 
 /// Are all three of a ≤ b? Evaluated without short-circuit branches: in the descent the
 /// outcome is data, and one branch on the combined flag mispredicts less than three.
