@@ -303,6 +303,9 @@ using internal::MeshTopology;
 ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
                               const MeshBvh& b, const MeshTopology& topoB, const Isometry3d& X_WB,
                               MeshMeshCache* cache) {
+  // A closed mesh has every edge in two faces: 2 E = 3 F (an open one has more edges).
+  assert(2 * topoA.edges().size() == 3 * std::size_t(a.mesh().triangleCount()));
+  assert(2 * topoB.edges().size() == 3 * std::size_t(b.mesh().triangleCount()));
   thread_local internal::Scratch scratch;
   internal::Intersector query(internal::Body{a, topoA, X_WA, scratch.sides[0]},
                               internal::Body{b, topoB, X_WB, scratch.sides[1]}, scratch);

@@ -6,6 +6,7 @@
 // misses, so the exact predicates of step 2 see every pair that could cross.
 
 #include <Eigen/Geometry>
+#include <cassert>
 #include <limits>
 #include <utility>
 
@@ -59,6 +60,7 @@ inline bool allCertain(const int* side) { return side[0] * side[1] * side[2] != 
 
 /// Index of the corner whose side differs from the other two's. @pre not all three equal
 inline int loneCorner(const int* side) {
+  assert(!(side[0] == side[1] && side[1] == side[2]));
   return side[0] == side[1] ? 2 : (side[0] == side[2] ? 1 : 0);
 }
 
