@@ -3,7 +3,8 @@
 // method): the moments of A ∩ B are summed over the boundary of the region,
 // ∂(A ∩ B) = (∂A ∩ B) ∪ (∂B ∩ A), without building the region as a mesh.
 //
-// Steps:
+// Steps (1: tree_pair_descent.hpp, triangle_pair.hpp; 2 and 4: mesh_mesh.cpp; 3:
+// mesh_mesh_boundary.cpp):
 //  1. Broad phase: the two bounding-volume trees are descended together, both nodes of a
 //     pair split at once (A's boxes taken into B's frame, each node once per query; box and
 //     normal-slab bounds); or, with a MeshMeshCache, the leaf pairs recorded at a nearby pose
