@@ -9,7 +9,9 @@
 //   sphere_pair_*: two such spheres, centres 19.8 mm apart (0.2 mm overlap along the line).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
 // the half-space modelled as a box), columns (column integration to 1e-3), fast (exact local
-// surface integration of two meshes, volume/mesh_mesh.hpp).
+// surface integration of two meshes, volume/mesh_mesh.hpp); dispatch: the default method
+// through volume::computeContact (the method table), to time the dispatch against the direct
+// call (halfspace for a half-space, fast for a pair).
 
 #include <benchmark/benchmark.h>
 
@@ -24,6 +26,7 @@
 #include "geometry/tessellate.hpp"
 #include "volume/cgal_reference.hpp"
 #include "volume/columns.hpp"
+#include "volume/contact.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume/mesh_mesh.hpp"
 
@@ -67,6 +70,19 @@ const vcontact::geometry::MeshTopology& sphereTopology(int triangles) {
   auto& slot = cache[triangles];
   if (!slot) slot = std::make_unique<vcontact::geometry::MeshTopology>(sphere(triangles).mesh());
   return *slot;
+}
+
+/// sphere(triangles)'s mesh as a shape for computeContact, built once (its tree is then built
+/// once more, by the dispatcher's cache, outside the timed loop's steady state).
+const vcontact::geometry::Shape& sphereShape(int triangles) {
+  static std::map<int, vcontact::geometry::Shape> cache;
+  auto [it, added] = cache.try_emplace(triangles);
+  if (added) {
+    it->second = vcontact::geometry::Mesh{
+        std::make_shared<const vcontact::geometry::TriangleMesh>(sphere(triangles).mesh()),
+        "sphere"};
+  }
+  return it->second;
 }
 
 void report(benchmark::State& state, const ContactVolume& cv, const MeshBvh& m) {
@@ -117,6 +133,13 @@ void registerHalfspace(const std::string& size, int triangles, const std::string
         },
         *m);
   })->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark((name + "dispatch").c_str(), [=](benchmark::State& s) {
+    const auto [m, X] = setup();
+    const vcontact::geometry::Shape& shape = sphereShape(triangles);
+    const vcontact::geometry::Shape plane = vcontact::geometry::HalfSpace{};
+    run(
+        s, [&] { return vcontact::volume::computeContact(shape, X, plane, H); }, *m);
+  })->Unit(benchmark::kMicrosecond);
 }
 
 void registerPair(const std::string& size, int triangles, bool withCgal) {
@@ -139,6 +162,12 @@ void registerPair(const std::string& size, int triangles, bool withCgal) {
     const auto& topo = sphereTopology(triangles);
     run(
         s, [&] { return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB); }, m);
+  })->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark((name + "dispatch").c_str(), [=](benchmark::State& s) {
+    const MeshBvh& m = sphere(triangles);
+    const vcontact::geometry::Shape& shape = sphereShape(triangles);
+    run(
+        s, [&] { return vcontact::volume::computeContact(shape, X_WA, shape, X_WB); }, m);
   })->Unit(benchmark::kMicrosecond);
   if (!withCgal) return;
   benchmark::RegisterBenchmark((name + "cgal").c_str(), [=](benchmark::State& s) {

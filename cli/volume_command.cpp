@@ -9,6 +9,7 @@
 #include "report/contact_volume_format.hpp"
 #include "report/depth_map_csv.hpp"
 #include "volume/contact.hpp"
+#include "volume/methods.hpp"
 
 namespace vcontact::cli {
 
@@ -27,20 +28,59 @@ struct VolumeOptions {
   std::string field;
 };
 
-/// The contact by the chosen method; with --field, the column method and its δ map.
+/// The table's methods whose `pick` is true, as "a | b | c".
+template <class Pick>
+std::string methodNames(Pick pick) {
+  std::string names;
+  for (const volume::MethodRow& row : volume::methodTable()) {
+    if (pick(row)) names += (names.empty() ? "" : " | ") + std::string(row.name);
+  }
+  return names;
+}
+
+/// --method as a method that takes the pair, or none; its errors are reported against --method.
+std::optional<volume::Method> chosenMethod(const VolumeOptions& o, const io::ParsedShape& a,
+                                           const io::ParsedShape& b) {
+  if (o.method.empty()) return std::nullopt;
+  try {
+    const volume::Method method = volume::parseMethod(o.method);
+    volume::requireHandles(method, a.shape, b.shape);
+    return method;
+  } catch (const InputError& e) {
+    throw e.withSource("--method " + o.method);
+  }
+}
+
+/// The contact by the chosen method; with --field, by a method that samples the δ map (by
+/// default the first the pair allows) and the map.
 volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
                               const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
                               const Eigen::Isometry3d& X_WB) {
-  std::optional<volume::Method> method;
-  if (!o.method.empty()) method = volume::parseMethod(o.method);
-  if (o.field.empty()) return volume::computeContact(a.shape, X_WA, b.shape, X_WB, method);
-  if (method && *method != volume::Method::kColumns) {
-    throw InputError("--field", "the δ map comes from the column method; use --method columns");
+  const volume::QueryOptions query{chosenMethod(o, a, b)};
+  if (o.field.empty()) return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query);
+  if (query.method && !volume::fillsDepthField(*query.method)) {
+    throw InputError("--field",
+                     "the δ map comes from a method that samples it; use --method " +
+                         methodNames([](const auto& row) { return row.fills_depth_field; }));
   }
-  volume::ColumnField field;
-  const volume::ContactVolume cv = volume::columnsContact(a.shape, X_WA, b.shape, X_WB, &field);
+  volume::DepthField field;
+  const volume::ContactVolume cv =
+      volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
   io::writeDepthMapCsv(field, o.field);
   return cv;
+}
+
+/// --method's help, from the method table.
+std::string methodHelp() {
+  std::string help = methodNames([](const auto&) { return true; }) + " (default: the first of " +
+                     methodNames([](const auto& row) { return row.is_default; }) +
+                     " that takes the pair). Per method:";
+  for (const volume::MethodRow& row : volume::methodTable()) {
+    help += "\n  " + std::string(row.name) + ": " + std::string(row.scope) + "; " +
+            (row.exact ? "exact" : "approximate") + ", relative_error " +
+            std::string(row.error_estimate);
+  }
+  return help;
 }
 
 void runVolume(const VolumeOptions& o) {
@@ -77,12 +117,11 @@ void addVolumeCommand(CLI::App& app) {
   cmd->add_option("B", opts->b, "shape of body B")->required();
   cmd->add_option("--pose-a", opts->poseA, "pose of A in the world")->capture_default_str();
   cmd->add_option("--pose-b", opts->poseB, "pose of B in the world")->capture_default_str();
-  cmd->add_option("--method", opts->method,
-                  "analytic | halfspace | cgal | fast | columns (default: the best the pair "
-                  "allows: analytic for a primitive on a half-space, halfspace for a mesh on a "
-                  "half-space, fast (exact local surface integration) for two meshes)");
+  cmd->add_option("--method", opts->method, methodHelp());
   cmd->add_option("--field", opts->field,
-                  "write the penetration-depth map of the column method to this CSV");
+                  "write the penetration-depth map to this CSV (" +
+                      methodNames([](const auto& row) { return row.fills_depth_field; }) +
+                      ", the first that takes the pair unless --method says)");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");
   cmd->add_option("--out", opts->out, "also write the JSON to this file");
   cmd->callback([opts] { runVolume(*opts); });

@@ -26,7 +26,7 @@ void require(bool ok, const char* what, double value) {
 }  // namespace
 
 DistributedFriction distributedFriction(const volume::ContactVolume& cv,
-                                        const volume::ColumnField& field, const PressureLaw& law,
+                                        const volume::DepthField& field, const PressureLaw& law,
                                         const RelativeMotion& motion, double mu, double v_eps) {
   require(cv.inContact(), "the contact volume must be > 0", cv.volume);
   const std::size_t count = field.depth.size();
@@ -42,7 +42,7 @@ DistributedFriction distributedFriction(const volume::ContactVolume& cv,
   DistributedFriction out;
   out.cells = static_cast<int>(count);
   // The grid's own cell; a field built by hand without one is taken to tile cv.area.
-  out.cell_area = field.cellArea > 0.0 ? field.cellArea : cv.area / double(count);
+  out.cell_area = field.cell_area > 0.0 ? field.cell_area : cv.area / double(count);
   double volume = 0.0;
   for (double d : field.depth) volume += d * out.cell_area;
   require(std::abs(volume - cv.volume) <= kFieldVolumeTolerance * cv.volume,

@@ -17,7 +17,6 @@
 
 #include "dynamics/effect.hpp"
 #include "dynamics/wrench.hpp"
-#include "volume/columns.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::dynamics {
@@ -37,8 +36,8 @@ struct DistributedFriction {
 
 /// Pointwise Coulomb friction integrated over the columns δ map (midpoint rule, one column
 /// per cell, as the columns backend integrates V).
-/// @param cv     the contact from volume::columnsContact (p_c, n, V, area)
-/// @param field  the δ map of the same call; every cell has dS = field.cellArea (cv.area / cells
+/// @param cv     the contact from volume::computeContact (p_c, n, V, area)
+/// @param field  the δ map of the same call; every cell has dS = field.cell_area (cv.area / cells
 ///               for a field without one)
 /// @param mu     friction coefficient, ≥ 0
 /// @param v_eps  regularisation speed of dir_ε, m/s, > 0 (ModelSettings::v_eps)
@@ -46,7 +45,7 @@ struct DistributedFriction {
 /// @throws std::invalid_argument when the inputs are not finite or in range, or when the field
 ///         does not belong to cv (Σ δ dS ≠ V to 1e-9)
 DistributedFriction distributedFriction(const volume::ContactVolume& cv,
-                                        const volume::ColumnField& field, const PressureLaw& law,
+                                        const volume::DepthField& field, const PressureLaw& law,
                                         const RelativeMotion& motion, double mu, double v_eps);
 
 }  // namespace vcontact::dynamics

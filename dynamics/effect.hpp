@@ -29,10 +29,6 @@
 #include "dynamics/wrench.hpp"
 #include "volume/contact_volume.hpp"
 
-namespace vcontact::volume {
-struct ColumnField;
-}
-
 namespace vcontact::dynamics {
 
 /// One named, bounded model parameter.
@@ -75,10 +71,10 @@ enum class FrictionLaw { kCoulomb, kBristle };
 struct ContactContext {
   // ---- inputs ----
   const volume::ContactVolume* cv = nullptr;
-  /// The δ map of cv (columns backend) when the pair's friction is distributed
+  /// The δ map of cv (volume::DepthField) when the pair's friction is distributed
   /// (dynamics/DISTRIBUTED_FRICTION.md): coulomb then integrates pointwise Coulomb friction
   /// over it, force and spin torque together, and spin adds nothing. Null: lumped friction.
-  const volume::ColumnField* field = nullptr;
+  const volume::DepthField* field = nullptr;
   PairState state;  ///< with z projected onto the contact plane
   ModelSettings settings;
 

@@ -195,7 +195,7 @@ ContactContext Model::makeContext(const volume::ContactVolume& cv, const Relativ
 }
 
 ContactResult Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                              const PairState& state, const volume::ColumnField* field) const {
+                              const PairState& state, const volume::DepthField* field) const {
   ContactResult r;
   evaluate(cv, motion, state, r, field);
   return r;
@@ -216,7 +216,7 @@ void Model::checkDistributedFriction() const {
 
 void Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
                      const PairState& state, ContactResult& r,
-                     const volume::ColumnField* field) const {
+                     const volume::DepthField* field) const {
   r.shares.assign(effects_.size(), Wrench{});
   r.wrench = Wrench{};
   r.rates = PairStateRates{};

@@ -80,11 +80,11 @@ class Model {
   ///   for the lumped friction of MODEL.md §3; with a field the model must pass
   ///   checkDistributedFriction()
   ContactResult evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                         const PairState& state, const volume::ColumnField* field = nullptr) const;
+                         const PairState& state, const volume::DepthField* field = nullptr) const;
   /// The same, into `out` (reuses its storage: no allocation in the integrator's loop).
   void evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
                 const PairState& state, ContactResult& out,
-                const volume::ColumnField* field = nullptr) const;
+                const volume::DepthField* field = nullptr) const;
 
   /// Distributed friction replaces the lumped Coulomb force and spin torque (coulomb, spin,
   /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs coulomb,

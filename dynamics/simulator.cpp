@@ -72,7 +72,7 @@ void checkBody(const RigidBody& b) {
 void checkDistributedPair(const ContactPair& p) {
   if (p.friction != FrictionMode::kDistributed) return;
   const std::string where = "pair '" + p.name + "'";
-  if (p.method && *p.method != volume::Method::kColumns) {
+  if (p.method && !volume::fillsDepthField(*p.method)) {
     throw InputError(where, "distributed friction needs the columns method, not " +
                                 volume::methodName(*p.method));
   }
@@ -142,10 +142,10 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.push_back(volume::ContactVolume{});
     try {  // a pair no method (or not its method) handles fails here, before any output
-      const bool distributed = p.friction == FrictionMode::kDistributed;
-      const volume::Method m = distributed ? volume::Method::kColumns
-                               : p.method  ? *p.method
-                                           : volume::defaultMethod(a, b);
+      const volume::Method m = p.method ? *p.method
+                               : p.friction == FrictionMode::kDistributed
+                                   ? volume::defaultDepthFieldMethod(a, b)
+                                   : volume::defaultMethod(a, b);
       volume::requireHandles(m, a, b);
       apart_.back().method = m;
     } catch (const InputError& e) {
@@ -209,10 +209,9 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
       const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
       const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
       const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-      out.cv = distributed
-                   ? volume::columnsContact(shapeA, X_WA, shapeB, B.X_WB, &fields_[k],
-                                            volume::ColumnOptions::fixed(pair.column_resolution))
-                   : volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, pair.method, &caches_[k]);
+      const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
+      out.cv = volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, query,
+                                      distributed ? &fields_[k] : nullptr, &caches_[k]);
       ++contact_count_;
     } else {
       out.cv = apart_[k];  // the query's answer for bodies apart

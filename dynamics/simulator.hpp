@@ -28,7 +28,6 @@
 
 #include "dynamics/scenario.hpp"
 #include "geometry/broad_phase.hpp"
-#include "volume/columns.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
@@ -122,7 +121,7 @@ class Simulator {
   State last_x_;  ///< the state of the latest right-hand-side evaluation
   // The per-pair contacts of the latest right-hand-side evaluation (at last_x_).
   std::vector<PairOutput> last_pairs_;
-  std::vector<volume::ColumnField> fields_;  ///< δ maps of the distributed-friction pairs
+  std::vector<volume::DepthField> fields_;  ///< δ maps of the distributed-friction pairs
   /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
   /// the fast method's leaf pairs while the bodies move less than its reach).
   std::vector<volume::ContactCache> caches_;

@@ -72,19 +72,4 @@ void validate(const Shape& shape, const std::string& source) {
       shape);
 }
 
-void validatePose(const Eigen::Isometry3d& X, const std::string& source) {
-  // A rotation assembled from a unit quaternion or from angles is orthonormal to ~1e-15;
-  // 1e-9 accepts hand-typed matrices with ten digits and rejects anything that would scale.
-  constexpr double kOrthonormalTolerance = 1e-9;
-  if (!X.matrix().allFinite()) throw InputError(source, "pose has a NaN or infinite entry");
-  const Eigen::Matrix3d R = X.linear();
-  const double err = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (err > kOrthonormalTolerance || R.determinant() < 0.0) {
-    std::ostringstream os;
-    os << "pose rotation is not a proper rotation (|RᵀR − I| = " << err
-       << ", det = " << R.determinant() << ")";
-    throw InputError(source, os.str());
-  }
-}
-
 }  // namespace vcontact::geometry

@@ -43,7 +43,4 @@ std::string describe(const Shape& shape);
 /// Throws InputError (source = `source`) unless every dimension is finite and positive.
 void validate(const Shape& shape, const std::string& source);
 
-/// A pose with every entry finite and an orthonormal, right-handed rotation (to 1e-9).
-void validatePose(const Eigen::Isometry3d& X, const std::string& source);
-
 }  // namespace vcontact::geometry

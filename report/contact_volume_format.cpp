@@ -27,7 +27,6 @@ nlohmann::json toJson(const volume::ContactVolume& cv) {
   j["r_gyr"] = cv.r_gyr;
   j["J_v"] = mat(cv.J_v);
   j["J_s"] = mat(cv.J_s);
-  j["J_s_approximated"] = cv.J_s_approximated;
   j["relative_error"] =
       std::isnan(cv.relative_error) ? nlohmann::json(nullptr) : nlohmann::json(cv.relative_error);
   j["units"] = {{"volume", "m^3"}, {"centroid", "m"}, {"depth", "m"}, {"area", "m^2"},
@@ -67,8 +66,7 @@ std::string toTable(const volume::ContactVolume& cv) {
     row(r == 0 ? "J_v" : "", v3(cv.J_v.row(r).transpose()), r == 0 ? "m^5" : "");
   }
   for (int r = 0; r < 3; ++r) {
-    row(r == 0 ? (cv.J_s_approximated ? "J_s (~J_v)" : "J_s") : "", v3(cv.J_s.row(r).transpose()),
-        r == 0 ? "m^5" : "");
+    row(r == 0 ? "J_s" : "", v3(cv.J_s.row(r).transpose()), r == 0 ? "m^5" : "");
   }
   row("rel. error",
       std::isnan(cv.relative_error) ? "exact for the given shapes" : num(cv.relative_error), "");

@@ -6,7 +6,7 @@
 
 namespace vcontact::io {
 
-void writeDepthMapCsv(const volume::ColumnField& field, const std::string& path) {
+void writeDepthMapCsv(const volume::DepthField& field, const std::string& path) {
   std::ofstream f(path);
   if (!f) throw InputError(path, "cannot open for writing");
   f.precision(17);

@@ -4,11 +4,11 @@
 
 #include <string>
 
-#include "volume/columns.hpp"
+#include "volume/contact_volume.hpp"
 
 namespace vcontact::io {
 
 /// @throws InputError naming `path` when it cannot be opened for writing
-void writeDepthMapCsv(const volume::ColumnField& field, const std::string& path);
+void writeDepthMapCsv(const volume::DepthField& field, const std::string& path);
 
 }  // namespace vcontact::io

@@ -11,6 +11,7 @@
 #include "geometry/error.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/shape_spec.hpp"
+#include "volume/columns.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::validation {
@@ -31,7 +32,7 @@ const Eigen::Vector3d kPlateRpyDeg(17.0, 29.0, 0.0);
 struct SweepContact {
   Eigen::Isometry3d X_WH;  // the plate's frame, its z along n
   volume::ContactVolume cv;
-  volume::ColumnField field;
+  volume::DepthField field;
   double R = 0.0;  // m
   bool punch = false;
   std::string description;

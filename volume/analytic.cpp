@@ -270,21 +270,17 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
   const Vector3d& u = c.u;
   const Vector3d& v = c.v;
   const Vector3d e = Vector3d::UnitZ();
-  const Vector3d m1 = total(1) * u + total(4) * e;
-  const Matrix3d m2 = total(2) * u * u.transpose() + total(3) * v * v.transpose() +
-                      total(5) * (u * e.transpose() + e * u.transpose()) +
-                      total(6) * e * e.transpose();
-  const Vector3d cOff = m1 / V;
-  const Matrix3d Sigma_C = m2 - V * cOff * cOff.transpose();
+  geometry::Moments M;
+  M.m0 = V;
+  M.m1 = total(1) * u + total(4) * e;
+  M.m2 = total(2) * u * u.transpose() + total(3) * v * v.transpose() +
+         total(5) * (u * e.transpose() + e * u.transpose()) + total(6) * e * e.transpose();
   const Vector3d o = -R * u + c.zetaDeep * e;
   // Projected area of a convex region: half of ∫|n_s·n| over its boundary.
   const double area = 0.5 * (total(7) + total(8) + capArea);
-  const Matrix3d R_WC = X_WC.linear();
-  // o and the offset are mapped separately: o + cOff would round the offset (~d) against
+  // o and the offset are mapped separately: o + offset would round the offset (~d) against
   // the radius, losing digits for shallow contact.
-  ContactVolume cv =
-      assembleContactVolume(V, X_WC * o + R_WC * cOff, R_WC * Sigma_C * R_WC.transpose(), n_W, area,
-                            depth, Method::kAnalytic);
+  ContactVolume cv = contactFromMoments(M, o, X_WC, n_W, area, depth, Method::kAnalytic);
   cv.relative_error = relErr;
   return cv;
 }
@@ -310,7 +306,7 @@ ContactVolume primitiveHalfspace(const geometry::Shape& body, const Isometry3d& 
                  },
                  [&](const geometry::Box& b) { return boxHalfspace(b.size, X_WB, X_WH); },
                  [&](const auto&) -> ContactVolume {
-                   throw InputError("--method analytic", "not a bounded primitive");
+                   throw InputError("volume method analytic", "not a bounded primitive");
                  }},
       body);
 }
@@ -352,7 +348,7 @@ bool analyticSupports(const geometry::Shape& a, const geometry::Shape& b) {
 ContactVolume analyticContact(const geometry::Shape& a, const Isometry3d& X_WA,
                               const geometry::Shape& b, const Isometry3d& X_WB) {
   if (!analyticSupports(a, b)) {
-    throw InputError("--method analytic",
+    throw InputError("volume method analytic",
                      "the analytic method handles a sphere, cylinder or box against a "
                      "half-space; got " +
                          geometry::shapeKind(a) + " and " + geometry::shapeKind(b));

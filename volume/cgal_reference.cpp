@@ -6,7 +6,9 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <variant>
 #include <vector>
 
 #include "geometry/moments.hpp"
@@ -83,9 +85,7 @@ ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
       hi = std::max(hi, n.dot(p - o));
     }
   }
-  const Vector3d c_o = M.m1 / M.m0;
-  return assembleContactVolume(M.m0, o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n, 0.25 * area2,
-                               hi - lo, Method::kCgal);
+  return contactFromMoments(M, o, n, 0.25 * area2, hi - lo, Method::kCgal);
 }
 
 ContactVolume intersect(Mesh a, Mesh b) {
@@ -130,6 +130,19 @@ ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
   const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
   return assembleContactVolume(cv.volume, X_WH * cv.centroid, R * Sigma_H * R.transpose(), R.col(2),
                                cv.area, cv.depth, Method::kCgal);
+}
+
+ContactVolume cgalContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                          const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+  const auto* meshA = std::get_if<geometry::Mesh>(&a);
+  const auto* meshB = std::get_if<geometry::Mesh>(&b);
+  if (meshA && meshB) return cgalMeshMeshContact(*meshA->mesh, X_WA, *meshB->mesh, X_WB);
+  if (meshA) {
+    assert(std::holds_alternative<geometry::HalfSpace>(b));
+    return cgalMeshHalfspaceContact(*meshA->mesh, X_WA, X_WB);
+  }
+  assert(meshB && std::holds_alternative<geometry::HalfSpace>(a));
+  return swapped(cgalMeshHalfspaceContact(*meshB->mesh, X_WB, X_WA));
 }
 
 }  // namespace vcontact::volume

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include "geometry/primitives.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "volume/contact_volume.hpp"
 
@@ -25,5 +26,11 @@ ContactVolume cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::
 ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
                                        const Eigen::Isometry3d& X_WM,
                                        const Eigen::Isometry3d& X_WH);
+
+/// The method table's backend of `cgal` (methods.hpp): two meshes, or a mesh and a half-space
+/// in either order.
+/// @pre a and b both meshes, or one a mesh and the other a half-space
+ContactVolume cgalContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                          const geometry::Shape& b, const Eigen::Isometry3d& X_WB);
 
 }  // namespace vcontact::volume

@@ -4,10 +4,17 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
+#include <variant>
+
+#include "volume/bvh_cache.hpp"
+#include "volume/contact.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -443,9 +450,9 @@ Refined refine(const ColumnBody& a, const ColumnBody& b, const WorldBox& box, co
 }
 
 /// The δ map: the plate point and δ of every wet line.
-ColumnField fieldOf(const Grid& g, const std::vector<double>& depth) {
-  ColumnField field;
-  field.cellArea = g.cellArea();
+DepthField fieldOf(const Grid& g, const std::vector<double>& depth) {
+  DepthField field;
+  field.cell_area = g.cellArea();
   for (int i = 0; i < g.n; ++i) {
     for (int j = 0; j < g.n; ++j) {
       const double d = depth[static_cast<std::size_t>(i) * g.n + j];
@@ -514,16 +521,13 @@ Grid fixedHalfspaceGrid(const MeshBvh& bvh, const Isometry3d& X_WM, const Isomet
 
 /// The contact of the sums over grid g: moments about g.o moved to the centroid.
 ContactVolume assemble(const Grid& g, const GridSums& s, const Vector3d& n) {
-  const geometry::Moments& M = s.M;
-  const Vector3d c_o = M.m1 / M.m0;
-  return assembleContactVolume(M.m0, g.o + c_o, M.m2 - M.m0 * c_o * c_o.transpose(), n,
-                               s.wetLines * g.cellArea(), s.maxDepth, Method::kColumns);
+  return contactFromMoments(s.M, g.o, n, s.wetLines * g.cellArea(), s.maxDepth, Method::kColumns);
 }
 
 /// ColumnOptions::fixed against a half-space: one grid (fixedHalfspaceGrid), the plane's normal
 /// (out of B2 into B1), no axis passes, no estimate.
 ContactVolume fixedHalfspaceContact(const ColumnBody& a, const ColumnBody& b, int resolution,
-                                    ColumnField* field) {
+                                    DepthField* field) {
   const ColumnBody& mesh = a.bvh ? a : b;
   const ColumnBody& plane = a.bvh ? b : a;
   const Vector3d n = a.bvh ? Vector3d(b.X_WB.linear().col(2)) : Vector3d(-a.X_WB.linear().col(2));
@@ -541,7 +545,7 @@ ContactVolume fixedHalfspaceContact(const ColumnBody& a, const ColumnBody& b, in
 }  // namespace
 
 ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const ColumnOptions& options,
-                             ColumnField* field) {
+                             DepthField* field) {
   if (!a.bvh && !b.bvh) throw std::invalid_argument("columnsContact: two half-spaces");
   if (options.isFixed() && (!a.bvh || !b.bvh)) {
     return fixedHalfspaceContact(a, b, options.initialResolution, field);
@@ -558,6 +562,31 @@ ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const Col
   ContactVolume cv = assemble(g, r.sums, n);
   cv.relative_error = r.error;
   return cv;
+}
+
+namespace {
+
+/// A mesh (with its cached tree) or a half-space as a column-method body; null otherwise.
+std::optional<ColumnBody> columnBody(const geometry::Shape& s, const Isometry3d& X_WS,
+                                     std::shared_ptr<const MeshBvh>& keepAlive) {
+  if (std::holds_alternative<geometry::HalfSpace>(s)) return ColumnBody{nullptr, X_WS};
+  const auto* mesh = std::get_if<geometry::Mesh>(&s);
+  if (!mesh) return std::nullopt;
+  keepAlive = bvhOf(mesh->mesh);
+  return ColumnBody{keepAlive.get(), X_WS};
+}
+
+}  // namespace
+
+ContactVolume columnsContact(const geometry::Shape& a, const Isometry3d& X_WA,
+                             const geometry::Shape& b, const Isometry3d& X_WB, DepthField* field,
+                             const ColumnOptions& options) {
+  requireHandles(Method::kColumns, a, b);
+  std::shared_ptr<const MeshBvh> bvhA, bvhB;
+  const std::optional<ColumnBody> bodyA = columnBody(a, X_WA, bvhA);
+  const std::optional<ColumnBody> bodyB = columnBody(b, X_WB, bvhB);
+  assert(bodyA && bodyB);
+  return columnsContact(*bodyA, *bodyB, options, field);
 }
 
 }  // namespace vcontact::volume

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "geometry/bvh.hpp"
+#include "geometry/primitives.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::volume {
@@ -43,17 +44,20 @@ struct ColumnOptions {
   bool isFixed() const { return initialResolution >= maxResolution; }
 };
 
-/// The penetration depth map of the finest grid: δ at each line with δ > 0.
-struct ColumnField {
-  std::vector<Eigen::Vector3d> points_W;  ///< where each line meets the plate S, m
-  std::vector<double> depth;              ///< δ along n, m
-  double cellArea = 0.0;                  ///< dS of every line's cell on the plate, m²
-};
-
 /// ContactVolume of body A (B1) and body B (B2); at least one of them must be a mesh. The
 /// result's relative_error is the difference of the last two grid levels in V.
-/// @param[out] field  if not null, filled with the δ map of the finest grid
+/// @param[out] field  if not null, filled with the δ map of the finest grid: a sample at every
+///                    line with δ > 0, cell_area the grid's cell (left as it was when apart)
 ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b,
-                             const ColumnOptions& options = {}, ColumnField* field = nullptr);
+                             const ColumnOptions& options = {}, DepthField* field = nullptr);
+
+/// The same for shapes, and the method table's backend of `columns` (methods.hpp): A and B
+/// each a mesh (its tree from bvh_cache.hpp) or a half-space, at least one a mesh.
+/// @param[out] field  the δ map of the finest grid, if not null
+/// @param options      grid and tolerance (default: refined to 1e-3)
+/// @throws InputError when the pair is not handled, naming both shapes
+ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                             DepthField* field, const ColumnOptions& options = {});
 
 }  // namespace vcontact::volume

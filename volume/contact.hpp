@@ -1,31 +1,51 @@
 #pragma once
 // One entry point over every backend: the interference of two placed shapes by a chosen
-// method, or by the best method the pair allows.
+// method, or by the best method the pair allows. Which methods exist, which shapes each takes
+// and which backend computes it is the method table (volume/methods.hpp); everything here
+// reads it.
 
 #include <Eigen/Geometry>
 #include <optional>
 
 #include "geometry/primitives.hpp"
-#include "volume/columns.hpp"
 #include "volume/contact_volume.hpp"
 #include "volume/mesh_mesh.hpp"
 
 namespace vcontact::volume {
 
-/// The method used when none is asked for: analytic for a primitive against a half-space,
-/// the exact half-space clip for a mesh against a half-space, the exact local surface
-/// integration (fast, mesh_mesh.hpp) for two meshes.
-/// @throws InputError when no backend in this build handles the pair
+/// How a query is computed.
+struct QueryOptions {
+  /// The method (default: defaultMethod, or defaultDepthFieldMethod when a depth field is
+  /// asked for).
+  std::optional<Method> method;
+  /// > 0: sample a method's grid at this many lines per side, never refined, so that every
+  /// query costs the same (a simulation's right-hand side) and gives no error estimate;
+  /// 0: the method's own refinement. Methods without a grid ignore it.
+  int fixed_resolution = 0;
+};
+
+/// The method used when none is asked for: the first default row of the table that takes
+/// the pair (analytic for a primitive against a half-space, the exact half-space clip for a
+/// mesh against a half-space, the exact local surface integration (fast, mesh_mesh.hpp) for
+/// two meshes).
+/// @throws InputError when no default method handles the pair
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 
-/// Does `method` compute the contact of these shapes (whatever their poses)? analytic: a
-/// sphere, cylinder or box against a half-space; halfspace: a mesh against a half-space; cgal:
-/// two meshes, or a mesh and a half-space; fast: two meshes; columns: two meshes, or a mesh
-/// and a half-space. Either order.
+/// The first method of the table that fills a depth field and takes the pair (columns).
+/// @throws InputError when no such method handles the pair
+Method defaultDepthFieldMethod(const geometry::Shape& a, const geometry::Shape& b);
+
+/// Does `method` compute the contact of these shapes (whatever their poses)? The row's
+/// predicate (methods.hpp): analytic: a sphere, cylinder or box against a half-space;
+/// halfspace: a mesh against a half-space; cgal: two meshes, or a mesh and a half-space; fast:
+/// two meshes; columns: two meshes, or a mesh and a half-space. Either order.
 bool handles(Method method, const geometry::Shape& a, const geometry::Shape& b);
 /// Throws the InputError a query by `method` would throw for these shapes (naming both and
 /// what the method computes) unless it handles them: for readers that check before a run.
 void requireHandles(Method method, const geometry::Shape& a, const geometry::Shape& b);
+
+/// Can `method` fill a DepthField (its row's fills_depth_field)?
+bool fillsDepthField(Method method);
 
 /// What a pair of shapes keeps between queries at nearby poses (one per pair and thread;
 /// used by the methods that gain from it: `fast`, MeshMeshCache).
@@ -33,23 +53,16 @@ struct ContactCache {
   MeshMeshCache meshMesh;
 };
 
-/// ContactVolume of A (B1) and B (B2) by `method` (default: defaultMethod). `fast` takes
-/// two meshes only: a mesh against a half-space is refused (the halfspace clip is the exact
-/// method for it).
+/// ContactVolume of A (B1) and B (B2) by options.method. `fast` takes two meshes only: a mesh
+/// against a half-space is refused (the halfspace clip is the exact method for it).
+/// @param field  if not null, filled with the δ samples of the contact (left as it was when
+///               the bodies are apart); the method must fill depth fields (fillsDepthField)
 /// @param cache  if not null, the pair's memory between queries (ContactCache)
-/// @throws InputError when the method does not handle the pair, naming both shapes
+/// @throws InputError when the method does not handle the pair, naming both shapes, or
+///         cannot fill the depth field asked for
 ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             std::optional<Method> method = std::nullopt,
+                             const QueryOptions& options = {}, DepthField* field = nullptr,
                              ContactCache* cache = nullptr);
-
-/// The column method with its δ map (MODEL.md §1): A and B each a mesh or a half-space, at
-/// least one a mesh.
-/// @param[out] field  the δ map of the finest grid
-/// @param options      grid and tolerance (default: refined to 1e-3)
-/// @throws InputError when the pair is not handled, naming both shapes
-ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             ColumnField* field, const ColumnOptions& options = {});
 
 }  // namespace vcontact::volume

@@ -1,39 +1,21 @@
 #include "volume/contact_volume.hpp"
 
+#include <cassert>
 #include <cmath>
 
-#include "geometry/error.hpp"
-
 namespace vcontact::volume {
+namespace {
 
-std::string methodName(Method method) {
-  switch (method) {
-    case Method::kAnalytic:
-      return "analytic";
-    case Method::kHalfspace:
-      return "halfspace";
-    case Method::kCgal:
-      return "cgal";
-    case Method::kFast:
-      return "fast";
-    case Method::kColumns:
-      return "columns";
-  }
-  return "unknown";
-}
+/// |‖n‖ − 1| a unit normal may show after normalisation and a rotation: a few ulps; 1e-12
+/// leaves room for the products of up to a few thousand roundings.
+constexpr double kUnitTolerance = 1e-12;
 
-Method parseMethod(const std::string& name) {
-  for (Method m :
-       {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast, Method::kColumns}) {
-    if (methodName(m) == name) return m;
-  }
-  throw InputError("--method", "unknown method '" + name +
-                                   "'; expected analytic, halfspace, cgal, fast or columns");
-}
+}  // namespace
 
 ContactVolume assembleContactVolume(double V, const Eigen::Vector3d& p_c,
                                     const Eigen::Matrix3d& Sigma, const Eigen::Vector3d& n,
                                     double area, double depth, Method method) {
+  assert(V > 0.0 && std::abs(n.norm() - 1.0) < kUnitTolerance);
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d S = 0.5 * (Sigma + Sigma.transpose());
   const Eigen::Matrix3d P = I - n * n.transpose();
@@ -49,6 +31,22 @@ ContactVolume assembleContactVolume(double V, const Eigen::Vector3d& p_c,
   cv.r_gyr = std::sqrt(std::max(0.0, n.dot(cv.J_s * n)) / V);
   cv.method = method;
   return cv;
+}
+
+ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector3d& p_Wo,
+                                 const Eigen::Vector3d& n, double area, double depth,
+                                 Method method) {
+  return assembleContactVolume(M.m0, p_Wo + M.centroid(), M.centralSecondMoment(), n, area, depth,
+                               method);
+}
+
+ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector3d& p_Fo,
+                                 const Eigen::Isometry3d& X_WF, const Eigen::Vector3d& n,
+                                 double area, double depth, Method method) {
+  const Eigen::Matrix3d R_WF = X_WF.linear();
+  return assembleContactVolume(M.m0, X_WF * p_Fo + R_WF * M.centroid(),
+                               R_WF * M.centralSecondMoment() * R_WF.transpose(), n, area, depth,
+                               method);
 }
 
 ContactVolume swapped(ContactVolume cv) {

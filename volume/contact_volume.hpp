@@ -8,14 +8,20 @@
 #include <Eigen/Core>
 #include <limits>
 #include <string>
+#include <vector>
+
+#include "geometry/moments.hpp"
 
 namespace vcontact::volume {
 
+/// The key of a row of the method table (volume/methods.hpp), which alone maps it to its
+/// name and backend.
 enum class Method { kAnalytic, kHalfspace, kCgal, kFast, kColumns };
 
-/// "analytic", "halfspace", "cgal", "fast", "columns".
+/// The row's name ("analytic", "halfspace", ...).
 std::string methodName(Method method);
-/// Inverse of methodName; throws InputError naming the accepted values.
+/// Inverse of methodName.
+/// @throws InputError naming the table's methods when `name` is none of them
 Method parseMethod(const std::string& name);
 
 struct ContactVolume {
@@ -31,10 +37,17 @@ struct ContactVolume {
   /// Estimated relative error of V from the method itself (quadrature, grid); NaN where the
   /// method is exact for the shapes it was given (closed forms, polyhedral clips).
   double relative_error = std::numeric_limits<double>::quiet_NaN();
-  /// True when J_s was approximated by J_v (Boos); false when computed as defined.
-  bool J_s_approximated = false;
 
   bool inContact() const { return volume > 0.0; }
+};
+
+/// The penetration depth δ(s) sampled on the contact plate S (MODEL.md §1, V = ∫_S δ dS),
+/// for a force law integrated pointwise over the plate; filled by the methods that sample it
+/// (methods.hpp, fills_depth_field).
+struct DepthField {
+  std::vector<Eigen::Vector3d> points_W;  ///< where each sample's column meets the plate S, m
+  std::vector<double> depth;              ///< δ along n, m (> 0)
+  double cell_area = 0.0;                 ///< dS of every sample's cell on the plate, m²
 };
 
 /// Fills a ContactVolume from the region's central moments, all in W.
@@ -46,6 +59,27 @@ struct ContactVolume {
 ContactVolume assembleContactVolume(double V, const Eigen::Vector3d& p_c,
                                     const Eigen::Matrix3d& Sigma, const Eigen::Vector3d& n,
                                     double area, double depth, Method method);
+
+/// The contact of a region from its raw moments M about a point o (MODEL.md §1):
+///   p_c = o + c,  c = m1 / m0;   Σ = m2 − m0 c cᵀ (the central second moment);
+/// then assembleContactVolume(m0, p_c, Σ, n, ...).
+/// @param M    moments about o, W axes
+/// @param p_Wo o in W
+/// @pre M.m0 > 0, n unit
+ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector3d& p_Wo,
+                                 const Eigen::Vector3d& n, double area, double depth,
+                                 Method method);
+
+/// The same for moments taken in the axes of a frame F: p_c = X_WF o_F + R_WF c,
+/// Σ_W = R_WF Σ_F R_WFᵀ (o and c are mapped separately, so that c keeps its digits when o is
+/// far from the region).
+/// @param M    moments about o, F axes
+/// @param p_Fo o in F
+/// @param X_WF pose of F in W
+/// @pre M.m0 > 0, n unit
+ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector3d& p_Fo,
+                                 const Eigen::Isometry3d& X_WF, const Eigen::Vector3d& n,
+                                 double area, double depth, Method method);
 
 /// The same contact seen with the bodies swapped: the normal flips, nothing else changes.
 ContactVolume swapped(ContactVolume cv);

@@ -3,6 +3,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 
+#include <Eigen/Geometry>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -67,6 +69,7 @@ int orient3d(const Vector3d& a, const Vector3d& b, const Vector3d& c, const Vect
 
 int perturbedSegmentCrossing(const Vector3d& p, const Vector3d& q, const Vector3d& a,
                              const Vector3d& b, const Vector3d& c, int s, int knownP, int knownQ) {
+  assert(!Vector3d((b - a).cross(c - a)).isZero(0.0));
   const int sp = knownP != 0 ? knownP : perturbedPointSide(a, b, c, p, s);
   const int sq = knownQ != 0 ? knownQ : perturbedPointSide(a, b, c, q, s);
   // Both ends share the translation, so an edge lying in the plane stays on one side.

@@ -1,10 +1,13 @@
 #include "volume/halfspace_clip.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
+#include <variant>
 #include <vector>
 
+#include "volume/bvh_cache.hpp"
 #include "volume/stamp_set.hpp"
 
 namespace vcontact::volume {
@@ -346,13 +349,8 @@ ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,
                                         const Eigen::Isometry3d& X_WH, Method method) {
   const geometry::Moments& M = clipped.moments;
   if (!(M.m0 > 0.0)) return ContactVolume{.method = method};
-  const Vector3d c_o = M.m1 / M.m0;  // centroid relative to o, H axes
-  const Eigen::Matrix3d Sigma_H = M.m2 - M.m0 * c_o * c_o.transpose();
-  const Eigen::Matrix3d R_WH = X_WH.linear();
-  ContactVolume cv = assembleContactVolume(M.m0, X_WH * clipped.origin + R_WH * c_o,
-                                           R_WH * Sigma_H * R_WH.transpose(), R_WH.col(2),
-                                           clipped.area, clipped.depth, method);
-  return cv;
+  return contactFromMoments(M, clipped.origin, X_WH, X_WH.linear().col(2), clipped.area,
+                            clipped.depth, method);
 }
 
 ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
@@ -365,6 +363,17 @@ ContactVolume meshHalfspaceContact(const MeshBvh& bvh, const Eigen::Isometry3d& 
                                    const Eigen::Isometry3d& X_WH) {
   return contactFromClippedMoments(clipMeshByHalfspace(bvh, X_WH.inverse() * X_WM), X_WH,
                                    Method::kHalfspace);
+}
+
+ContactVolume halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                                   const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+  if (const auto* mesh = std::get_if<geometry::Mesh>(&a)) {
+    assert(std::holds_alternative<geometry::HalfSpace>(b));
+    return meshHalfspaceContact(*bvhOf(mesh->mesh), X_WA, X_WB);
+  }
+  assert(std::holds_alternative<geometry::HalfSpace>(a) &&
+         std::holds_alternative<geometry::Mesh>(b));
+  return swapped(meshHalfspaceContact(*bvhOf(std::get<geometry::Mesh>(b).mesh), X_WB, X_WA));
 }
 
 }  // namespace vcontact::volume

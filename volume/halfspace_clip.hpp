@@ -6,6 +6,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/moments.hpp"
+#include "geometry/primitives.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "volume/contact_volume.hpp"
 
@@ -44,6 +45,12 @@ ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
 /// As above, by the accelerated clip.
 ContactVolume meshHalfspaceContact(const geometry::MeshBvh& bvh, const Eigen::Isometry3d& X_WM,
                                    const Eigen::Isometry3d& X_WH);
+
+/// The method table's backend of `halfspace` (methods.hpp): a mesh (B1 or B2, its tree from
+/// bvh_cache.hpp) against a half-space, by the accelerated clip, in either order.
+/// @pre one of a, b a mesh and the other a half-space
+ContactVolume halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                                   const geometry::Shape& b, const Eigen::Isometry3d& X_WB);
 
 /// Turns moments about o in H into a ContactVolume in W with n = +z_H (half-space is B2).
 ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,

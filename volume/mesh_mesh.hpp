@@ -3,7 +3,8 @@
 // method): the moments of A ∩ B are summed over the boundary of the region,
 // ∂(A ∩ B) = (∂A ∩ B) ∪ (∂B ∩ A), without building the region as a mesh.
 //
-// Steps:
+// Steps (1: tree_pair_descent.hpp, triangle_pair.hpp; 2 and 4: mesh_mesh.cpp; 3:
+// mesh_mesh_boundary.cpp):
 //  1. Broad phase: the two bounding-volume trees are descended together, both nodes of a
 //     pair split at once (A's boxes taken into B's frame, each node once per query; box and
 //     normal-slab bounds); or, with a MeshMeshCache, the leaf pairs recorded at a nearby pose
@@ -42,6 +43,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/mesh_topology.hpp"
+#include "geometry/primitives.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::volume {
@@ -92,5 +94,12 @@ ContactVolume meshMeshContact(const geometry::MeshBvh& a, const geometry::MeshTo
                               const Eigen::Isometry3d& X_WA, const geometry::MeshBvh& b,
                               const geometry::MeshTopology& topoB, const Eigen::Isometry3d& X_WB,
                               MeshMeshCache* cache = nullptr);
+
+/// The method table's backend of `fast` (methods.hpp): meshMeshContact of two mesh shapes,
+/// their trees and topologies from bvh_cache.hpp and mesh_topology_cache.hpp.
+/// @pre a and b both meshes
+ContactVolume fastContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                          const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                          MeshMeshCache* cache);
 
 }  // namespace vcontact::volume

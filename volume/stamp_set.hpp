@@ -5,6 +5,7 @@
 // mesh and thread, so a query costs what it touches, not the mesh's size.
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <vector>
 
@@ -53,7 +54,10 @@ class StampedValues {
     return values_[static_cast<std::size_t>(i)];
   }
   /// Slot i's value. @pre contains(i)
-  T& operator[](int i) { return values_[static_cast<std::size_t>(i)]; }
+  T& operator[](int i) {
+    assert(contains(i));
+    return values_[static_cast<std::size_t>(i)];
+  }
 
  private:
   StampSet set_;

@@ -22,6 +22,7 @@
 #include "geometry/tessellate.hpp"
 #include "support/test_support.hpp"
 #include "validation/punch_friction.hpp"
+#include "volume/columns.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
@@ -191,7 +192,7 @@ double equalAreaRadius() {
 
 struct PunchContact {
   volume::ContactVolume cv;
-  volume::ColumnField field;
+  volume::DepthField field;
   Eigen::Isometry3d X_WH;  ///< plate frame: its z is n
 };
 
@@ -275,7 +276,7 @@ TEST(DistributedFriction, ColumnsPunchMatchesTheClosedFormWithinTheGridError) {
 
 TEST(DistributedFriction, RejectsAFieldOfAnotherContactAndBadParameters) {
   const PunchContact& c = punchContact();
-  volume::ColumnField other = c.field;
+  volume::DepthField other = c.field;
   other.depth.back() *= 2.0;
   const RelativeMotion m = punchMotion(c, 1.0);
   EXPECT_THROW(distributedFriction(c.cv, other, {kKv, 0.0}, m, kMu, kVEps), std::invalid_argument);
@@ -444,11 +445,11 @@ FixedGridErrors fixedGridErrors(int lines) {
     const geometry::Mesh punch{turned, "punch"};
     Eigen::Isometry3d X_WP = ref.X_WH;
     X_WP.translation() = ref.X_WH * Vector3d(1.3e-4 * k, 0.0, 0.01 - kDepth);
-    volume::ColumnField field;
+    volume::DepthField field;
     const volume::ContactVolume cv = volume::columnsContact(
         punch, X_WP, geometry::HalfSpace{}, ref.X_WH, &field, volume::ColumnOptions::fixed(lines));
     const volume::ContactVolume exact = volume::computeContact(
-        punch, X_WP, geometry::HalfSpace{}, ref.X_WH, volume::Method::kHalfspace);
+        punch, X_WP, geometry::HalfSpace{}, ref.X_WH, {volume::Method::kHalfspace});
     worst.volume = std::max(worst.volume, std::abs(cv.volume / exact.volume - 1.0));
     for (double eps : {0.1, 5.0}) {
       PunchContact placed{cv, field, ref.X_WH};
@@ -502,7 +503,7 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
     X_WP.linear() = X_WH.linear() * Eigen::AngleAxisd(spin, Vector3d::UnitZ());
     X_WP.translation() = X_WH * (slide + Vector3d(0.0, 0.0, 0.01 - kDepth));
     Placed p{{}, {}, X_WP};
-    volume::ColumnField field;
+    volume::DepthField field;
     p.cv = volume::columnsContact(punch, X_WP, geometry::HalfSpace{}, X_WH, &field,
                                   volume::ColumnOptions::fixed(64));
     // The same motion in the punch's frame: sliding along its x at 0.05 m/s, spinning at
@@ -545,7 +546,7 @@ TEST(FixedColumnGrid, PlateAsEitherBody) {
     X_WP.translation() = X_WH * Vector3d(0.0, 0.0, 0.01 - kDepth);
     for (const volume::ColumnOptions& o :
          {volume::ColumnOptions::fixed(64), volume::ColumnOptions{}}) {
-      volume::ColumnField fieldAB, fieldBA;
+      volume::DepthField fieldAB, fieldBA;
       const volume::ContactVolume ab =
           volume::columnsContact(punch, X_WP, geometry::HalfSpace{}, X_WH, &fieldAB, o);
       const volume::ContactVolume ba =
@@ -570,7 +571,7 @@ TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
                              "punch"};
   Eigen::Isometry3d X_WP = ref.X_WH;
   X_WP.translation() = ref.X_WH * Vector3d(0.0, 0.0, 0.01 - kDepth);
-  volume::ColumnField field;
+  volume::DepthField field;
   const volume::ContactVolume cv = volume::columnsContact(
       punch, X_WP, geometry::HalfSpace{}, ref.X_WH, &field, volume::ColumnOptions::fixed(64));
   EXPECT_TRUE(std::isinf(cv.relative_error));
@@ -580,7 +581,7 @@ TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
   EXPECT_LE(field.depth.size(), 64u * 64u);
   EXPECT_GT(field.depth.size(), 0.7 * 64 * 64);
   // The plate as body A: the same columns, the normal out of B2 (the punch) into B1.
-  volume::ColumnField swappedField;
+  volume::DepthField swappedField;
   const volume::ContactVolume swapped =
       volume::columnsContact(geometry::HalfSpace{}, ref.X_WH, punch, X_WP, &swappedField,
                              volume::ColumnOptions::fixed(64));

@@ -48,13 +48,13 @@ TEST(ReportWriters, AFileThatCannotBeOpenedIsAnInputErrorNamingIt) {
   EXPECT_EQ(errorSource([&] { writeJson(nlohmann::json::object(), path); }), path);
   // The HTML is not built when the file does not open, so an empty input is never read.
   EXPECT_EQ(errorSource([&] { writeReportHtml(ReportInput{}, path); }), path);
-  EXPECT_EQ(errorSource([&] { writeDepthMapCsv(volume::ColumnField{}, path); }), path);
+  EXPECT_EQ(errorSource([&] { writeDepthMapCsv(volume::DepthField{}, path); }), path);
   EXPECT_EQ(errorSource([&] { writeFrictionMapCsv(validation::FrictionMap{}, path); }), path);
 }
 
 TEST(ReportWriters, DepthMapCsvHasOneRowPerColumnAtFullPrecision) {
   const fs::path path = tempFile("depth.csv");
-  volume::ColumnField field;
+  volume::DepthField field;
   field.points_W = {{0.1, -0.2, 0.3}, {1.0 / 3.0, 0.0, -1e-9}};
   field.depth = {2e-6, 0.7e-6};
   writeDepthMapCsv(field, path.string());

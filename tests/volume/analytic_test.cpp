@@ -335,7 +335,7 @@ TEST_P(AnalyticCylinderTilted, MatchesIndependentIntegrationUnderARigidMotion) {
                                R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() - ref.Sigma_C)) *
                                    R_WC.transpose()),
             kPromised);
-  EXPECT_NEAR(cv.normal.dot(X_WH.linear().col(2)), 1.0, 1e-15);
+  EXPECT_NEAR(cv.normal.dot(X_WH.linear().col(2)), 1.0, 1e-15);  // n is z_H: a dot product's ulps
 }
 
 TEST(AnalyticCylinder, TiltedPunchMatchesMODELClosedForm) {
@@ -379,7 +379,7 @@ TEST(AnalyticBox, FaceDown) {
     EXPECT_NEAR(cv.volume / (0.03 * 0.05 * dUsed), 1.0, 1e-12);
     AccuracyLog::record("box face-down V", cv.volume / (0.03 * 0.05 * dUsed) - 1.0);
     EXPECT_NEAR(cv.r_gyr * cv.r_gyr / ((0.03 * 0.03 + 0.05 * 0.05) / 12), 1.0, 1e-12);
-    EXPECT_NEAR(cv.centroid.z(), -dUsed / 2, 1e-12 * dUsed);
+    EXPECT_NEAR(cv.centroid.z(), -dUsed / 2, 1e-12 * dUsed);  // as V: an exact clip's rounding
   }
 }
 
@@ -397,7 +397,7 @@ TEST(AnalyticBox, CornerDown) {
     EXPECT_NEAR(cv.volume / (std::sqrt(3.0) / 2 * dUsed * dUsed * dUsed), 1.0, 1e-9);
     AccuracyLog::record("box corner-down V",
                         cv.volume / (std::sqrt(3.0) / 2 * dUsed * dUsed * dUsed) - 1.0);
-    EXPECT_NEAR(cv.centroid.z(), -dUsed / 4, 1e-9 * dUsed);
+    EXPECT_NEAR(cv.centroid.z(), -dUsed / 4, 1e-9 * dUsed);  // as V above: the turned pose
   }
 }
 

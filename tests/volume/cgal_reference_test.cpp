@@ -91,6 +91,7 @@ TEST(CgalReference, OverlappingBoxesClosedForm) {
       assembleContactVolume(V, X_WB * (offset + Vector3d(0, 0, 0.5 * (b.z() - d))),
                             R * Sigma_B * R.transpose(), R.col(2), a.x() * a.y(), d, Method::kCgal);
   expectSameContact(cv, expected);
+  // Exact constructions, rounded once to double: far below 1e-9 of the box's own size.
   EXPECT_NEAR(cv.area, expected.area, 1e-9 * expected.area);
   EXPECT_NEAR(cv.depth, d, 1e-9 * d);
 }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
 #include "volume/bvh_cache.hpp"
+#include "volume/columns.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/methods.hpp"
 #include "volume_fixtures.hpp"
 
 namespace vcontact::volume {
@@ -41,6 +44,7 @@ TEST(ComputeContact, HalfspaceInEitherOrder) {
   EXPECT_EQ(ab.method, Method::kHalfspace);
   EXPECT_NEAR(ab.volume, ref.volume, 1e-12 * ref.volume);
   EXPECT_NEAR(ba.volume, ref.volume, 1e-12 * ref.volume);
+  // The normal is z_H itself (MODEL.md §1: the half-space's): copied, or negated, exactly.
   EXPECT_LE((ab.normal - X_WH.linear().col(2)).norm(), 1e-15);
   EXPECT_LE((ba.normal + X_WH.linear().col(2)).norm(), 1e-15);
 }
@@ -58,8 +62,9 @@ TEST(ComputeContact, MeshPairMethods) {
   const Isometry3d X_WP = test::translation({0.0004, 0.0, 0.003});
   EXPECT_EQ(defaultMethod(peg, ring), Method::kFast);
   const ContactVolume col =
-      computeContact(peg, X_WP, ring, Isometry3d::Identity(), Method::kColumns);
-  const ContactVolume cgal = computeContact(peg, X_WP, ring, Isometry3d::Identity(), Method::kCgal);
+      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kColumns});
+  const ContactVolume cgal =
+      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kCgal});
   ASSERT_GT(cgal.volume, 0.0);
   EXPECT_EQ(col.method, Method::kColumns);
   EXPECT_EQ(cgal.method, Method::kCgal);
@@ -70,16 +75,18 @@ TEST(ComputeContact, UnhandledPairsNameBothShapes) {
   const geometry::Shape torus = torusShape();
   const Isometry3d I = Isometry3d::Identity();
   try {
-    computeContact(torus, I, geometry::HalfSpace{}, I, Method::kFast);
+    computeContact(torus, I, geometry::HalfSpace{}, I, {Method::kFast});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("torus"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("--method fast"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("torus"), std::string::npos) << what;
+    EXPECT_EQ(e.source(), "volume method fast") << what;  // the quantity, never a CLI flag
+    EXPECT_NE(what.find("; it intersects two meshes"), std::string::npos) << what;
   }
   EXPECT_THROW(
-      computeContact(geometry::Sphere{0.01}, I, geometry::HalfSpace{}, I, Method::kColumns),
+      computeContact(geometry::Sphere{0.01}, I, geometry::HalfSpace{}, I, {Method::kColumns}),
       InputError);
-  EXPECT_THROW(computeContact(geometry::Sphere{0.01}, I, torus, I, Method::kCgal), InputError);
+  EXPECT_THROW(computeContact(geometry::Sphere{0.01}, I, torus, I, {Method::kCgal}), InputError);
 }
 
 // handles() is what the readers check before a run; it must say exactly what a query does:
@@ -91,31 +98,118 @@ TEST(ComputeContact, HandlesSaysWhatTheQueryDoes) {
       geometry::Sphere{0.01}, geometry::Cylinder{0.01, 0.02},
       geometry::Box{Vector3d(0.01, 0.02, 0.03)}, geometry::HalfSpace{}, torusShape()};
   const Isometry3d far = test::translation({0.0, 0.0, 0.5});
-  int handled = 0;
-  for (Method m :
-       {Method::kAnalytic, Method::kHalfspace, Method::kCgal, Method::kFast, Method::kColumns}) {
+  ASSERT_FALSE(methodTable().empty());
+  for (const MethodRow& row : methodTable()) {
+    int handled = 0;
     for (const auto& a : shapes) {
       for (const auto& b : shapes) {
-        const std::string what =
-            methodName(m) + ": " + geometry::describe(a) + " against " + geometry::describe(b);
+        const std::string what = std::string(row.name) + ": " + geometry::describe(a) +
+                                 " against " + geometry::describe(b);
         bool queried = true;
         try {
-          computeContact(a, far, b, Isometry3d::Identity(), m);
+          computeContact(a, far, b, Isometry3d::Identity(), {row.id});
         } catch (const InputError&) {
           queried = false;
         }
-        EXPECT_EQ(handles(m, a, b), queried) << what;
+        EXPECT_EQ(row.handles(a, b), queried) << what;
+        EXPECT_EQ(handles(row.id, a, b), queried) << what;
+        EXPECT_EQ(row.handles(b, a), queried) << what << " (either order)";
         if (queried) {
-          EXPECT_NO_THROW(requireHandles(m, a, b)) << what;
+          EXPECT_NO_THROW(requireHandles(row.id, a, b)) << what;
           ++handled;
         } else {
-          EXPECT_THROW(requireHandles(m, a, b), InputError) << what;
+          EXPECT_THROW(requireHandles(row.id, a, b), InputError) << what;
         }
       }
     }
+    EXPECT_GT(handled, 0) << row.name << " takes no pair of the five shape kinds";
   }
-  // analytic 6, halfspace 2, cgal 3, fast 1, columns 3 (two half-spaces are no pair for it).
-  EXPECT_EQ(handled, 15);
+}
+
+// The table maps each method once: its name parses back to it, a query reports it, and an
+// unknown name is refused naming every method of the table.
+TEST(MethodTable, NamesRoundTrip) {
+  std::string all;
+  for (const MethodRow& row : methodTable()) {
+    EXPECT_EQ(methodName(row.id), row.name);
+    EXPECT_EQ(parseMethod(std::string(row.name)), row.id);
+    EXPECT_EQ(&methodRow(row.id), &row);
+  }
+  const std::string msg = test::inputErrorMessage([] { parseMethod("sdf"); });
+  for (const MethodRow& row : methodTable()) {
+    EXPECT_NE(msg.find(std::string(row.name)), std::string::npos) << msg;
+  }
+  EXPECT_EQ(msg.find("--"), std::string::npos) << msg;  // no CLI flag below cli/
+}
+
+// defaultMethod is the first default row that takes the pair, for every ordered pair, and a
+// pair no default row takes is refused; likewise defaultDepthFieldMethod among the rows that
+// fill a depth field.
+TEST(MethodTable, DefaultsAreTheFirstRowThatTakesThePair) {
+  const std::vector<geometry::Shape> shapes = {
+      geometry::Sphere{0.01}, geometry::Cylinder{0.01, 0.02},
+      geometry::Box{Vector3d(0.01, 0.02, 0.03)}, geometry::HalfSpace{}, torusShape()};
+  for (const auto& a : shapes) {
+    for (const auto& b : shapes) {
+      const std::string what = geometry::describe(a) + " against " + geometry::describe(b);
+      const MethodRow* byDefault = nullptr;
+      const MethodRow* withField = nullptr;
+      for (const MethodRow& row : methodTable()) {
+        if (!row.handles(a, b)) continue;
+        if (row.is_default && !byDefault) byDefault = &row;
+        if (row.fills_depth_field && !withField) withField = &row;
+      }
+      if (byDefault) {
+        EXPECT_EQ(defaultMethod(a, b), byDefault->id) << what;
+      } else {
+        EXPECT_THROW(defaultMethod(a, b), InputError) << what;
+      }
+      if (withField) {
+        EXPECT_EQ(defaultDepthFieldMethod(a, b), withField->id) << what;
+      } else {
+        EXPECT_THROW(defaultDepthFieldMethod(a, b), InputError) << what;
+      }
+    }
+  }
+}
+
+// A depth field through the one entry point: by default from the first method that samples
+// one, the same as the backend's own call; a method that samples none refuses it; a fixed
+// resolution is one grid of that many lines (no estimate, inf).
+TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
+  const geometry::Shape torus = torusShape();
+  const Isometry3d X_WH = test::randomPose(5);
+  const Isometry3d X_WM = X_WH * test::translation({0.001, 0.0, 0.0071 - 0.002});
+  const geometry::Shape plane = geometry::HalfSpace{};
+  DepthField field;
+  const ContactVolume cv = computeContact(torus, X_WM, plane, X_WH, {}, &field);
+  DepthField direct;
+  const ContactVolume ref = columnsContact(torus, X_WM, plane, X_WH, &direct);
+  ASSERT_GT(ref.volume, 0.0);
+  EXPECT_TRUE(fillsDepthField(cv.method));
+  // The same backend on the same grids; 1e-12 for the order of TBB's parallel sums.
+  EXPECT_NEAR(cv.volume, ref.volume, 1e-12 * ref.volume);
+  ASSERT_FALSE(field.depth.empty());
+  EXPECT_EQ(field.depth, direct.depth);
+  EXPECT_EQ(field.cell_area, direct.cell_area);
+  double sum = 0.0;
+  for (double d : field.depth) sum += d * field.cell_area;
+  EXPECT_NEAR(sum, cv.volume, 1e-12 * cv.volume);  // V = Σ δ dS, up to the summation order
+
+  DepthField fixed;
+  const int lines = 32;
+  const ContactVolume coarse = computeContact(
+      torus, X_WM, plane, X_WH, {.method = cv.method, .fixed_resolution = lines}, &fixed);
+  EXPECT_TRUE(std::isinf(coarse.relative_error));
+  EXPECT_LE(fixed.depth.size(), std::size_t(lines * lines));
+  EXPECT_GT(fixed.depth.size(), 0u);
+
+  for (const MethodRow& row : methodTable()) {
+    if (row.fills_depth_field || !row.handles(torus, plane)) continue;
+    DepthField none;
+    EXPECT_THROW(computeContact(torus, X_WM, plane, X_WH, {row.id}, &none), InputError) << row.name;
+    EXPECT_TRUE(none.depth.empty()) << row.name;
+  }
 }
 
 // The tree is built once per mesh and shared.

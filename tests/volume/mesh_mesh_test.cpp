@@ -236,7 +236,7 @@ TEST(FastMeshMesh, InvariantUnderMovingBothBodies) {
     ASSERT_GT(ref.volume, 0.0);
     EXPECT_NEAR(moved.volume, ref.volume, kTol * ref.volume);
     EXPECT_LE((moved.centroid - P * ref.centroid).norm(),
-              kTol * std::cbrt(ref.volume) + 1e-15 * 0.37);
+              kTol * std::cbrt(ref.volume) + 1e-15 * 0.37);  // + a few ulps of |P|'s 0.37 m
     EXPECT_LE((moved.normal - P.linear() * ref.normal).norm(), kTol);
     const Eigen::Matrix3d R = P.linear();
     EXPECT_LE(test::relativeDifference(moved.J_v, R * ref.J_v * R.transpose()), kTol);
@@ -295,7 +295,7 @@ TEST(FastMeshMesh, BodyWhollyInside) {
     EXPECT_NEAR(f->volume, c.volume, kVolumeTol * c.volume);
     EXPECT_LE((f->centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
     EXPECT_LE(test::relativeDifference(f->J_v, c.J_v), kMomentTol);
-    EXPECT_NEAR(f->normal.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(f->normal.norm(), 1.0, 1e-15);  // normalised: an ulp or two
   }
   EXPECT_LE((in.normal - in.centroid.normalized()).norm(), 1e-12);  // big is centred at 0
   EXPECT_LE((out.normal - (out.centroid - X_WS.translation()).normalized()).norm(), 1e-12);
@@ -343,6 +343,7 @@ TEST(FastMeshMesh, CoplanarFacesMatchCgal) {
         swap ? cgalMeshMeshContact(b.mesh(), Isometry3d::Identity(), a.mesh(), X_WA)
              : cgalMeshMeshContact(a.mesh(), X_WA, b.mesh(), Isometry3d::Identity());
     expectFinite(f);
+    // Axis-aligned boxes: the exact slab up to the fan sums' rounding.
     EXPECT_NEAR(f.volume, 0.02 * 0.02 * 0.003, 1e-12 * f.volume);
     EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
     EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
@@ -364,7 +365,7 @@ TEST(FastMeshMesh, IdenticalMeshesAtIdenticalPoses) {
     M += geometry::tetrahedronMoments(X.translation(), X * torus.mesh().corner(t, 0),
                                       X * torus.mesh().corner(t, 1), X * torus.mesh().corner(t, 2));
   }
-  EXPECT_NEAR(f.volume, M.m0, 1e-12 * M.m0);
+  EXPECT_NEAR(f.volume, M.m0, 1e-12 * M.m0);  // the same fan, summed in another order
   const ContactVolume c = cgalMeshMeshContact(torus.mesh(), X, torus.mesh(), X);
   EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
   EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
@@ -407,10 +408,11 @@ TEST(FastMeshMesh, VertexExactlyOnAFace) {
     const ContactVolume c = swap ? cgalMeshMeshContact(box.mesh(), I, half.mesh(), I)
                                  : cgalMeshMeshContact(half.mesh(), I, box.mesh(), I);
     expectFinite(f);
-    EXPECT_NEAR(f.volume, 2.0 / 3.0 * a * a * a, 1e-12 * f.volume);
+    EXPECT_NEAR(f.volume, 2.0 / 3.0 * a * a * a, 1e-12 * f.volume);  // polyhedral: rounding
     EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
     EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
     EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
+    // n from area vectors of faces in axis planes: exact up to their sums' rounding.
     EXPECT_LE((f.normal - (swap ? -1.0 : 1.0) * Vector3d::UnitZ()).norm(), 1e-12);
   }
   const Body apex(test::octahedron(Vector3d(0.0031, -0.0027, 0.01 + a), a));
@@ -436,10 +438,10 @@ TEST(FastMeshMesh, Dispatcher) {
   ASSERT_GT(f.volume, 0.0);
   EXPECT_EQ(d.volume, f.volume);
   const std::string msg = test::inputErrorMessage([&] {
-    computeContact(s, X_WA, geometry::HalfSpace{}, Isometry3d::Identity(), Method::kFast);
+    computeContact(s, X_WA, geometry::HalfSpace{}, Isometry3d::Identity(), {Method::kFast});
   });
   EXPECT_NE(msg.find("ball"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("--method fast"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("volume method fast"), std::string::npos) << msg;
 }
 
 }  // namespace
