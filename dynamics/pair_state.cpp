@@ -1,5 +1,6 @@
 #include "dynamics/pair_state.hpp"
 
+#include <cassert>
 #include <stdexcept>
 
 namespace vcontact::dynamics {
@@ -32,6 +33,15 @@ std::vector<std::string> StateLayout::valueNames() const {
     for (const char* axis : {"x", "y", "z"}) names.push_back(e.slot.name + axis);
   }
   return names;
+}
+
+std::string StateLayout::describe(int i) const {
+  assert(i >= 0 && i < size_);
+  const std::vector<std::string> names = valueNames();
+  for (const Entry& e : entries_) {
+    if (i < e.offset + e.slot.size()) return e.effect + " state " + names[std::size_t(i)];
+  }
+  return {};
 }
 
 }  // namespace vcontact::dynamics

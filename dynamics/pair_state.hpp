@@ -90,6 +90,9 @@ class StateLayout {
   int offsetOf(const std::string& id) const;
   /// One name per value: a scalar's name, a plane vector's name + "x", "y", "z".
   std::vector<std::string> valueNames() const;
+  /// "<effect> state <value name>" for value i, e.g. "bristle state theta_n".
+  /// @pre 0 ≤ i < size()
+  std::string describe(int i) const;
 
  private:
   std::vector<Entry> entries_;

@@ -364,7 +364,7 @@ SimulationError Simulator::stepCollapse(double t, double h, const std::string& d
   return SimulationError(t, s.str());
 }
 
-// "body 'name' (velocity)" or "pair 'name' (bristle state)" for state index i.
+// "body 'name' (velocity)" or "pair 'name' (bristle state zx)" for state index i.
 std::string Simulator::stateOwner(std::size_t i) const {
   for (std::size_t b = 0; b < offset_.size(); ++b) {
     if (offset_[b] < 0 || i < static_cast<std::size_t>(offset_[b]) ||
@@ -381,10 +381,10 @@ std::string Simulator::stateOwner(std::size_t i) const {
            ")";
   }
   for (std::size_t k = 0; k < pair_offset_.size(); ++k) {
-    if (i >= static_cast<std::size_t>(pair_offset_[k]) &&
-        i < static_cast<std::size_t>(pair_offset_[k] +
-                                     scenario_.pairs[k].model.stateLayout().size())) {
-      return "pair '" + scenario_.pairs[k].name + "' (friction state)";
+    const StateLayout& layout = scenario_.pairs[k].model.stateLayout();
+    const int j = static_cast<int>(i) - pair_offset_[k];
+    if (j >= 0 && j < layout.size()) {
+      return "pair '" + scenario_.pairs[k].name + "' (" + layout.describe(j) + ")";
     }
   }
   return "state " + std::to_string(i);

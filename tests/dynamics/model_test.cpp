@@ -80,6 +80,8 @@ TEST(StateLayout, NamesPlaneVectorComponentsByAxis) {
   EXPECT_EQ(layout.offsetOf("bristle"), 0);
   EXPECT_EQ(layout.offsetOf("dwell"), 4);
   EXPECT_EQ(layout.offsetOf("stiffness"), -1);
+  EXPECT_EQ(layout.describe(2), "bristle state zz");
+  EXPECT_EQ(layout.describe(4), "dwell state s_dw");
 }
 
 TEST(StateLayout, RefusesMoreStatesThanAPairStateHolds) {
