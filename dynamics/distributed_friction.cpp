@@ -50,10 +50,11 @@ DistributedFriction distributedFriction(const volume::ContactVolume& cv,
 
   const Vector3d& n = cv.normal;
   const Vector3d& p_c = cv.centroid;
-  // MODEL.md §2: δ̇_c = −v_c·n; §3: f_n = kv V (1 + a δ̇_c) clamped ≥ 0.
-  const double damping = std::max(0.0, 1.0 + law.a * -motion.v_c_W.dot(n));
-  const Vector3d v_t = motion.v_c_W - motion.v_c_W.dot(n) * n;
-  const Vector3d w_n = motion.w_W.dot(n) * n;  // ω_t × ρ is along n: no slip in the plate
+  const ContactKinematics k = resolve(motion, n);  // MODEL.md §2
+  // MODEL.md §3: f_n = kv V (1 + a δ̇_c) clamped ≥ 0.
+  const double damping = std::max(0.0, 1.0 + law.a * k.delta_dot);
+  const Vector3d& v_t = k.v_t_W;
+  const Vector3d w_n = k.omega_n * n;  // ω_t × ρ is along n: no slip in the plate
   Vector3d force = Vector3d::Zero(), torque = Vector3d::Zero();
   double f_n = 0.0;
   for (std::size_t i = 0; i < count; ++i) {

@@ -5,7 +5,8 @@
 //
 // Frames and units. Everything is in the world frame W, SI units. The contact plate S is the
 // plane through p_c normal to n (MODEL.md §1); a column of the δ map at world point q_W meets
-// S at s = p_c + ρ, ρ = P (q_W − p_c), P = I − n nᵀ. Forces act on B1; B2 gets the opposite.
+// S at s = p_c + ρ, ρ = P (q_W − p_c), P = I − n nᵀ. Forces act on body A;
+// body B gets the opposite.
 //
 //   pressure     p(s) = kv δ(s) max(0, 1 + a δ̇_c)                          [Pa]
 //                (∫_S p dS = kv V (1 + a δ̇_c) = the lumped f_n of stiffness + damping)
@@ -28,7 +29,7 @@ struct PressureLaw {
 };
 
 struct DistributedFriction {
-  Wrench wrench;           ///< friction force (in the plate) and torque about p_c (along n) on B1
+  Wrench wrench;           ///< on body A: friction force in the plate, torque about p_c along n
   double f_n = 0.0;        ///< ∫ p dS, N: equals the lumped f_n
   double cell_area = 0.0;  ///< dS of one column, m²
   int cells = 0;           ///< columns with δ > 0

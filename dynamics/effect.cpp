@@ -22,6 +22,11 @@ Eigen::Vector3d saturate(const Eigen::Vector3d& x, double max_norm) {
 
 double saturate(double x, double max_abs) { return std::clamp(x, -max_abs, max_abs); }
 
+const std::vector<StateSlot>& Effect::stateSlots() const {
+  static const std::vector<StateSlot> kNone;
+  return kNone;
+}
+
 void Effect::initialiseParameters(const std::vector<ParameterSpec>& specs) {
   values_.clear();
   for (const auto& s : specs) values_.push_back(s.default_value);

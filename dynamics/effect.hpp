@@ -15,10 +15,16 @@
 //      later stages read (f_n, s_μ, μ_max, C_v, C_ω, the bristle rates) and returns its own
 //      share of the wrench. The shares add up to the total wrench.
 //
-// Adding an effect is one new file in dynamics/effects/ plus one line in
-// dynamics/effects/registry.cpp; simulation, fitting and diagnosis then see it through Model.
+// An effect also owns what else is particular to it: its states (stateSlots, at the offset in
+// the pair state that the model gives it), the relations its parameters must keep with other
+// effects' (brokenRelation), and whether it works with distributed friction.
+//
+// Adding an effect is one new file in dynamics/effects/ (a class deriving from
+// dynamics/effects/effect_base.hpp) plus its id in the effect list of dynamics/CMakeLists.txt;
+// simulation, fitting and diagnosis then see it through Model.
 
 #include <Eigen/Geometry>
+#include <cassert>
 #include <memory>
 #include <span>
 #include <string>
@@ -26,10 +32,13 @@
 #include <vector>
 
 #include "dynamics/pair_state.hpp"
+#include "dynamics/relative_motion.hpp"
 #include "dynamics/wrench.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::dynamics {
+
+class Model;
 
 /// One named, bounded model parameter.
 struct ParameterSpec {
@@ -39,12 +48,6 @@ struct ParameterSpec {
   double lower;             ///< physical lower bound (inclusive)
   double upper;             ///< physical upper bound (inclusive)
   std::string description;  ///< one line
-};
-
-/// Velocity of the material point of B1 at p_c minus that of B2, and ω1 − ω2 (MODEL.md §2).
-struct RelativeMotion {
-  Eigen::Vector3d v_c_W = Eigen::Vector3d::Zero();  ///< m/s
-  Eigen::Vector3d w_W = Eigen::Vector3d::Zero();    ///< rad/s
 };
 
 /// Model settings that are not fitted parameters.
@@ -75,11 +78,11 @@ struct ContactContext {
   /// (dynamics/DISTRIBUTED_FRICTION.md): coulomb then integrates pointwise Coulomb friction
   /// over it, force and spin torque together, and spin adds nothing. Null: lumped friction.
   const volume::DepthField* field = nullptr;
-  PairState state;  ///< with z projected onto the contact plane
+  PairState state;  ///< with every plane vector projected onto the contact plane
   ModelSettings settings;
 
   // ---- kinematics at p_c (MODEL.md §2) ----
-  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();       ///< out of B2 into B1
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();       ///< out of body B into body A
   double delta_dot = 0.0;                             ///< −v_c·n, m/s
   Eigen::Vector3d v_t = Eigen::Vector3d::Zero();      ///< tangential slip, m/s
   double omega_n = 0.0;                               ///< spin ω·n, rad/s
@@ -105,9 +108,10 @@ struct ContactContext {
   double C_v = 1.0;        ///< Contensou factor on translation
   double C_w = 1.0;        ///< Contensou factor on spin
   double f_n = 0.0;        ///< normal force magnitude, N (≥ 0)
+  double theta_n = 0.0;    ///< θ_n from the bristle stage (its state), rad
   double theta_dot = 0.0;  ///< θ̇_n from the bristle stage, rad/s
 
-  PairStateRates rates;  ///< state rates, written by the effects that own the states
+  PairStateRates rates;  ///< state rates, each written by the effect that owns the state
 };
 
 /// The regularised direction, sign and saturation of MODEL.md §3.
@@ -127,6 +131,24 @@ class Effect {
   virtual std::vector<std::string_view> requiredEffects() const { return {}; }
   virtual std::unique_ptr<Effect> clone() const = 0;
 
+  /// The states this effect owns, in the order they sit in the pair state from
+  /// stateOffset() on (MODEL.md §3 "State handling").
+  virtual const std::vector<StateSlot>& stateSlots() const;
+  /// Index of this effect's first state in the pair state, given by the model that holds it.
+  int stateOffset() const { return state_offset_; }
+  void setStateOffset(int offset) { state_offset_ = offset; }
+
+  /// A relation between this effect's parameters and those of other effects in `model` that
+  /// the values break, in words naming both parameters; empty when it holds.
+  /// @pre the effects of requiredEffects() are in `model`
+  virtual std::string brokenRelation(const Model& /*model*/) const { return {}; }
+
+  /// Distributed friction (Model::checkDistributedFriction): does this effect integrate its
+  /// friction pointwise over the δ map (ContactContext::field)?
+  virtual bool integratesDistributedFriction() const { return false; }
+  /// Why this effect cannot be used with distributed friction; empty when it can.
+  virtual std::string_view distributedFrictionConflict() const { return {}; }
+
   /// Pass 1: write this effect's parameters into the context.
   virtual void configure(ContactContext& /*ctx*/) const {}
   /// Pass 2: refine derived quantities, write own state rates, return own wrench share.
@@ -135,15 +157,21 @@ class Effect {
   /// After an accepted integration step: discrete updates of this effect's states.
   virtual void settle(const ContactContext& /*ctx*/, PairState& /*state*/) const {}
   /// Before geometry: the payload pose actually used for the volume (misalignment).
-  virtual Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_W1,
-                                              const Eigen::Isometry3d& /*X_W2*/) const {
-    return X_W1;
+  virtual Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_WA,
+                                              const Eigen::Isometry3d& /*X_WB*/) const {
+    return X_WA;
   }
 
   std::span<const double> parameters() const { return values_; }
-  double parameter(std::size_t i) const { return values_[i]; }
+  double parameter(std::size_t i) const {
+    assert(i < values_.size());
+    return values_[i];
+  }
   /// @pre i < parameterSpecs().size(); bounds are checked by Model::setParameters
-  void setParameter(std::size_t i, double value) { values_[i] = value; }
+  void setParameter(std::size_t i, double value) {
+    assert(i < values_.size());
+    values_[i] = value;
+  }
 
  protected:
   /// Call from the derived constructor with the derived class's specs.
@@ -151,19 +179,7 @@ class Effect {
 
  private:
   std::vector<double> values_;
-};
-
-/// CRTP helper: id, specs, stage and clone from static members of the derived class.
-template <class Derived>
-class EffectBase : public Effect {
- public:
-  EffectBase() { initialiseParameters(Derived::specs()); }
-  std::string_view id() const override { return Derived::kId; }
-  const std::vector<ParameterSpec>& parameterSpecs() const override { return Derived::specs(); }
-  Stage stage() const override { return Derived::kStage; }
-  std::unique_ptr<Effect> clone() const override {
-    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
-  }
+  int state_offset_ = -1;  ///< −1 until a model holds the effect (or it has no states)
 };
 
 }  // namespace vcontact::dynamics

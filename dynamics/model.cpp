@@ -1,6 +1,7 @@
 #include "dynamics/model.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -16,6 +17,31 @@ const std::string kSource = "model";
 // A state jump below this (relative to the state's own scale) is round-off of the projection,
 // not a change the integrator needs to know about.
 constexpr double kSettleChangeTolerance = 1e-12;
+
+// The size of a settle jump: a plane vector's change relative to its length, a scalar's
+// absolute change, summed over the slots.
+double stateChange(const StateLayout& layout, const PairState& before, const PairState& after) {
+  double change = 0.0;
+  for (const StateLayout::Entry& e : layout.entries()) {
+    if (e.slot.kind == StateSlot::Kind::kPlaneVector) {
+      change += (after.vector(e.offset) - before.vector(e.offset)).norm() /
+                std::max(before.vector(e.offset).norm(), std::numeric_limits<double>::min());
+    } else {
+      change += std::abs(after[e.offset] - before[e.offset]);
+    }
+  }
+  return change;
+}
+
+// The registered effects that integrate distributed friction, as "a or b" (coulomb).
+std::string distributedFrictionIntegrators() {
+  std::string ids;
+  for (const auto& id : registeredEffectIds()) {
+    if (!createEffect(id)->integratesDistributedFriction()) continue;
+    ids += (ids.empty() ? "" : " or ") + id;
+  }
+  return ids;
+}
 
 std::string qualified(const Effect& e, const ParameterSpec& p) {
   std::ostringstream s;
@@ -58,6 +84,8 @@ void Model::add(std::unique_ptr<Effect> effect) {
   if (has(effect->id())) {
     throw InputError(kSource, "effect '" + std::string(effect->id()) + "' appears twice");
   }
+  effect->setStateOffset(stateLayout().offsetOf(std::string(effect->id())));
+  assert(effect->stateSlots().empty() || effect->stateOffset() >= 0);
   const auto after =
       std::upper_bound(effects_.begin(), effects_.end(), effect->stage(),
                        [](Stage s, const std::unique_ptr<Effect>& e) { return s < e->stage(); });
@@ -74,11 +102,9 @@ void Model::validate() const {
       throw InputError(kSource, s.str());
     }
   }
-  if (has("stribeck") && parameter("stribeck.mu_s") < parameter("coulomb.mu")) {
-    std::ostringstream s;
-    s << "stribeck.mu_s = " << parameter("stribeck.mu_s")
-      << " must be >= coulomb.mu = " << parameter("coulomb.mu") << " (MODEL.md section 3)";
-    throw InputError(kSource, s.str());
+  for (const auto& e : effects_) {
+    const std::string broken = e->brokenRelation(*this);
+    if (!broken.empty()) throw InputError(kSource, broken);
   }
 }
 
@@ -161,12 +187,14 @@ void Model::setFixed(std::vector<std::string> names) {
   fixed_ = std::move(names);
 }
 
-Eigen::Isometry3d Model::adjustPayloadPose(const Eigen::Isometry3d& X_W1,
-                                           const Eigen::Isometry3d& X_W2) const {
-  Eigen::Isometry3d X = X_W1;
-  if (!adjusts_pose_) return X;
-  for (const auto& e : effects_) X = e->adjustPayloadPose(X, X_W2);
-  return X;
+const StateLayout& Model::stateLayout() const { return registeredStateLayout(); }
+
+Eigen::Isometry3d Model::adjustPayloadPose(const Eigen::Isometry3d& X_WA,
+                                           const Eigen::Isometry3d& X_WB) const {
+  Eigen::Isometry3d X_WA_adjusted = X_WA;
+  if (!adjusts_pose_) return X_WA_adjusted;
+  for (const auto& e : effects_) X_WA_adjusted = e->adjustPayloadPose(X_WA_adjusted, X_WB);
+  return X_WA_adjusted;
 }
 
 // Pass 1 (configure) and the shared derivations of MODEL.md §2–3.
@@ -177,12 +205,15 @@ ContactContext Model::makeContext(const volume::ContactVolume& cv, const Relativ
   ctx.settings = settings;
   ctx.n = cv.normal;
   ctx.state = state;
-  ctx.state.z_W -= ctx.n * ctx.n.dot(state.z_W);  // z lives in the contact plane
-  const Eigen::Vector3d& v_c = motion.v_c_W;
-  ctx.delta_dot = -v_c.dot(ctx.n);
-  ctx.v_t = v_c - v_c.dot(ctx.n) * ctx.n;
-  ctx.omega_n = motion.w_W.dot(ctx.n);
-  ctx.omega_t = motion.w_W - ctx.omega_n * ctx.n;
+  for (const StateLayout::Entry& e : stateLayout().entries()) {
+    if (e.slot.kind != StateSlot::Kind::kPlaneVector) continue;
+    ctx.state.vector(e.offset) -= ctx.n * ctx.n.dot(state.vector(e.offset));  // in the plane
+  }
+  const ContactKinematics k = resolve(motion, ctx.n);
+  ctx.delta_dot = k.delta_dot;
+  ctx.v_t = k.v_t_W;
+  ctx.omega_n = k.omega_n;
+  ctx.omega_t = k.omega_t_W;
   ctx.r_gyr = cv.r_gyr;
   for (const auto& e : effects_) e->configure(ctx);
   // v_avg² = |v_t|² + (r_gyr ω_n)²,  s = exp(−v_avg²/v_s²)
@@ -202,15 +233,15 @@ ContactResult Model::evaluate(const volume::ContactVolume& cv, const RelativeMot
 }
 
 void Model::checkDistributedFriction() const {
-  if (!has("coulomb")) {
-    throw InputError(kSource,
-                     "distributed friction integrates coulomb's friction pointwise; "
-                     "add the coulomb effect");
+  if (std::none_of(effects_.begin(), effects_.end(),
+                   [](const auto& e) { return e->integratesDistributedFriction(); })) {
+    const std::string id = distributedFrictionIntegrators();
+    throw InputError(kSource, "distributed friction integrates " + id +
+                                  "'s friction pointwise; add the " + id + " effect");
   }
-  if (has("bristle")) {
-    throw InputError(kSource,
-                     "distributed friction is pointwise Coulomb friction and cannot "
-                     "replace the bristle law; remove bristle or use lumped friction");
+  for (const auto& e : effects_) {
+    const std::string_view conflict = e->distributedFrictionConflict();
+    if (!conflict.empty()) throw InputError(kSource, std::string(conflict));
   }
 }
 
@@ -241,14 +272,10 @@ bool Model::settle(const volume::ContactVolume& cv, const RelativeMotion& motion
     state = PairState{};
   } else {
     const ContactContext ctx = makeContext(cv, motion, state);
-    state.z_W = ctx.state.z_W;
+    state = ctx.state;  // plane vectors projected
     for (const auto& e : effects_) e->settle(ctx, state);
   }
-  const double change = (state.z_W - before.z_W).norm() /
-                            std::max(before.z_W.norm(), std::numeric_limits<double>::min()) +
-                        std::abs(state.theta_n - before.theta_n) +
-                        std::abs(state.s_dw - before.s_dw);
-  return change > kSettleChangeTolerance;
+  return stateChange(stateLayout(), before, state) > kSettleChangeTolerance;
 }
 
 }  // namespace vcontact::dynamics

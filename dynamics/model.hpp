@@ -18,7 +18,7 @@ namespace vcontact::dynamics {
 
 /// The result of one contact evaluation.
 struct ContactResult {
-  Wrench wrench;               ///< total wrench on B1 at p_c
+  Wrench wrench;               ///< total wrench on body A (the payload) at p_c
   PairStateRates rates;        ///< d/dt of the pair state
   std::vector<Wrench> shares;  ///< one per effect, in Model::effectIds() order; sums to wrench
   double f_n = 0.0;            ///< normal force magnitude, N
@@ -39,10 +39,12 @@ class Model {
   /// @throws InputError (source "model") on an unknown or repeated id or a missing requirement
   static Model withEffects(const std::vector<std::string>& ids);
 
-  /// Adds an effect (kept in Stage order, stable). @throws InputError on a repeated id.
+  /// Adds an effect (kept in Stage order, stable) and gives it its offset in stateLayout().
+  /// @throws InputError on a repeated id
+  /// @pre an effect with states is a registered one (createEffect)
   void add(std::unique_ptr<Effect> effect);
-  /// @throws InputError naming the first effect whose required effect is missing, or a
-  ///         parameter relation that does not hold (stribeck.mu_s ≥ coulomb.mu)
+  /// @throws InputError naming the first effect whose required effect is missing, or the
+  ///         first parameter relation that does not hold (Effect::brokenRelation)
   void validate() const;
 
   bool has(std::string_view id) const;
@@ -68,14 +70,23 @@ class Model {
 
   ModelSettings settings;
 
-  /// Does some effect move B1's pose for the geometry (adjustPayloadPose not the identity)?
-  bool adjustsPayloadPose() const { return adjusts_pose_; }
-  /// The pose of B1 actually used for the geometry (misalignment), given X_W1 and X_W2.
-  Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_W1,
-                                      const Eigen::Isometry3d& X_W2) const;
+  /// The layout of the pair state that evaluate() and settle() read and write: the state
+  /// slots of every registered effect, in registration order; the slots of effects this model
+  /// does not hold stay zero. Every model shares it, so that every pair of a simulation writes
+  /// the same state columns and carries as many states in the integrator (whose step-size
+  /// control depends on their count).
+  const StateLayout& stateLayout() const;
 
-  /// Wrench on B1 at cv.centroid, state rates and per-effect shares. No contact (V = 0)
+  /// Does some effect move body A's pose for the geometry (adjustPayloadPose not the identity)?
+  bool adjustsPayloadPose() const { return adjusts_pose_; }
+  /// The pose of body A (the payload) actually used for the geometry (misalignment), given
+  /// X_WA and the pose X_WB of body B (the plate).
+  Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_WA,
+                                      const Eigen::Isometry3d& X_WB) const;
+
+  /// Wrench on body A at cv.centroid, state rates and per-effect shares. No contact (V = 0)
   /// gives zero wrench and zero rates.
+  /// @param state  in stateLayout() order (PairState{} is the zero state)
   /// @param field  the δ map of cv for distributed friction (ContactContext::field), or null
   ///   for the lumped friction of MODEL.md §3; with a field the model must pass
   ///   checkDistributedFriction()
@@ -87,15 +98,18 @@ class Model {
                 const volume::DepthField* field = nullptr) const;
 
   /// Distributed friction replaces the lumped Coulomb force and spin torque (coulomb, spin,
-  /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs coulomb,
-  /// and it cannot stand in for the bristle law (bristle states have no pointwise form here).
+  /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs an effect
+  /// that integrates it (Effect::integratesDistributedFriction: coulomb), and no effect that
+  /// conflicts with it (Effect::distributedFrictionConflict: bristle, whose states have no
+  /// pointwise form here).
   /// @throws InputError (source "model") naming the reason
   void checkDistributedFriction() const;
 
-  /// Discrete state updates after an accepted step (MODEL.md §3 "State handling"): z is
-  /// projected onto the contact plane; without contact all states reset to zero; effects
-  /// apply their own jumps (dwell). Returns true when a state changed by more than a
-  /// projection of round-off size (then the integrator must re-evaluate its derivative).
+  /// Discrete state updates after an accepted step (MODEL.md §3 "State handling"): plane
+  /// vectors (bristle z) are projected onto the contact plane; without contact all states
+  /// reset to zero; effects apply their own jumps (dwell). Returns true when a state changed
+  /// by more than a projection of round-off size (then the integrator must re-evaluate its
+  /// derivative).
   bool settle(const volume::ContactVolume& cv, const RelativeMotion& motion,
               PairState& state) const;
 

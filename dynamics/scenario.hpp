@@ -29,8 +29,8 @@ constexpr int kMaxColumnResolution = 512;
 
 struct ContactPair {
   std::string name;   ///< for output ("ball-plate")
-  std::size_t a = 0;  ///< index of B1 (payload) in Scenario::bodies
-  std::size_t b = 0;  ///< index of B2 (plate)
+  std::size_t a = 0;  ///< index of body A (the payload) in Scenario::bodies
+  std::size_t b = 0;  ///< index of body B (the plate)
   Model model;
   std::optional<volume::Method> method;  ///< default: volume::defaultMethod
   /// kDistributed needs method columns and a model that passes

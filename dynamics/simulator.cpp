@@ -106,7 +106,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     }
     checkDistributedPair(p);
     pair_offset_.push_back(n);
-    n += PairState::kSize;
+    n += p.model.stateLayout().size();
   }
   x0_.assign(static_cast<std::size_t>(n), 0.0);
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
@@ -216,9 +216,10 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     } else {
       out.cv = apart_[k];  // the query's answer for bodies apart
     }
-    out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
+    const int state_size = pair.model.stateLayout().size();
+    out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
     const Eigen::Vector3d& p_c = out.cv.centroid;
-    const RelativeMotion motion{A.pointVelocity(p_c) - B.pointVelocity(p_c), A.w_WB - B.w_WB};
+    const RelativeMotion motion = relativeMotion(A, B, p_c);
     pair.model.evaluate(out.cv, motion, out.state, out.result,
                         distributed && out.cv.inContact() ? &fields_[k] : nullptr);
     const Wrench& w = out.result.wrench;  // on A at p_c; B gets the opposite
@@ -226,7 +227,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     torque[pair.a] += w.tau_W + (p_c - A.p_WBcm).cross(w.f_W);
     force[pair.b] -= w.f_W;
     torque[pair.b] -= w.tau_W + (p_c - B.p_WBcm).cross(w.f_W);
-    out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])]);
+    out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
   }
 
   for (std::size_t i = 0; i < nb; ++i) {
@@ -274,8 +275,6 @@ Snapshot Simulator::snapshot(const State& x, double t) {
   return s;
 }
 
-Snapshot Simulator::initialSnapshot() { return snapshot(x0_, 0.0); }
-
 // Rescales every free body's quaternion to unit length; returns the largest | |q| − 1 | found.
 double Simulator::normaliseQuaternions(State& x) const {
   double drift = 0.0;
@@ -303,12 +302,12 @@ bool Simulator::settlePairs(State& x, double t) {
     const BodyKinematics A = kinematics(x, pair.a, t);
     const BodyKinematics B = kinematics(x, pair.b, t);
     const volume::ContactVolume& cv = last_pairs_[k].cv;
-    const RelativeMotion motion{A.pointVelocity(cv.centroid) - B.pointVelocity(cv.centroid),
-                                A.w_WB - B.w_WB};
+    const RelativeMotion motion = relativeMotion(A, B, cv.centroid);
+    const int state_size = pair.model.stateLayout().size();
     double* s = &x[static_cast<std::size_t>(pair_offset_[k])];
-    PairState state = PairState::unpack(s);
+    PairState state = PairState::unpack(s, state_size);
     changed = pair.model.settle(cv, motion, state) || changed;
-    state.pack(s);
+    state.pack(s, state_size);
   }
   return changed;
 }
@@ -364,7 +363,7 @@ SimulationError Simulator::stepCollapse(double t, double h, const std::string& d
   return SimulationError(t, s.str());
 }
 
-// "body 'name' (velocity)" or "pair 'name' (bristle state)" for state index i.
+// "body 'name' (velocity)" or "pair 'name' (bristle state zx)" for state index i.
 std::string Simulator::stateOwner(std::size_t i) const {
   for (std::size_t b = 0; b < offset_.size(); ++b) {
     if (offset_[b] < 0 || i < static_cast<std::size_t>(offset_[b]) ||
@@ -381,9 +380,10 @@ std::string Simulator::stateOwner(std::size_t i) const {
            ")";
   }
   for (std::size_t k = 0; k < pair_offset_.size(); ++k) {
-    if (i >= static_cast<std::size_t>(pair_offset_[k]) &&
-        i < static_cast<std::size_t>(pair_offset_[k] + PairState::kSize)) {
-      return "pair '" + scenario_.pairs[k].name + "' (friction state)";
+    const StateLayout& layout = scenario_.pairs[k].model.stateLayout();
+    const int j = static_cast<int>(i) - pair_offset_[k];
+    if (j >= 0 && j < layout.size()) {
+      return "pair '" + scenario_.pairs[k].name + "' (" + layout.describe(j) + ")";
     }
   }
   return "state " + std::to_string(i);

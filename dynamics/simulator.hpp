@@ -77,9 +77,6 @@ class Simulator {
 
   const Scenario& scenario() const { return scenario_; }
 
-  /// The snapshot at the initial state.
-  Snapshot initialSnapshot();
-
   /// Runs to settings.duration, calling on_output at every output time (t = 0 included) and
   /// on_progress after each accepted step. The summary is filled even when the run stops.
   /// @throws SimulationError on a failure; output up to the failure has been delivered
@@ -111,7 +108,7 @@ class Simulator {
 
   Scenario scenario_;
   std::vector<int> offset_;               ///< start of each free body's 13 states, −1 if not free
-  std::vector<int> pair_offset_;          ///< start of each pair's PairState::kSize states
+  std::vector<int> pair_offset_;          ///< start of each pair's states (Model::stateLayout)
   std::vector<double> size_;              ///< characteristic size of each body, m
   std::vector<Eigen::Matrix3d> I_inv_B_;  ///< inverse inertia about Bcm, B axes, 1/(kg·m²)
   // Scratch space of rhs(), kept to avoid allocations in the integrator's loop.
@@ -131,7 +128,7 @@ class Simulator {
   std::vector<int> broad_id_;                 ///< per body, −1 when unbounded (half-space)
   std::vector<geometry::Aabb> local_bounds_;  ///< per body, its shape's own bounds
   /// Per pair, its bodies' broad-phase ids (smaller first) as overlappingPairs() lists them;
-  /// (−1, −1) when it is always queried (a body unbounded, or B1's pose adjusted).
+  /// (−1, −1) when it is always queried (a body unbounded, or body A's pose adjusted).
   std::vector<std::pair<int, int>> screen_key_;
   std::vector<char> queried_;                 ///< per pair, at the latest right-hand side
   std::vector<volume::ContactVolume> apart_;  ///< per pair, its contact when not queried

@@ -161,10 +161,10 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
          << " is far from 1 (tolerance " << kDatasetQuaternionTolerance << ")";
       throw InputError(path, os.str());
     }
-    s.X_PB.linear() = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
-    s.X_PB.translation() = Eigen::Vector3d(r[col("x")], r[col("y")], r[col("z")]);
-    if (hasV) s.v_PB = Eigen::Vector3d(r[col("vx")], r[col("vy")], r[col("vz")]);
-    if (hasW) s.w_PB = Eigen::Vector3d(r[col("wx")], r[col("wy")], r[col("wz")]);
+    s.X_BA.linear() = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
+    s.X_BA.translation() = Eigen::Vector3d(r[col("x")], r[col("y")], r[col("z")]);
+    if (hasV) s.v_BA = Eigen::Vector3d(r[col("vx")], r[col("vy")], r[col("vz")]);
+    if (hasW) s.w_BA = Eigen::Vector3d(r[col("wx")], r[col("wy")], r[col("wz")]);
   }
   d.velocityFromPositions = !hasV;
   d.omegaFromAttitude = !hasW;

@@ -74,8 +74,7 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
     putHeader3(f, "f");
     putHeader3(f, "tau");
     f << ",f_n,s,mu_max";
-    putHeader3(f, "z");
-    f << ",theta_n,s_dw";
+    for (const auto& name : pair.model.stateLayout().valueNames()) f << ',' << name;
     if (outputs_.shares) {
       for (const auto& id : pair.model.effectIds()) {
         putHeader3(f, id + ".f");
@@ -110,9 +109,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
     put(row, p.result.wrench.f_W);
     put(row, p.result.wrench.tau_W);
     for (double x : {p.result.f_n, p.result.s, p.result.mu_max}) put(row, x);
-    put(row, p.state.z_W);
-    put(row, p.state.theta_n);
-    put(row, p.state.s_dw);
+    for (int i = 0; i < scenario_.pairs[k].model.stateLayout().size(); ++i) put(row, p.state[i]);
     if (outputs_.shares) {
       for (const auto& share : p.result.shares) {
         put(row, share.f_W);

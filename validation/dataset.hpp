@@ -3,10 +3,11 @@
 // the wrench that was measured. The reader (formats/dataset_file.hpp) checks the files; this
 // layer holds the samples and derives what the file may omit (velocities).
 //
-// Frames: P is the plate frame, B the payload frame. Each sample holds X_PB (pose of the
-// payload in the plate frame), v_PB (velocity of B's origin in P), w_PB (angular velocity
-// of B relative to P, in P), and the measured wrench on the payload by the plate: force f_P
-// and torque about the payload origin, in P.
+// Bodies and frames (MODEL.md): body A is the payload, body B the plate; A and B also name
+// their frames. Each sample holds X_BA (pose of the payload in the plate frame), v_BA
+// (velocity of A's origin in B), w_BA (angular velocity of A relative to B, in B), and the
+// measured wrench on the payload by the plate: force f_B and torque about the payload
+// origin, in B.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -25,9 +26,9 @@ inline const std::array<std::string, 6> kWrenchColumns = {"fx", "fy", "fz", "tx"
 
 struct Sample {
   double t = 0.0;  ///< s
-  Eigen::Isometry3d X_PB = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d v_PB = Eigen::Vector3d::Zero();  ///< m/s
-  Eigen::Vector3d w_PB = Eigen::Vector3d::Zero();  ///< rad/s
+  Eigen::Isometry3d X_BA = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d v_BA = Eigen::Vector3d::Zero();  ///< m/s
+  Eigen::Vector3d w_BA = Eigen::Vector3d::Zero();  ///< rad/s
 };
 
 struct Dataset {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <variant>
@@ -41,14 +42,14 @@ std::vector<double> geometryKey(const Model& model) {
 // coordinates: its normal b = R_PBᵀ e_z and the origin height z. Poses that differ by a
 // rotation about e_z and an in-plane translation (sliding, spinning) share one volume,
 // computed once at a canonical pose and carried over by the in-plane rigid motion
-// T = X_PB' X_c⁻¹. Symmetric payloads reduce b further: a sphere ignores its orientation, a
-// cylinder its rotation S = Rz(φ) about its own axis (X_PB' = X_PB S turns b into
+// T = X_BA' X_c⁻¹. Symmetric payloads reduce b further: a sphere ignores its orientation, a
+// cylinder its rotation S = Rz(φ) about its own axis (X_BA' = X_BA S turns b into
 // (|b_xy|, 0, b_z)). The key is rounded to kKeyResolution so that poses equal up to
 // round-off share the entry; the canonical pose is built from the rounded key.
 class HalfspaceVolumes {
  public:
-  volume::ContactVolume at(const geometry::Shape& payload, const Eigen::Isometry3d& X_PB) {
-    const Eigen::Isometry3d X = symmetryReduced(payload, X_PB);
+  volume::ContactVolume at(const geometry::Shape& payload, const Eigen::Isometry3d& X_BA) {
+    const Eigen::Isometry3d X = symmetryReduced(payload, X_BA);
     const Eigen::Vector3d b = X.linear().transpose().col(2);
     const std::array<double, 4> key = {rounded(b.x()), rounded(b.y()), rounded(b.z()),
                                        X.translation().z()};
@@ -99,19 +100,29 @@ class HalfspaceVolumes {
   std::map<std::array<double, 4>, volume::ContactVolume> cache_;
 };
 
+// The payload's motion at one sample. Its origin stands in for the centre of mass: the velocity
+// field v(p) = v_o + ω × (p − p_o) of a rigid body is the same from any of its points.
+dynamics::BodyKinematics payloadKinematics(const Sample& s, const Eigen::Isometry3d& X_BA) {
+  dynamics::BodyKinematics k;
+  k.X_WB = X_BA;
+  k.p_WBcm = X_BA.translation();
+  k.v_WBcm = s.v_BA;
+  k.w_WB = s.w_BA;
+  return k;
+}
+
 SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& model,
                               HalfspaceVolumes& halfspace) {
-  const Eigen::Isometry3d X_PP = Eigen::Isometry3d::Identity();
-  const Eigen::Isometry3d X_PB = model.adjustPayloadPose(s.X_PB, X_PP);
+  const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d X_BA = model.adjustPayloadPose(s.X_BA, X_BB);
   SampleGeometry g;
   g.cv = std::holds_alternative<geometry::HalfSpace>(d.plate)
-             ? halfspace.at(d.payload, X_PB)
-             : volume::computeContact(d.payload, X_PB, d.plate, X_PP);
+             ? halfspace.at(d.payload, X_BA)
+             : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
   if (!g.cv.inContact()) return g;
-  g.p_BoC_P = g.cv.centroid - X_PB.translation();
-  // v_c = v_PBo + w_PB × p_BoC (MODEL.md §2; the plate does not move).
-  g.motion.v_c_W = s.v_PB + s.w_PB.cross(g.p_BoC_P);
-  g.motion.w_W = s.w_PB;
+  g.p_AoC_B = g.cv.centroid - X_BA.translation();
+  g.motion = dynamics::relativeMotion(payloadKinematics(s, X_BA), dynamics::BodyKinematics{},
+                                      g.cv.centroid);  // the plate does not move
   return g;
 }
 
@@ -119,12 +130,10 @@ RegimeSample regimeOf(const SampleGeometry& g, double load, double v_eps) {
   RegimeSample r;
   r.load = load;
   if (!g.cv.inContact()) return r;
-  const Eigen::Vector3d& n = g.cv.normal;
-  const Eigen::Vector3d v = g.motion.v_c_W;
-  const Eigen::Vector3d v_t = v - v.dot(n) * n;
-  r.speed = v_t.norm();
-  r.spin_ratio = g.cv.r_gyr * std::abs(g.motion.w_W.dot(n)) / std::max(r.speed, v_eps);
-  r.penetration_rate = -v.dot(n);
+  const dynamics::ContactKinematics k = dynamics::resolve(g.motion, g.cv.normal);
+  r.speed = k.v_t_W.norm();
+  r.spin_ratio = g.cv.r_gyr * std::abs(k.omega_n) / std::max(r.speed, v_eps);
+  r.penetration_rate = k.delta_dot;
   return r;
 }
 
@@ -139,7 +148,7 @@ struct RestClock {
       lastRest = 0.0;
       return;
     }
-    const double spin = g.cv.r_gyr * std::abs(g.motion.w_W.dot(g.cv.normal));
+    const double spin = g.cv.r_gyr * std::abs(dynamics::resolve(g.motion, g.cv.normal).omega_n);
     const bool atRest = std::hypot(r.speed, spin) < kRestSpeed;
     if (atRest && !resting) since = t;
     if (!atRest && resting) lastRest = t - since;
@@ -152,28 +161,30 @@ struct RestClock {
 // One exponential Euler step of the pair state over dt (see the header).
 void advance(const Model& model, const SampleGeometry& g, const dynamics::ContactResult& at,
              double dt, PairState& state) {
-  double x[PairState::kSize], rate[PairState::kSize];
-  state.pack(x);
-  at.rates.pack(rate);
-  if (std::all_of(rate, rate + PairState::kSize, [](double r) { return r == 0.0; })) return;
-  double h[PairState::kSize], xp[PairState::kSize];
-  for (int j = 0; j < PairState::kSize; ++j) {
+  const int size = model.stateLayout().size();
+  double x[PairState::kCapacity], rate[PairState::kCapacity];
+  state.pack(x, size);
+  at.rates.pack(rate, size);
+  if (std::all_of(rate, rate + size, [](double r) { return r == 0.0; })) return;
+  double h[PairState::kCapacity], xp[PairState::kCapacity];
+  for (int j = 0; j < size; ++j) {
     h[j] = kStatePerturbation * std::max(std::abs(x[j]), kStatePerturbationFloor);
     xp[j] = x[j] - h[j];
   }
-  double ratep[PairState::kSize];
-  model.evaluate(g.cv, g.motion, PairState::unpack(xp)).rates.pack(ratep);
-  for (int j = 0; j < PairState::kSize; ++j) {
+  double ratep[PairState::kCapacity];
+  model.evaluate(g.cv, g.motion, PairState::unpack(xp, size)).rates.pack(ratep, size);
+  for (int j = 0; j < size; ++j) {
     const double d = std::min(0.0, (rate[j] - ratep[j]) / h[j]);  // decay rate, 1/s
     x[j] += rate[j] * phi(d * dt) * dt;
   }
-  state = PairState::unpack(x);
+  state = PairState::unpack(x, size);
 }
 
 }  // namespace
 
 int wrenchIndex(const std::string& output) {
   const auto it = std::find(kWrenchColumns.begin(), kWrenchColumns.end(), output);
+  assert(it != kWrenchColumns.end());
   return static_cast<int>(it - kWrenchColumns.begin());
 }
 
@@ -210,8 +221,8 @@ Prediction Replayer::run(const Model& model) {
     const SampleGeometry& g = geometry[i];
     model.settle(g.cv, g.motion, state);  // projection, dwell jump, reset out of contact
     const dynamics::ContactResult r = model.evaluate(g.cv, g.motion, state);
-    const Eigen::Vector3d tau_Bo = r.wrench.tau_W + g.p_BoC_P.cross(r.wrench.f_W);
-    p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Bo.transpose();
+    const Eigen::Vector3d tau_Ao = r.wrench.tau_W + g.p_AoC_B.cross(r.wrench.f_W);
+    p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Ao.transpose();
     p.regime[i] = regimeOf(g, r.f_n, model.settings.v_eps);
     rest.update(samples[i].t, g, p.regime[i]);
     if (i + 1 < n) advance(model, g, r, samples[i + 1].t - samples[i].t, state);

@@ -1,13 +1,14 @@
 #pragma once
 // Kinematic replay of a rig record through a contact model (DATASET.md "mode": kinematic).
 //
-// Frames: P is the plate frame (the plate is B2, placed at the identity, so P is the world
-// frame W of MODEL.md), B the payload frame (B1). For every sample the replay
-//   1. places the payload at X_PB (after the model's geometry-only effects, misalignment),
+// Bodies and frames: body A is the payload, body B the plate; the plate is placed at the
+// identity, so its frame B is the world frame W of MODEL.md. For every sample the replay
+//   1. places the payload at X_BA (after the model's geometry-only effects, misalignment),
 //   2. computes the ContactVolume with the plate (analytic where the pair allows),
-//   3. forms the relative motion at the centroid, v_c = v_PB + w_PB × (p_c − p_PBo) (MODEL.md §2),
+//   3. forms the relative motion at the centroid, v_c = v_BA + w_BA × (p_c − p_BAo)
+//      (MODEL.md §2, dynamics::relativeMotion),
 //   4. evaluates the model with the friction states integrated along the record,
-//   5. moves the wrench from p_c to the payload origin Bo: τ_Bo = τ_c + (p_c − p_PBo) × f.
+//   5. moves the wrench from p_c to the payload origin Ao: τ_Ao = τ_c + (p_c − p_BAo) × f.
 //
 // Friction states (bristle z, θ_n, dwell s_dw) are integrated from sample i to i+1 with the
 // exponential Euler method on the kinematics of sample i:
@@ -33,7 +34,7 @@ namespace vcontact::validation {
 struct SampleGeometry {
   volume::ContactVolume cv;
   dynamics::RelativeMotion motion;
-  Eigen::Vector3d p_BoC_P = Eigen::Vector3d::Zero();  ///< payload origin → centroid, m
+  Eigen::Vector3d p_AoC_B = Eigen::Vector3d::Zero();  ///< payload origin → centroid, m
 };
 
 /// The physical regime of one sample: what `where` windows are described by.
@@ -52,7 +53,7 @@ inline constexpr double kRestSpeed = 1e-4;  // m/s
 
 struct Prediction {
   /// n × 6, columns in kWrenchColumns order: force on the payload by the plate (N) and torque
-  /// about the payload origin (N·m), both in P.
+  /// about the payload origin (N·m), both in B (the plate frame).
   Eigen::MatrixXd wrench;
   std::vector<RegimeSample> regime;
   /// The predicted column named `output` ("fx" … "tz").

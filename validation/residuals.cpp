@@ -1,6 +1,7 @@
 #include "validation/residuals.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace vcontact::validation {
@@ -21,6 +22,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 double estimateNoise(const Eigen::VectorXd& y) {
+  assert(y.size() >= 3);
   std::vector<double> d;
   for (Eigen::Index i = 1; i + 1 < y.size(); ++i) d.push_back(y[i + 1] - 2.0 * y[i] + y[i - 1]);
   const double m = median(d);

@@ -128,15 +128,6 @@ void setColumn(Dataset& d, const std::string& name, std::size_t i, double v) {
 
 }  // namespace
 
-const std::vector<std::string>& rigProfileNames() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    for (const auto& p : profiles()) n.push_back(p.name);
-    return n;
-  }();
-  return names;
-}
-
 Dataset rigMotion(const std::string& name, std::size_t n) {
   const Profile& profile = profileNamed(name);
   if (n < 3) throw InputError("sample count", "a record needs at least 3 samples");
@@ -165,28 +156,28 @@ Dataset rigMotion(const std::string& name, std::size_t n) {
     prev = r;
     Sample& s = d.samples[i];
     s.t = t;
-    s.X_PB.linear() = (Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()) *
+    s.X_BA.linear() = (Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()) *
                        Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
                           .toRotationMatrix();
-    s.X_PB.translation() = Eigen::Vector3d(p_xy.x(), p_xy.y(), lowest - r.depth);
-    s.v_PB = Eigen::Vector3d(r.vx, r.vy, -r.depthRate);
+    s.X_BA.translation() = Eigen::Vector3d(p_xy.x(), p_xy.y(), lowest - r.depth);
+    s.v_BA = Eigen::Vector3d(r.vx, r.vy, -r.depthRate);
     // Only one of spin and roll is non-zero in every profile, so ω is the plain sum.
-    s.w_PB = Eigen::Vector3d(r.wx, 0.0, r.wz);
-    const Eigen::Quaterniond q(s.X_PB.linear());
+    s.w_BA = Eigen::Vector3d(r.wx, 0.0, r.wz);
+    const Eigen::Quaterniond q(s.X_BA.linear());
     const double values[] = {t,
-                             s.X_PB.translation().x(),
-                             s.X_PB.translation().y(),
-                             s.X_PB.translation().z(),
+                             s.X_BA.translation().x(),
+                             s.X_BA.translation().y(),
+                             s.X_BA.translation().z(),
                              q.w(),
                              q.x(),
                              q.y(),
                              q.z(),
-                             s.v_PB.x(),
-                             s.v_PB.y(),
-                             s.v_PB.z(),
-                             s.w_PB.x(),
-                             s.w_PB.y(),
-                             s.w_PB.z()};
+                             s.v_BA.x(),
+                             s.v_BA.y(),
+                             s.v_BA.z(),
+                             s.w_BA.x(),
+                             s.w_BA.y(),
+                             s.w_BA.z()};
     const char* names[] = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
                            "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
     for (std::size_t c = 0; c < std::size(names); ++c) setColumn(d, names[c], i, values[c]);

@@ -22,9 +22,6 @@
 
 namespace vcontact::validation {
 
-/// "loading", "impacts", "friction-ramp", "drive", "dwell", "slide-spin", "rolling".
-const std::vector<std::string>& rigProfileNames();
-
 /// The prescribed motion of a profile as a dataset without measured wrench: samples, the
 /// kinematic columns, payload, plate, outputs and the profile's default noise σ.
 /// @throws InputError on an unknown profile or fewer than 3 samples

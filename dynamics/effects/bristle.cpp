@@ -3,8 +3,9 @@
 //   f_t = −|f_n| sat(σ0 z + σ1 ż, μ_max)          (σ2 term: the viscous effect)
 //   θ̇_n = s ω_n + (1 − s) ((C_ω μ_C / (σ1 r_gyr)) sgn_ε(ω_n) − (σ0/σ1) θ_n)
 // It owns the states z and θ_n, replaces the Coulomb form of coulomb, and leaves θ̇_n in the
-// context for the bristle form of spin.
-#include "dynamics/effects/registry.hpp"
+// context (with θ_n) for the bristle form of spin. It has no pointwise form for distributed
+// friction.
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -19,7 +20,17 @@ class Bristle final : public EffectBase<Bristle> {
         {"sigma1", "s/m", 300.0, 1e-9, 1e12, "bristle damping per unit normal force"}};
     return s;
   }
+  static const std::vector<StateSlot>& states() {
+    static const std::vector<StateSlot> s = {
+        {"z", StateSlot::Kind::kPlaneVector, "m", "bristle deflection, in the contact plane"},
+        {"theta_n", StateSlot::Kind::kScalar, "rad", "torsional bristle deflection about n"}};
+    return s;
+  }
   std::vector<std::string_view> requiredEffects() const override { return {"coulomb"}; }
+  std::string_view distributedFrictionConflict() const override {
+    return "distributed friction is pointwise Coulomb friction and cannot replace the bristle "
+           "law; remove bristle or use lumped friction";
+  }
 
   void configure(ContactContext& ctx) const override {
     ctx.sigma0 = parameter(0);
@@ -29,24 +40,29 @@ class Bristle final : public EffectBase<Bristle> {
 
   Wrench apply(ContactContext& ctx) const override {
     const double s = ctx.s, s0 = ctx.sigma0, s1 = ctx.sigma1;
-    const Eigen::Vector3d& z = ctx.state.z_W;
+    const Eigen::Vector3d z_W = ctx.state.vector(zOffset());
     const Eigen::Vector3d z_dot =
         s * ctx.v_t + (1.0 - s) * ((ctx.C_v * ctx.mu_C / s1) * dirEps(ctx.v_t, ctx.settings.v_eps) -
-                                   (s0 / s1) * z);
-    ctx.rates.z_W = z_dot;
+                                   (s0 / s1) * z_W);
+    ctx.rates.vector(zOffset()) = z_dot;
+    ctx.theta_n = ctx.state[thetaOffset()];
     ctx.theta_dot = thetaRate(ctx);
-    ctx.rates.theta_n = ctx.theta_dot;
-    return {-ctx.f_n * saturate(Eigen::Vector3d(s0 * z + s1 * z_dot), ctx.mu_max),
+    ctx.rates[thetaOffset()] = ctx.theta_dot;
+    return {-ctx.f_n * saturate(Eigen::Vector3d(s0 * z_W + s1 * z_dot), ctx.mu_max),
             Eigen::Vector3d::Zero()};
   }
 
  private:
-  static double thetaRate(const ContactContext& ctx) {
+  int zOffset() const { return stateOffset(); }
+  int thetaOffset() const { return stateOffset() + 3; }
+
+  double thetaRate(const ContactContext& ctx) const {
     const double s = ctx.s;
     const double pull = ctx.r_gyr > 0.0 ? (ctx.C_w * ctx.mu_C / (ctx.sigma1 * ctx.r_gyr)) *
                                               sgnEps(ctx.omega_n, ctx.settings.v_eps, ctx.r_gyr)
                                         : 0.0;
-    return s * ctx.omega_n + (1.0 - s) * (pull - (ctx.sigma0 / ctx.sigma1) * ctx.state.theta_n);
+    return s * ctx.omega_n +
+           (1.0 - s) * (pull - (ctx.sigma0 / ctx.sigma1) * ctx.state[thetaOffset()]);
   }
 };
 

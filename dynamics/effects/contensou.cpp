@@ -1,6 +1,6 @@
 // contensou: C_v = |v_t| / v_avg, C_ω = r_gyr |ω_n| / v_avg (both 1 when v_avg = 0), so that
 // sliding and spinning share one friction budget (MODEL.md §3).
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {

@@ -5,7 +5,7 @@
 // integrated over the δ map instead, force and torque about p_c together
 // (dynamics/distributed_friction.hpp); spin and the Contensou factors are then not used.
 #include "dynamics/distributed_friction.hpp"
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -21,6 +21,7 @@ class Coulomb final : public EffectBase<Coulomb> {
     return s;
   }
   std::vector<std::string_view> requiredEffects() const override { return {"stiffness"}; }
+  bool integratesDistributedFriction() const override { return true; }
 
   void configure(ContactContext& ctx) const override {
     ctx.mu_C = parameter(0);

@@ -2,7 +2,7 @@
 // form of Gonthier). Its share is the change it makes to the stiffness force.
 #include <algorithm>
 
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {

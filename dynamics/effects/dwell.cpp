@@ -4,7 +4,7 @@
 // within a step μ_max uses min(s_dw, s), which is the value the jump would give.
 #include <algorithm>
 
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -18,17 +18,22 @@ class Dwell final : public EffectBase<Dwell> {
         {"tau_dw", "s", 1.0, 1e-9, 1e9, "dwell time constant"}};
     return s;
   }
+  static const std::vector<StateSlot>& states() {
+    static const std::vector<StateSlot> s = {
+        {"s_dw", StateSlot::Kind::kScalar, "-", "dwell stick state (0..1), replaces s in mu_max"}};
+    return s;
+  }
   std::vector<std::string_view> requiredEffects() const override { return {"stribeck"}; }
 
   Wrench apply(ContactContext& ctx) const override {
-    const double s_dw = ctx.state.s_dw;
+    const double s_dw = ctx.state[stateOffset()];
     ctx.s_mu = std::min(s_dw, ctx.s);
-    ctx.rates.s_dw = ctx.s > s_dw ? (ctx.s - s_dw) / parameter(0) : 0.0;
+    ctx.rates[stateOffset()] = ctx.s > s_dw ? (ctx.s - s_dw) / parameter(0) : 0.0;
     return {};
   }
 
   void settle(const ContactContext& ctx, PairState& state) const override {
-    state.s_dw = std::min(state.s_dw, ctx.s);
+    state[stateOffset()] = std::min(state[stateOffset()], ctx.s);
   }
 };
 

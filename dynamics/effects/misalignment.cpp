@@ -1,7 +1,7 @@
-// misalignment: the payload B1 is rotated by small angles rx, ry about its own origin, about
-// axes parallel to the plate's (B2's) x and y axes, before the geometry is evaluated
-// (MODEL.md §3):  R_W1' = R_W2 Rx(rx) Ry(ry) R_W2ᵀ R_W1,  p_W1' = p_W1.
-#include "dynamics/effects/registry.hpp"
+// misalignment: body A (the payload) is rotated by small angles rx, ry about its own origin,
+// about axes parallel to the x and y axes of body B (the plate), before the geometry is
+// evaluated (MODEL.md §3):  R_WA' = R_WB Rx(rx) Ry(ry) R_WBᵀ R_WA,  p_WA' = p_WA.
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -17,15 +17,15 @@ class Misalignment final : public EffectBase<Misalignment> {
     return s;
   }
 
-  Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_W1,
-                                      const Eigen::Isometry3d& X_W2) const override {
-    const Eigen::Matrix3d R_2 = X_W2.linear();
+  Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_WA,
+                                      const Eigen::Isometry3d& X_WB) const override {
+    const Eigen::Matrix3d R_WB = X_WB.linear();
     const Eigen::Matrix3d tilt = (Eigen::AngleAxisd(parameter(0), Eigen::Vector3d::UnitX()) *
                                   Eigen::AngleAxisd(parameter(1), Eigen::Vector3d::UnitY()))
                                      .toRotationMatrix();
-    Eigen::Isometry3d X = X_W1;
-    X.linear() = R_2 * tilt * R_2.transpose() * X_W1.linear();
-    return X;
+    Eigen::Isometry3d X_WA_tilted = X_WA;
+    X_WA_tilted.linear() = R_WB * tilt * R_WB.transpose() * X_WA.linear();
+    return X_WA_tilted;
   }
 };
 

@@ -1,37 +1,11 @@
 #include "dynamics/effects/registry.hpp"
 
-#include <array>
+#include "dynamics/effects/effect_list.hpp"
 
 namespace vcontact::dynamics {
 
-// Factories, each defined in the effect's own file.
-std::unique_ptr<Effect> makeStiffness();
-std::unique_ptr<Effect> makeDamping();
-std::unique_ptr<Effect> makeRollingResistance();
-std::unique_ptr<Effect> makeCoulomb();
-std::unique_ptr<Effect> makeStribeck();
-std::unique_ptr<Effect> makeBristle();
-std::unique_ptr<Effect> makeViscous();
-std::unique_ptr<Effect> makeSpin();
-std::unique_ptr<Effect> makeContensou();
-std::unique_ptr<Effect> makeDwell();
-std::unique_ptr<Effect> makeMisalignment();
-
-namespace {
-
-using Factory = std::unique_ptr<Effect> (*)();
-
-// The registration list: one entry per effect.
-constexpr std::array<Factory, 11> kFactories = {
-    &makeStiffness, &makeDamping, &makeRollingResistance, &makeCoulomb,
-    &makeStribeck,  &makeBristle, &makeViscous,           &makeSpin,
-    &makeContensou, &makeDwell,   &makeMisalignment,
-};
-
-}  // namespace
-
 std::unique_ptr<Effect> createEffect(std::string_view id) {
-  for (Factory make : kFactories) {
+  for (EffectFactory make : effectFactories()) {
     auto effect = make();
     if (effect->id() == id) return effect;
   }
@@ -40,8 +14,20 @@ std::unique_ptr<Effect> createEffect(std::string_view id) {
 
 std::vector<std::string> registeredEffectIds() {
   std::vector<std::string> ids;
-  for (Factory make : kFactories) ids.emplace_back(make()->id());
+  for (EffectFactory make : effectFactories()) ids.emplace_back(make()->id());
   return ids;
+}
+
+const StateLayout& registeredStateLayout() {
+  static const StateLayout layout = [] {
+    StateLayout l;
+    for (EffectFactory make : effectFactories()) {
+      const auto effect = make();
+      l.add(std::string(effect->id()), effect->stateSlots());
+    }
+    return l;
+  }();
+  return layout;
 }
 
 }  // namespace vcontact::dynamics

@@ -1,6 +1,6 @@
 // rolling_resistance: τ_r = −kv a J_s ω_t (MODEL.md §3); uses damping.a, no own parameter.
 // Its power is τ_r·ω_t = −kv a ω_tᵀ J_s ω_t ≤ 0 (J_s is positive semi-definite).
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {

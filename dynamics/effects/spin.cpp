@@ -3,7 +3,7 @@
 //   bristle form: τ_s = −r_gyr² |f_n| sat(σ0 θ_n + σ1 θ̇_n, μ_max / r_gyr) n
 // (the σ2 ω_n term of the bristle form belongs to the viscous effect).
 // With distributed friction the coulomb share carries the spin torque, and this one is zero.
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -23,7 +23,7 @@ class Spin final : public EffectBase<Spin> {
     if (r <= 0.0 || ctx.field != nullptr) return {};
     double torque = 0.0;  // N·m along n
     if (ctx.law == FrictionLaw::kBristle) {
-      const double m = ctx.sigma0 * ctx.state.theta_n + ctx.sigma1 * ctx.theta_dot;
+      const double m = ctx.sigma0 * ctx.theta_n + ctx.sigma1 * ctx.theta_dot;
       torque = -r * r * ctx.f_n * saturate(m, ctx.mu_max / r);
     } else {
       torque = -ctx.mu_max * ctx.C_w * r * ctx.f_n * sgnEps(ctx.omega_n, ctx.settings.v_eps, r);

@@ -1,5 +1,5 @@
 // stiffness: f_n = kv V n (MODEL.md §3).
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {

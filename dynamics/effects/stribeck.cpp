@@ -1,5 +1,9 @@
 // stribeck: μ_max = μ_C + (μ_S − μ_C) s_μ (MODEL.md §3), s_μ = s (or s_dw with dwell).
-#include "dynamics/effects/registry.hpp"
+// Relation: μ_S ≥ μ_C (static friction is not below kinetic friction).
+#include <sstream>
+
+#include "dynamics/effects/effect_base.hpp"
+#include "dynamics/model.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -14,6 +18,15 @@ class Stribeck final : public EffectBase<Stribeck> {
     return s;
   }
   std::vector<std::string_view> requiredEffects() const override { return {"coulomb"}; }
+
+  std::string brokenRelation(const Model& model) const override {
+    const double mu_C = model.parameter("coulomb.mu");
+    if (parameter(0) >= mu_C) return {};
+    std::ostringstream s;
+    s << "stribeck.mu_s = " << parameter(0) << " must be >= coulomb.mu = " << mu_C
+      << " (MODEL.md section 3)";
+    return s.str();
+  }
 
   void configure(ContactContext& ctx) const override { ctx.mu_S = parameter(0); }
 

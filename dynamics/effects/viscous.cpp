@@ -1,5 +1,5 @@
 // viscous: −|f_n| σ2 v_t and −r_gyr² |f_n| σ2 ω_n n (MODEL.md §3).
-#include "dynamics/effects/registry.hpp"
+#include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
 namespace {

@@ -1,33 +1,20 @@
-// The force model as named parameters in, wrench out: parameters, composition of the effects
-// of MODEL.md §3 and their closed forms on given contact volumes and motions.
+// The force model as named parameters in, wrench out: parameters, requirements, the pair-state
+// layout and the state handling of MODEL.md §3. Each effect's closed forms are in
+// tests/dynamics/effects/<id>_test.cpp.
 
 #include "dynamics/model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "dynamics/effects/registry.hpp"
+#include "effects/effect_fixtures.hpp"
 #include "geometry/error.hpp"
-#include "support/test_support.hpp"
-#include "volume/analytic.hpp"
 
-namespace vcontact::dynamics {
+namespace vcontact::dynamics::test {
 namespace {
-
-// Closed forms evaluated once in double precision: a few ulps of the largest term.
-constexpr double kRoundOff = 1e-12;
-
-// A sphere of radius 10 mm pressed 20 µm into a plate whose normal is not a coordinate axis.
-volume::ContactVolume sphereContact() {
-  Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
-  X_WH.linear() = test::rotationZTo(Eigen::Vector3d(0.3, -0.2, 0.9).normalized());
-  Eigen::Isometry3d X_WS = X_WH;
-  X_WS.translation() = X_WH * Eigen::Vector3d(0.0, 0.0, 0.01 - 20e-6);
-  return volume::sphereHalfspace(0.01, X_WS, X_WH);
-}
-
-Eigen::Vector3d tangent(const Eigen::Vector3d& n) { return n.unitOrthogonal(); }
 
 TEST(Model, ParameterNamesFollowEffectStageOrderAndRoundTrip) {
   Model m = Model::withEffects({"coulomb", "stiffness", "damping", "bristle"});
@@ -61,145 +48,88 @@ TEST(Model, EveryRegisteredEffectHasBoundedDefaults) {
       EXPECT_GE(p.upper, p.default_value) << id << "." << p.name;
       EXPECT_FALSE(p.unit.empty()) << id << "." << p.name;
     }
+    for (const auto& s : e->stateSlots()) EXPECT_FALSE(s.unit.empty()) << id << "." << s.name;
   }
+}
+
+// The simulation CSV's state columns and the integrator's state count come from this layout:
+// every registered effect's slots in registration order, whatever effects a model holds.
+TEST(Model, StateLayoutIsEveryRegisteredSlotInRegistrationOrder) {
+  StateLayout expected;
+  for (const auto& id : registeredEffectIds()) expected.add(id, createEffect(id)->stateSlots());
+  const Model bare = Model::withEffects({"stiffness"});
+  const Model full = Model::withEffects({"stiffness", "coulomb", "stribeck", "bristle", "dwell"});
+  EXPECT_EQ(bare.stateLayout().valueNames(), expected.valueNames());
+  EXPECT_EQ(full.stateLayout().valueNames(), expected.valueNames());
+  for (std::size_t i = 0; i < full.effectCount(); ++i) {
+    const Effect& e = full.effect(i);
+    if (e.stateSlots().empty()) continue;
+    EXPECT_EQ(e.stateOffset(), expected.offsetOf(std::string(e.id()))) << e.id();
+  }
+}
+
+// Today's simulation CSV columns of the bristle and dwell states.
+TEST(StateLayout, NamesPlaneVectorComponentsByAxis) {
+  StateLayout layout;
+  layout.add("stiffness", createEffect("stiffness")->stateSlots());
+  layout.add("bristle", createEffect("bristle")->stateSlots());
+  layout.add("dwell", createEffect("dwell")->stateSlots());
+  const std::vector<std::string> expected = {"zx", "zy", "zz", "theta_n", "s_dw"};
+  EXPECT_EQ(layout.valueNames(), expected);
+  EXPECT_EQ(layout.size(), 5);
+  EXPECT_EQ(layout.offsetOf("bristle"), 0);
+  EXPECT_EQ(layout.offsetOf("dwell"), 4);
+  EXPECT_EQ(layout.offsetOf("stiffness"), -1);
+  EXPECT_EQ(layout.describe(2), "bristle state zz");
+  EXPECT_EQ(layout.describe(4), "dwell state s_dw");
+}
+
+TEST(StateLayout, RefusesMoreStatesThanAPairStateHolds) {
+  StateLayout layout;
+  const StateSlot vector{"v", StateSlot::Kind::kPlaneVector, "m", "a plane vector"};
+  for (int i = 0; i + 3 <= PairState::kCapacity; i += 3)
+    layout.add("e" + std::to_string(i), {vector});
+  EXPECT_THROW(layout.add("one_too_many", {vector}), std::length_error);
 }
 
 TEST(Model, NoContactGivesNothing) {
   const Model m = Model::withEffects({"stiffness", "damping", "coulomb", "bristle", "spin"});
+  const int z = stateOffset(m, "bristle");
   PairState state;
-  state.z_W = Eigen::Vector3d(1e-6, 0, 0);
+  state.vector(z) = Eigen::Vector3d(1e-6, 0, 0);
   const ContactResult r = m.evaluate(volume::ContactVolume{}, RelativeMotion{}, state);
   EXPECT_EQ(r.wrench.f_W, Eigen::Vector3d::Zero());
-  EXPECT_EQ(r.rates.z_W, Eigen::Vector3d::Zero());
-}
-
-TEST(Model, StiffnessDampingAndClamp) {
-  Model m = Model::withEffects({"stiffness", "damping"});
-  m.setParameter("damping.a", 3.0);
-  const volume::ContactVolume cv = sphereContact();
-  const double kv = m.parameter("stiffness.kv");
-  RelativeMotion approach;
-  approach.v_c_W = -0.1 * cv.normal;  // δ̇ = 0.1 m/s
-  const ContactResult r = m.evaluate(cv, approach, PairState{});
-  // f_n = kv V (1 + a δ̇) n
-  const Eigen::Vector3d expected = kv * cv.volume * (1.0 + 3.0 * 0.1) * cv.normal;
-  EXPECT_LT((r.wrench.f_W - expected).norm(), kRoundOff * expected.norm());
-  // shares add up: stiffness kv V n, damping the rest
-  EXPECT_LT((r.shares[0].f_W - kv * cv.volume * cv.normal).norm(), kRoundOff * expected.norm());
-  RelativeMotion separate;
-  separate.v_c_W = 1.0 * cv.normal;  // 1 + a δ̇ = −2 < 0: clamped to zero
-  EXPECT_EQ(m.evaluate(cv, separate, PairState{}).wrench.f_W.norm(), 0.0);
-}
-
-TEST(Model, CoulombSlidingAndStribeckAtRest) {
-  Model m = Model::withEffects({"stiffness", "coulomb", "stribeck"});
-  m.setParameter("coulomb.mu", 0.2);
-  m.setParameter("stribeck.mu_s", 0.35);
-  const volume::ContactVolume cv = sphereContact();
-  const double N = m.parameter("stiffness.kv") * cv.volume;
-  const Eigen::Vector3d t = tangent(cv.normal);
-  RelativeMotion fast;
-  fast.v_c_W = 0.5 * t;  // v ≫ v_s: s = exp(−250000) = 0, μ_max = μ_C
-  const ContactResult r = m.evaluate(cv, fast, PairState{});
-  EXPECT_LT((r.wrench.f_W - (N * cv.normal - 0.2 * N * t)).norm(), kRoundOff * N);
-  RelativeMotion creep;
-  creep.v_c_W = 1e-4 * t;  // v ≫ v_ε = 1e-5, s = exp(−0.01)
-  const double s = std::exp(-0.01);
-  const double mu_max = 0.2 + 0.15 * s;
-  const ContactResult c = m.evaluate(cv, creep, PairState{});
-  EXPECT_NEAR(c.mu_max, mu_max, kRoundOff);
-  EXPECT_LT((c.wrench.f_W - (N * cv.normal - mu_max * N * t)).norm(), kRoundOff * N);
-}
-
-// MODEL.md §3: with contensou, F = μ N |v_t|/v_avg and M = μ N r_gyr (r_gyr |ω_n|)/v_avg,
-// v_avg = sqrt(|v_t|² + (r_gyr ω_n)²): the force and torque lie on the circle
-// (F/μN)² + (M/(μ N r_gyr))² = 1.
-TEST(Model, ContensouSharesOneFrictionBudget) {
-  Model m = Model::withEffects({"stiffness", "coulomb", "spin", "contensou"});
-  m.setParameter("coulomb.mu", 0.25);
-  const volume::ContactVolume cv = sphereContact();
-  const double N = m.parameter("stiffness.kv") * cv.volume, r = cv.r_gyr;
-  const Eigen::Vector3d t = tangent(cv.normal);
-  for (double ratio : {0.1, 0.7, 1.0, 3.0}) {  // r ω / v
-    RelativeMotion mo;
-    const double v = 0.02, w = ratio * v / r;
-    mo.v_c_W = v * t;
-    mo.w_W = w * cv.normal;
-    const double v_avg = std::hypot(v, r * w);
-    const ContactResult res = m.evaluate(cv, mo, PairState{});
-    const Eigen::Vector3d f_t = res.wrench.f_W - res.wrench.f_W.dot(cv.normal) * cv.normal;
-    EXPECT_LT((f_t + 0.25 * N * (v / v_avg) * t).norm(), kRoundOff * N) << ratio;
-    EXPECT_NEAR(res.wrench.tau_W.dot(cv.normal), -0.25 * N * r * (r * w / v_avg), kRoundOff * N * r)
-        << ratio;
-    EXPECT_NEAR(std::pow(f_t.norm() / (0.25 * N), 2) +
-                    std::pow(res.wrench.tau_W.norm() / (0.25 * N * r), 2),
-                1.0, kRoundOff)
-        << ratio;
-  }
-}
-
-// MODEL.md §3: rolling resistance dissipates at the rate τ_r·ω_t = −kv a ω_tᵀ J_s ω_t.
-TEST(Model, RollingResistancePower) {
-  Model m = Model::withEffects({"stiffness", "damping", "rolling_resistance"});
-  m.setParameter("damping.a", 4.0);
-  const volume::ContactVolume cv = sphereContact();
-  RelativeMotion roll;
-  roll.w_W = 7.0 * tangent(cv.normal) + 2.0 * cv.normal;  // spin part is no rolling
-  const Eigen::Vector3d w_t = roll.w_W - roll.w_W.dot(cv.normal) * cv.normal;
-  const ContactResult r = m.evaluate(cv, roll, PairState{});
-  const double expected = -m.parameter("stiffness.kv") * 4.0 * w_t.dot(cv.J_s * w_t);
-  ASSERT_LT(expected, 0.0);
-  EXPECT_NEAR(r.shares[2].tau_W.dot(roll.w_W), expected, kRoundOff * std::abs(expected));
-}
-
-// MODEL.md §3 bristle: stuck (s = 1) the bristle follows the slip, ż = v_t, and the force is
-// −|f_n|(σ0 z + σ1 v_t) below the limit; sliding fast it saturates at μ_max |f_n|.
-TEST(Model, BristleStuckAndSaturated) {
-  Model m = Model::withEffects({"stiffness", "coulomb", "bristle", "spin"});
-  const volume::ContactVolume cv = sphereContact();
-  const double N = m.parameter("stiffness.kv") * cv.volume;
-  const double s0 = m.parameter("bristle.sigma0"), s1 = m.parameter("bristle.sigma1");
-  const Eigen::Vector3d t = tangent(cv.normal);
-  PairState state;
-  state.z_W = 1e-5 * t + 3e-6 * cv.normal;  // the normal part is projected away
-  const ContactResult stuck = m.evaluate(cv, RelativeMotion{}, state);
-  EXPECT_LT((stuck.wrench.f_W - (N * cv.normal - N * s0 * 1e-5 * t)).norm(), kRoundOff * N);
-  EXPECT_EQ(stuck.rates.z_W, Eigen::Vector3d::Zero());
-  RelativeMotion slide;
-  slide.v_c_W = 0.3 * t;
-  const ContactResult sliding = m.evaluate(cv, slide, state);
-  const Eigen::Vector3d f_t = sliding.wrench.f_W - N * cv.normal;
-  EXPECT_NEAR(f_t.norm(), 0.2 * N, kRoundOff * N);
-  // s = 0: ż = (μ_C/σ1) dir(v) − (σ0/σ1) z
-  EXPECT_LT((sliding.rates.z_W - ((0.2 / s1) * t - (s0 / s1) * 1e-5 * t)).norm(), kRoundOff);
-}
-
-TEST(Model, MisalignmentTurnsThePayloadAboutPlateAxes) {
-  Model m = Model::withEffects({"misalignment"});
-  m.setParameter("misalignment.rx", 0.01);
-  const Eigen::Isometry3d X_W2 = test::randomPose(3);
-  const Eigen::Isometry3d X_W1 = test::randomPose(4);
-  const Eigen::Isometry3d X = m.adjustPayloadPose(X_W1, X_W2);
-  EXPECT_EQ(X.translation(), X_W1.translation());
-  const Eigen::AngleAxisd turn(X.linear() * X_W1.linear().transpose());
-  EXPECT_NEAR(turn.angle(), 0.01, 1e-12);  // one rotation of 0.01 rad, to round-off
-  EXPECT_NEAR(std::abs(turn.axis().dot(X_W2.linear().col(0))), 1.0, 1e-9);
+  EXPECT_EQ(Eigen::Vector3d(r.rates.vector(z)), Eigen::Vector3d::Zero());
 }
 
 TEST(Model, SettleProjectsAndResets) {
   const Model m = Model::withEffects({"stiffness", "coulomb", "stribeck", "bristle", "dwell"});
   const volume::ContactVolume cv = sphereContact();
+  const int z = stateOffset(m, "bristle"), s_dw = stateOffset(m, "dwell");
   PairState state;
-  state.z_W = 1e-5 * tangent(cv.normal) + 2e-6 * cv.normal;
-  state.s_dw = 0.9;
+  state.vector(z) = 1e-5 * tangent(cv.normal) + 2e-6 * cv.normal;
+  state[s_dw] = 0.9;
   RelativeMotion slide;
   slide.v_c_W = 0.01 * tangent(cv.normal);  // s ≈ 0 < s_dw: bonds break at once
   EXPECT_TRUE(m.settle(cv, slide, state));
-  EXPECT_NEAR(state.z_W.dot(cv.normal), 0.0, 1e-20);
-  EXPECT_LT(state.s_dw, 1e-30);
+  EXPECT_NEAR(state.vector(z).dot(cv.normal), 0.0, 1e-20);  // 1e-5 m times round-off
+  EXPECT_LT(state[s_dw], 1e-30);
   EXPECT_TRUE(m.settle(volume::ContactVolume{}, slide, state));
-  EXPECT_EQ(state.z_W, Eigen::Vector3d::Zero());
+  EXPECT_EQ(Eigen::Vector3d(state.vector(z)), Eigen::Vector3d::Zero());
+  EXPECT_EQ(state[s_dw], 0.0);
+}
+
+TEST(Model, DistributedFrictionNeedsAnIntegratingEffect) {
+  try {
+    Model::withEffects({"stiffness"}).checkDistributedFriction();
+    FAIL() << "a model without coulomb expected to throw";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.message(),
+              "distributed friction integrates coulomb's friction pointwise; add the coulomb "
+              "effect");
+  }
+  EXPECT_NO_THROW(Model::withEffects({"stiffness", "coulomb", "spin"}).checkDistributedFriction());
 }
 
 }  // namespace
-}  // namespace vcontact::dynamics
+}  // namespace vcontact::dynamics::test

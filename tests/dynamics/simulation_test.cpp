@@ -247,11 +247,12 @@ TEST_P(Simulation, DwellStrengthensStaticFriction) {
     s.settings.abs_tol /= 100.0;
     s.settings.rel_tol /= 100.0;
   }
+  const int s_dw = model.stateLayout().offsetOf("dwell");
   const auto out = run(s);
   for (const Snapshot& snap : out) {
     const double T = snap.t;
     // s = exp(−v²/v_s²) = 1 to ~1e-12 for the box at rest (|v| < 1e-9 m/s).
-    EXPECT_NEAR(snap.pairs[0].state.s_dw, 1.0 - std::exp(-T / kTau), 1e-8) << T;
+    EXPECT_NEAR(snap.pairs[0].state[s_dw], 1.0 - std::exp(-T / kTau), 1e-8) << T;
     EXPECT_NEAR(snap.pairs[0].result.mu_max, kMuS - (kMuS - kMuC) * std::exp(-T / kTau), 1e-8) << T;
   }
 }
@@ -267,6 +268,7 @@ TEST(SimulationKinematics, PrescribedKinematicsAreConsistent) {
   const auto k = dynamics::scheduledKinematics(b, t);
   const auto k1 = dynamics::scheduledKinematics(b, t - h);
   const auto k2 = dynamics::scheduledKinematics(b, t + h);
+  // 1e-8: the O(h²) truncation (~1e-11) plus the round-off of the quotient, ε·|p|/h ~ 1e-10.
   EXPECT_LT(((k2.p_WBcm - k1.p_WBcm) / (2 * h) - k.v_WBcm).norm(), 1e-8);
   const Eigen::Matrix3d R_dot = (k2.X_WB.linear() - k1.X_WB.linear()) / (2 * h);
   const Eigen::Matrix3d W = R_dot * k.X_WB.linear().transpose();  // [ω]×
@@ -390,8 +392,11 @@ TEST(SimulationBroadPhase, PairIsQueriedOnceTheBoxesMeet) {
       "[measured] after the collision: moving %.3e m/s, resting %.9f m/s; %ld of %ld "
       "right-hand sides queried\n",
       vA.x(), vB.x(), summary.contact_evaluations, summary.rhs_evaluations);
+  // An elastic impact of equal masses swaps the velocities; 1e-6 v bounds the integration
+  // error over the impact at these tight tolerances (the line above prints the actual one).
   EXPECT_NEAR(vA.x(), 0.0, 1e-6 * v);
   EXPECT_NEAR(vB.x(), v, 1e-6 * v);
+  // Momentum: the pair's forces are equal and opposite, so only round-off changes the sum.
   EXPECT_LT((vA + vB - Eigen::Vector3d(v, 0, 0)).norm(), 1e-12 * v);
   EXPECT_GT(summary.contact_evaluations, 0);
   EXPECT_LT(summary.contact_evaluations, summary.rhs_evaluations / 2);

@@ -82,10 +82,10 @@ TEST_F(DatasetFiles, DifferentiatesMissingVelocitiesAndSaysSo) {
   EXPECT_EQ(r.warnings.size(), 2u);
   for (const auto& s : d.samples) {
     // The three-point stencil is exact for a parabola on any grid (rounding: ~1e-13).
-    EXPECT_NEAR(s.v_PB.z(), -2 * s.t, 1e-12);
+    EXPECT_NEAR(s.v_BA.z(), -2 * s.t, 1e-12);
     // A constant spin is a constant relative rotation rate: exact up to rounding.
-    EXPECT_NEAR(s.w_PB.z(), 2.0, 1e-9);
-    EXPECT_NEAR(s.w_PB.head<2>().norm(), 0.0, 1e-12);
+    EXPECT_NEAR(s.w_BA.z(), 2.0, 1e-9);
+    EXPECT_NEAR(s.w_BA.head<2>().norm(), 0.0, 1e-12);
   }
 }
 

@@ -11,7 +11,9 @@
 namespace vcontact::validation {
 namespace {
 
-// The acceptance bounds of issue #5.
+// The acceptance bounds of issue #5: a model that explains the data has chi ≈ 1 (1.2 leaves
+// room for the sampling scatter of chi over a few hundred samples), and a fitted value within
+// 3 standard errors of the truth (a 99.7 % band for a Gaussian estimate).
 constexpr double kChiAfterAdding = 1.2;
 constexpr double kStdErrors = 3.0;
 
@@ -40,6 +42,17 @@ TEST_P(HiddenEffect, DiagnoseNamesItAndTheRefitExplainsTheData) {
     EXPECT_LE(std::abs(p.value - test::trueParameters().at(p.name)), kStdErrors * p.stdError)
         << p.name;
   }
+}
+
+// Diagnosis checks every effect only if every registered effect has its case.
+TEST(Diagnose, EveryRegisteredEffectHasAnEffectCase) {
+  std::set<std::string> covered;
+  for (const auto& c : test::effectCases()) covered.insert(c.effect);
+  for (const auto& id : dynamics::registeredEffectIds()) {
+    EXPECT_EQ(covered.count(id), 1u)
+        << "no EffectCase in tests/validation/effect_cases.hpp for " << id;
+  }
+  EXPECT_EQ(covered.size(), dynamics::registeredEffectIds().size());
 }
 
 // A model that holds every effect of the data is not "improved", over several noise seeds.
@@ -80,6 +93,7 @@ TEST(Diagnose, WhereLocatesTheRestartAfterTheLongStop) {
   const auto& where = result.stages.front().where;
   ASSERT_FALSE(where.empty());
   EXPECT_EQ(where.front().output, "fx");
+  // The restart is at 3.3 s; the window may start up to a half window (0.05 s) after it.
   EXPECT_LE(where.front().t0, 3.35);
   EXPECT_GE(where.front().t1, 3.3);
   EXPECT_EQ(where.front().regime.rfind("rest before this motion", 0), 0u) << where.front().regime;

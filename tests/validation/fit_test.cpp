@@ -27,6 +27,8 @@ TEST(Fit, RobustLossResistsOutliersThatPullTheSquaredLoss) {
   const FitResult cauchy = fit(replayer, noise, start, {Loss::kCauchy});
   const double mu = truth.parameter("coulomb.mu");
   const double errSquared = std::abs(squared.model.parameter("coulomb.mu") - mu);
+  // The robust losses must remove most of the outliers' bias: Huber at least half of it,
+  // Cauchy (which redescends) at least 80 %.
   EXPECT_LT(std::abs(huber.model.parameter("coulomb.mu") - mu), 0.5 * errSquared);
   EXPECT_LT(std::abs(cauchy.model.parameter("coulomb.mu") - mu), 0.2 * errSquared);
 }

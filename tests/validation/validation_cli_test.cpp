@@ -119,6 +119,8 @@ TEST_F(ValidationCli, CompareFitAndDiagnoseWriteTheirFiles) {
   ASSERT_EQ(d.exitCode, 0) << d.err;
   const auto diag = nlohmann::json::parse(readText(out() / "diagnosis.json"));
   EXPECT_EQ(diag["verdict"], "viscous");
+  // chi ≤ 1.2 explains the data, above does not (tests/validation/diagnose_test.cpp);
+  // ΔBIC < −10 is "very strong" evidence on the Kass–Raftery scale.
   EXPECT_GT(diag["baseline"]["chi"].get<double>(), 1.2);
   EXPECT_TRUE(diag["baseline"]["rms"].contains("fx"));
   EXPECT_EQ(diag["ranking"][0]["effect"], "viscous");
