@@ -203,7 +203,7 @@ ContactContext Model::makeContext(const volume::ContactVolume& cv, const Relativ
   ContactContext ctx;
   ctx.cv = &cv;
   ctx.settings = settings;
-  ctx.n = cv.normal;
+  ctx.n = cv.n_W;
   ctx.state = state;
   for (const StateLayout::Entry& e : stateLayout().entries()) {
     if (e.slot.kind != StateSlot::Kind::kPlaneVector) continue;

@@ -84,7 +84,7 @@ class Model {
   Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_WA,
                                       const Eigen::Isometry3d& X_WB) const;
 
-  /// Wrench on body A at cv.centroid, state rates and per-effect shares. No contact (V = 0)
+  /// Wrench on body A at cv.p_WC, state rates and per-effect shares. No contact (V = 0)
   /// gives zero wrench and zero rates.
   /// @param state  in stateLayout() order (PairState{} is the zero state)
   /// @param field  the δ map of cv for distributed friction (ContactContext::field), or null

@@ -218,7 +218,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     }
     const int state_size = pair.model.stateLayout().size();
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
-    const Eigen::Vector3d& p_c = out.cv.centroid;
+    const Eigen::Vector3d& p_c = out.cv.p_WC;
     const RelativeMotion motion = relativeMotion(A, B, p_c);
     pair.model.evaluate(out.cv, motion, out.state, out.result,
                         distributed && out.cv.inContact() ? &fields_[k] : nullptr);
@@ -302,7 +302,7 @@ bool Simulator::settlePairs(State& x, double t) {
     const BodyKinematics A = kinematics(x, pair.a, t);
     const BodyKinematics B = kinematics(x, pair.b, t);
     const volume::ContactVolume& cv = last_pairs_[k].cv;
-    const RelativeMotion motion = relativeMotion(A, B, cv.centroid);
+    const RelativeMotion motion = relativeMotion(A, B, cv.p_WC);
     const int state_size = pair.model.stateLayout().size();
     double* s = &x[static_cast<std::size_t>(pair_offset_[k])];
     PairState state = PairState::unpack(s, state_size);

@@ -104,8 +104,8 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
     const dynamics::PairOutput& p = s.pairs[k];
     std::string row = startRow(s.t);
     for (double x : {p.cv.volume, p.cv.depth, p.cv.area, p.cv.r_gyr}) put(row, x);
-    put(row, p.cv.centroid);
-    put(row, p.cv.normal);
+    put(row, p.cv.p_WC);
+    put(row, p.cv.n_W);
     put(row, p.result.wrench.f_W);
     put(row, p.result.wrench.tau_W);
     for (double x : {p.result.f_n, p.result.s, p.result.mu_max}) put(row, x);

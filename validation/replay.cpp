@@ -90,8 +90,8 @@ class HalfspaceVolumes {
   static volume::ContactVolume moved(volume::ContactVolume cv, const Eigen::Isometry3d& T) {
     if (!cv.inContact()) return cv;
     const Eigen::Matrix3d R = T.linear();
-    cv.centroid = T * cv.centroid;
-    cv.normal = R * cv.normal;
+    cv.p_WC = T * cv.p_WC;
+    cv.n_W = R * cv.n_W;
     cv.J_v = R * cv.J_v * R.transpose();
     cv.J_s = R * cv.J_s * R.transpose();
     return cv;
@@ -120,9 +120,9 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
              ? halfspace.at(d.payload, X_BA)
              : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
   if (!g.cv.inContact()) return g;
-  g.p_AoC_B = g.cv.centroid - X_BA.translation();
+  g.p_AoC_B = g.cv.p_WC - X_BA.translation();
   g.motion = dynamics::relativeMotion(payloadKinematics(s, X_BA), dynamics::BodyKinematics{},
-                                      g.cv.centroid);  // the plate does not move
+                                      g.cv.p_WC);  // the plate does not move
   return g;
 }
 
@@ -130,7 +130,7 @@ RegimeSample regimeOf(const SampleGeometry& g, double load, double v_eps) {
   RegimeSample r;
   r.load = load;
   if (!g.cv.inContact()) return r;
-  const dynamics::ContactKinematics k = dynamics::resolve(g.motion, g.cv.normal);
+  const dynamics::ContactKinematics k = dynamics::resolve(g.motion, g.cv.n_W);
   r.speed = k.v_t_W.norm();
   r.spin_ratio = g.cv.r_gyr * std::abs(k.omega_n) / std::max(r.speed, v_eps);
   r.penetration_rate = k.delta_dot;
@@ -148,7 +148,7 @@ struct RestClock {
       lastRest = 0.0;
       return;
     }
-    const double spin = g.cv.r_gyr * std::abs(dynamics::resolve(g.motion, g.cv.normal).omega_n);
+    const double spin = g.cv.r_gyr * std::abs(dynamics::resolve(g.motion, g.cv.n_W).omega_n);
     const bool atRest = std::hypot(r.speed, spin) < kRestSpeed;
     if (atRest && !resting) since = t;
     if (!atRest && resting) lastRest = t - since;

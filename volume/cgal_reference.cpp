@@ -128,7 +128,7 @@ ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
   // Back to W; the normal is the half-space's by definition (MODEL.md §1).
   const Eigen::Matrix3d R = X_WH.linear();
   const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
-  return assembleContactVolume(cv.volume, X_WH * cv.centroid, R * Sigma_H * R.transpose(), R.col(2),
+  return assembleContactVolume(cv.volume, X_WH * cv.p_WC, R * Sigma_H * R.transpose(), R.col(2),
                                cv.area, cv.depth, Method::kCgal);
 }
 

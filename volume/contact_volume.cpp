@@ -22,8 +22,8 @@ ContactVolume assembleContactVolume(double V, const Eigen::Vector3d& p_c,
   const Eigen::Matrix3d S_s = P * S * P;
   ContactVolume cv;
   cv.volume = V;
-  cv.centroid = p_c;
-  cv.normal = n;
+  cv.p_WC = p_c;
+  cv.n_W = n;
   cv.J_v = S.trace() * I - S;
   cv.J_s = S_s.trace() * I - S_s;
   cv.area = area;
@@ -50,7 +50,7 @@ ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector
 }
 
 ContactVolume swapped(ContactVolume cv) {
-  cv.normal = -cv.normal;
+  cv.n_W = -cv.n_W;
   return cv;
 }
 

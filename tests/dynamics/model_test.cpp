@@ -107,12 +107,12 @@ TEST(Model, SettleProjectsAndResets) {
   const volume::ContactVolume cv = sphereContact();
   const int z = stateOffset(m, "bristle"), s_dw = stateOffset(m, "dwell");
   PairState state;
-  state.vector(z) = 1e-5 * tangent(cv.normal) + 2e-6 * cv.normal;
+  state.vector(z) = 1e-5 * tangent(cv.n_W) + 2e-6 * cv.n_W;
   state[s_dw] = 0.9;
   RelativeMotion slide;
-  slide.v_c_W = 0.01 * tangent(cv.normal);  // s ≈ 0 < s_dw: bonds break at once
+  slide.v_c_W = 0.01 * tangent(cv.n_W);  // s ≈ 0 < s_dw: bonds break at once
   EXPECT_TRUE(m.settle(cv, slide, state));
-  EXPECT_NEAR(state.vector(z).dot(cv.normal), 0.0, 1e-20);  // 1e-5 m times round-off
+  EXPECT_NEAR(state.vector(z).dot(cv.n_W), 0.0, 1e-20);  // 1e-5 m times round-off
   EXPECT_LT(state[s_dw], 1e-30);
   EXPECT_TRUE(m.settle(volume::ContactVolume{}, slide, state));
   EXPECT_EQ(Eigen::Vector3d(state.vector(z)), Eigen::Vector3d::Zero());

@@ -32,10 +32,10 @@ void expectSameContact(const ContactVolume& a, const ContactVolume& b) {
   ASSERT_GT(b.volume, 0.0);
   EXPECT_NEAR(a.volume, b.volume, kVolumeTol * b.volume);
   const double width = std::cbrt(b.volume);  // the region's size, for the centroid
-  EXPECT_LE((a.centroid - b.centroid).norm(), kMomentTol * (b.centroid.norm() + width));
+  EXPECT_LE((a.p_WC - b.p_WC).norm(), kMomentTol * (b.p_WC.norm() + width));
   EXPECT_LE(relativeDifference(a.J_v, b.J_v), kMomentTol);
   EXPECT_LE(relativeDifference(a.J_s, b.J_s), kMomentTol);
-  EXPECT_LE((a.normal - b.normal).norm(), kMomentTol);
+  EXPECT_LE((a.n_W - b.n_W).norm(), kMomentTol);
 }
 
 TEST(CgalReference, AgreesWithHalfspaceClip) {
@@ -117,7 +117,7 @@ TEST(CgalReference, NoContactGivesZeroWithoutNaN) {
     const ContactVolume cv = cgalMeshMeshContact(box, test::translation({0.002, 0.001, 0.01 + gap}),
                                                  box, Isometry3d::Identity());
     EXPECT_EQ(cv.volume, 0.0);
-    EXPECT_TRUE(cv.centroid.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
+    EXPECT_TRUE(cv.p_WC.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
   }
 }
 

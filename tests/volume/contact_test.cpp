@@ -45,8 +45,8 @@ TEST(ComputeContact, HalfspaceInEitherOrder) {
   EXPECT_NEAR(ab.volume, ref.volume, 1e-12 * ref.volume);
   EXPECT_NEAR(ba.volume, ref.volume, 1e-12 * ref.volume);
   // The normal is z_H itself (MODEL.md §1: the half-space's): copied, or negated, exactly.
-  EXPECT_LE((ab.normal - X_WH.linear().col(2)).norm(), 1e-15);
-  EXPECT_LE((ba.normal + X_WH.linear().col(2)).norm(), 1e-15);
+  EXPECT_LE((ab.n_W - X_WH.linear().col(2)).norm(), 1e-15);
+  EXPECT_LE((ba.n_W + X_WH.linear().col(2)).norm(), 1e-15);
 }
 
 // Two meshes default to fast (exact, mesh_mesh_test checks it against cgal); cgal and

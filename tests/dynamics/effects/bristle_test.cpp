@@ -17,17 +17,17 @@ TEST(Bristle, StuckAndSaturated) {
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume;
   const double s0 = m.parameter("bristle.sigma0"), s1 = m.parameter("bristle.sigma1");
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   const int z = stateOffset(m, "bristle");
   PairState state;
-  state.vector(z) = 1e-5 * t + 3e-6 * cv.normal;  // the normal part is projected away
+  state.vector(z) = 1e-5 * t + 3e-6 * cv.n_W;  // the normal part is projected away
   const ContactResult stuck = m.evaluate(cv, RelativeMotion{}, state);
-  EXPECT_LT((stuck.wrench.f_W - (N * cv.normal - N * s0 * 1e-5 * t)).norm(), kRoundOff * N);
+  EXPECT_LT((stuck.wrench.f_W - (N * cv.n_W - N * s0 * 1e-5 * t)).norm(), kRoundOff * N);
   EXPECT_EQ(Eigen::Vector3d(stuck.rates.vector(z)), Eigen::Vector3d::Zero());
   RelativeMotion slide;
   slide.v_c_W = 0.3 * t;
   const ContactResult sliding = m.evaluate(cv, slide, state);
-  const Eigen::Vector3d f_t = sliding.wrench.f_W - N * cv.normal;
+  const Eigen::Vector3d f_t = sliding.wrench.f_W - N * cv.n_W;
   EXPECT_NEAR(f_t.norm(), 0.2 * N, kRoundOff * N);
   // s = 0: ż = (μ_C/σ1) dir(v) − (σ0/σ1) z
   EXPECT_LT((sliding.rates.vector(z) - ((0.2 / s1) * t - (s0 / s1) * 1e-5 * t)).norm(), kRoundOff);
@@ -43,11 +43,11 @@ TEST(Bristle, TorsionalStateFollowsTheSpinWhenStuck) {
   PairState state;
   state[theta] = 1e-6;  // rad
   RelativeMotion turn;
-  turn.w_W = 1e-12 / r * cv.normal;  // (r ω_n / v_s)² = 1e-18: s = 1 exactly in double
+  turn.w_W = 1e-12 / r * cv.n_W;  // (r ω_n / v_s)² = 1e-18: s = 1 exactly in double
   const ContactResult res = m.evaluate(cv, turn, state);
   EXPECT_NEAR(res.rates[theta], turn.w_W.norm(), kRoundOff * turn.w_W.norm());
   const double expected = -r * r * N * (s0 * 1e-6 + s1 * turn.w_W.norm());
-  EXPECT_NEAR(res.wrench.tau_W.dot(cv.normal), expected, kRoundOff * std::abs(expected));
+  EXPECT_NEAR(res.wrench.tau_W.dot(cv.n_W), expected, kRoundOff * std::abs(expected));
 }
 
 TEST(Bristle, HasNoDistributedForm) {

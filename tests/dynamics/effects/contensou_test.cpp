@@ -16,17 +16,17 @@ TEST(Contensou, SharesOneFrictionBudget) {
   m.setParameter("coulomb.mu", 0.25);
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume, r = cv.r_gyr;
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   for (double ratio : {0.1, 0.7, 1.0, 3.0}) {  // r ω / v
     RelativeMotion mo;
     const double v = 0.02, w = ratio * v / r;
     mo.v_c_W = v * t;
-    mo.w_W = w * cv.normal;
+    mo.w_W = w * cv.n_W;
     const double v_avg = std::hypot(v, r * w);
     const ContactResult res = m.evaluate(cv, mo, PairState{});
-    const Eigen::Vector3d f_t = res.wrench.f_W - res.wrench.f_W.dot(cv.normal) * cv.normal;
+    const Eigen::Vector3d f_t = res.wrench.f_W - res.wrench.f_W.dot(cv.n_W) * cv.n_W;
     EXPECT_LT((f_t + 0.25 * N * (v / v_avg) * t).norm(), kRoundOff * N) << ratio;
-    EXPECT_NEAR(res.wrench.tau_W.dot(cv.normal), -0.25 * N * r * (r * w / v_avg), kRoundOff * N * r)
+    EXPECT_NEAR(res.wrench.tau_W.dot(cv.n_W), -0.25 * N * r * (r * w / v_avg), kRoundOff * N * r)
         << ratio;
     EXPECT_NEAR(std::pow(f_t.norm() / (0.25 * N), 2) +
                     std::pow(res.wrench.tau_W.norm() / (0.25 * N * r), 2),

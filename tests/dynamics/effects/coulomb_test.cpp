@@ -12,11 +12,11 @@ TEST(Coulomb, SlidingForceIsMuTimesTheLoadAgainstTheSlip) {
   m.setParameter("coulomb.mu", 0.3);
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume;
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   RelativeMotion fast;
-  fast.v_c_W = 0.5 * t - 1e-9 * cv.normal;  // the normal part is no slip
+  fast.v_c_W = 0.5 * t - 1e-9 * cv.n_W;  // the normal part is no slip
   const ContactResult r = m.evaluate(cv, fast, PairState{});
-  EXPECT_LT((r.wrench.f_W - (N * cv.normal - 0.3 * N * t)).norm(), kRoundOff * N);
+  EXPECT_LT((r.wrench.f_W - (N * cv.n_W - 0.3 * N * t)).norm(), kRoundOff * N);
 }
 
 TEST(Coulomb, BelowTheRegularisationSpeedTheForceIsLinearInTheSlip) {
@@ -24,7 +24,7 @@ TEST(Coulomb, BelowTheRegularisationSpeedTheForceIsLinearInTheSlip) {
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume;
   const double v_eps = m.settings.v_eps;
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   RelativeMotion creep;
   creep.v_c_W = 0.25 * v_eps * t;  // dir_ε(v) = v / v_ε = t / 4
   const ContactResult r = m.evaluate(cv, creep, PairState{});

@@ -29,7 +29,7 @@ TEST(Dwell, BondsBreakAtOnce) {
   PairState state;
   state[s_dw] = 0.9;
   RelativeMotion slide;
-  slide.v_c_W = 0.01 * tangent(cv.normal);  // s ≈ 0 < s_dw: bonds break at once
+  slide.v_c_W = 0.01 * tangent(cv.n_W);  // s ≈ 0 < s_dw: bonds break at once
   EXPECT_TRUE(m.settle(cv, slide, state));
   EXPECT_LT(state[s_dw], 1e-30);  // s = exp(−(0.01/v_s)²) = exp(−100) ≈ 4e-44
 }

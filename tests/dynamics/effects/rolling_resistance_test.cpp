@@ -15,8 +15,8 @@ TEST(RollingResistance, DissipatesAtTheRateOfJs) {
   m.setParameter("damping.a", 4.0);
   const volume::ContactVolume cv = sphereContact();
   RelativeMotion roll;
-  roll.w_W = 7.0 * tangent(cv.normal) + 2.0 * cv.normal;  // spin part is no rolling
-  const Eigen::Vector3d w_t_W = roll.w_W - roll.w_W.dot(cv.normal) * cv.normal;
+  roll.w_W = 7.0 * tangent(cv.n_W) + 2.0 * cv.n_W;  // spin part is no rolling
+  const Eigen::Vector3d w_t_W = roll.w_W - roll.w_W.dot(cv.n_W) * cv.n_W;
   const ContactResult r = m.evaluate(cv, roll, PairState{});
   const double expected = -m.parameter("stiffness.kv") * 4.0 * w_t_W.dot(cv.J_s * w_t_W);
   ASSERT_LT(expected, 0.0);

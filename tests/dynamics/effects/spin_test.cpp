@@ -13,12 +13,12 @@ TEST(Spin, CoulombTorqueOpposesTheSpin) {
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume, r = cv.r_gyr;
   RelativeMotion fast, slow;
-  fast.w_W = -2.0 * cv.normal;  // r |ω_n| ≫ v_ε: sgn_ε = −1
-  EXPECT_NEAR(m.evaluate(cv, fast, PairState{}).shares[2].tau_W.dot(cv.normal), 0.25 * r * N,
+  fast.w_W = -2.0 * cv.n_W;  // r |ω_n| ≫ v_ε: sgn_ε = −1
+  EXPECT_NEAR(m.evaluate(cv, fast, PairState{}).shares[2].tau_W.dot(cv.n_W), 0.25 * r * N,
               kRoundOff * N * r);
   const double v_eps = m.settings.v_eps;
-  slow.w_W = 0.5 * v_eps / r * cv.normal;  // below the regularisation: sgn_ε = 1/2
-  EXPECT_NEAR(m.evaluate(cv, slow, PairState{}).shares[2].tau_W.dot(cv.normal), -0.125 * r * N,
+  slow.w_W = 0.5 * v_eps / r * cv.n_W;  // below the regularisation: sgn_ε = 1/2
+  EXPECT_NEAR(m.evaluate(cv, slow, PairState{}).shares[2].tau_W.dot(cv.n_W), -0.125 * r * N,
               kRoundOff * N * r);
 }
 

@@ -16,18 +16,18 @@ TEST(Stribeck, FastSlidingUsesMuCAndCreepRisesTowardMuS) {
   m.setParameter("stribeck.mu_s", 0.35);
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume;
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   RelativeMotion fast;
   fast.v_c_W = 0.5 * t;  // v ≫ v_s: s = exp(−250000) = 0, μ_max = μ_C
   const ContactResult r = m.evaluate(cv, fast, PairState{});
-  EXPECT_LT((r.wrench.f_W - (N * cv.normal - 0.2 * N * t)).norm(), kRoundOff * N);
+  EXPECT_LT((r.wrench.f_W - (N * cv.n_W - 0.2 * N * t)).norm(), kRoundOff * N);
   RelativeMotion creep;
   creep.v_c_W = 1e-4 * t;  // v ≫ v_ε = 1e-5, s = exp(−0.01)
   const double s = std::exp(-0.01);
   const double mu_max = 0.2 + 0.15 * s;
   const ContactResult c = m.evaluate(cv, creep, PairState{});
   EXPECT_NEAR(c.mu_max, mu_max, kRoundOff);
-  EXPECT_LT((c.wrench.f_W - (N * cv.normal - mu_max * N * t)).norm(), kRoundOff * N);
+  EXPECT_LT((c.wrench.f_W - (N * cv.n_W - mu_max * N * t)).norm(), kRoundOff * N);
 }
 
 TEST(Stribeck, StaticBelowKineticFrictionIsABrokenRelation) {
