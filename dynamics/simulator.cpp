@@ -91,6 +91,22 @@ void checkDistributedPair(const ContactPair& p) {
 }  // namespace
 
 Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
+  const int n = layoutStates();
+  setInitialState(n);
+  last_pairs_.resize(scenario_.pairs.size());
+  fields_.resize(scenario_.pairs.size());
+  caches_.resize(scenario_.pairs.size());
+  kin_.resize(scenario_.bodies.size());
+  addToBroadPhase();
+  preparePairs();
+  queried_.assign(scenario_.pairs.size(), 1);
+  force_.resize(scenario_.bodies.size());
+  torque_.resize(scenario_.bodies.size());
+}
+
+// Checks the bodies and pairs and places their states: the free bodies' 13 each, then each
+// pair's model states. Returns the state size.
+int Simulator::layoutStates() {
   int n = 0;
   for (const auto& b : scenario_.bodies) {
     checkBody(b);
@@ -108,6 +124,11 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     pair_offset_.push_back(n);
     n += p.model.stateLayout().size();
   }
+  return n;
+}
+
+// x0_: the free bodies' initial poses and velocities; the pair states start at zero.
+void Simulator::setInitialState(int n) {
   x0_.assign(static_cast<std::size_t>(n), 0.0);
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
     if (offset_[i] < 0) continue;
@@ -120,10 +141,10 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
         b.v_WBcm0.x(), b.v_WBcm0.y(), b.v_WBcm0.z(), b.w_WB0.x(), b.w_WB0.y(), b.w_WB0.z()};
     std::copy(init, init + kBodyStates, s);
   }
-  last_pairs_.resize(scenario_.pairs.size());
-  fields_.resize(scenario_.pairs.size());
-  caches_.resize(scenario_.pairs.size());
-  kin_.resize(scenario_.bodies.size());
+}
+
+// Every bounded body enters the broad phase at its initial pose.
+void Simulator::addToBroadPhase() {
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
     const RigidBody& b = scenario_.bodies[i];
     const std::optional<geometry::Aabb> box = geometry::localBounds(b.shape);
@@ -133,6 +154,12 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     if (!box) continue;
     broad_id_.back() = broad_phase_.add(geometry::placedBounds(*box, b.X_WB0));
   }
+}
+
+// Per pair: its broad-phase screening key and its contact when apart, whose method is
+// checked against the pair's shapes here, so that a pair no method handles fails before any
+// output.
+void Simulator::preparePairs() {
   for (const ContactPair& p : scenario_.pairs) {
     const bool screened =
         broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 && !p.model.adjustsPayloadPose();
@@ -141,7 +168,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     const geometry::Shape& a = scenario_.bodies[p.a].shape;
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.push_back(volume::ContactVolume{});
-    try {  // a pair no method (or not its method) handles fails here, before any output
+    try {
       const volume::Method m = p.method ? *p.method
                                : p.friction == FrictionMode::kDistributed
                                    ? volume::defaultDepthFieldMethod(a, b)
@@ -153,9 +180,6 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
     }
     any_screened_ = any_screened_ || screened;
   }
-  queried_.assign(scenario_.pairs.size(), 1);
-  force_.resize(scenario_.bodies.size());
-  torque_.resize(scenario_.bodies.size());
 }
 
 BodyKinematics Simulator::kinematics(const State& x, std::size_t i, double t) const {
@@ -189,78 +213,88 @@ void Simulator::screenPairs() {
 void Simulator::rhs(const State& x, State& dxdt, double t) {
   ++rhs_count_;
   const std::size_t nb = scenario_.bodies.size();
-  auto& kin = kin_;
-  auto& force = force_;
-  auto& torque = torque_;  // about each Bcm
   for (std::size_t i = 0; i < nb; ++i) {
-    kin[i] = kinematics(x, i, t);
-    force[i].setZero();
-    torque[i].setZero();
+    kin_[i] = kinematics(x, i, t);
+    force_[i].setZero();
+    torque_[i].setZero();
   }
-
   if (any_screened_) screenPairs();
-  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
-    const ContactPair& pair = scenario_.pairs[k];
-    const BodyKinematics& A = kin[pair.a];
-    const BodyKinematics& B = kin[pair.b];
-    PairOutput& out = last_pairs_[k];
-    const bool distributed = pair.friction == FrictionMode::kDistributed;
-    if (queried_[k]) {  // the constructor checked that the method takes the pair's shapes
-      const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(A.X_WB, B.X_WB);
-      const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
-      const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-      const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
-      out.cv = volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, query,
-                                      distributed ? &fields_[k] : nullptr, &caches_[k]);
-      ++contact_count_;
-    } else {
-      out.cv = apart_[k];  // the query's answer for bodies apart
-    }
-    const int state_size = pair.model.stateLayout().size();
-    out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
-    const Eigen::Vector3d& p_c = out.cv.p_WC;
-    const RelativeMotion motion = relativeMotion(A, B, p_c);
-    pair.model.evaluate(out.cv, motion, out.state, out.result,
-                        distributed && out.cv.inContact() ? &fields_[k] : nullptr);
-    const Wrench& w = out.result.wrench;  // on A at p_c; B gets the opposite
-    force[pair.a] += w.f_W;
-    torque[pair.a] += w.tau_W + (p_c - A.p_WBcm).cross(w.f_W);
-    force[pair.b] -= w.f_W;
-    torque[pair.b] -= w.tau_W + (p_c - B.p_WBcm).cross(w.f_W);
-    out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
-  }
-
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) evaluatePair(k, x, dxdt);
   for (std::size_t i = 0; i < nb; ++i) {
-    if (offset_[i] < 0) continue;
-    const RigidBody& body = scenario_.bodies[i];
-    const double* s = &x[static_cast<std::size_t>(offset_[i])];
-    double* d = &dxdt[static_cast<std::size_t>(offset_[i])];
-    const Eigen::Vector3d& w = kin[i].w_WB;
-    // q̇ = ½ (0, ω_W) ⊗ q  (ω in the world frame)
-    const Eigen::Quaterniond q(s[3], s[4], s[5], s[6]);
-    const Eigen::Quaterniond q_dot = Eigen::Quaterniond(0.0, w.x(), w.y(), w.z()) * q;
-    // m v̇ = F + m g;  I_W ω̇ = τ − ω × I_W ω,  I_W = R I_B Rᵀ, I_W⁻¹ = R I_B⁻¹ Rᵀ
-    const Eigen::Matrix3d R = kin[i].X_WB.linear();
-    const Eigen::Vector3d w_B = R.transpose() * w;
-    const Eigen::Vector3d h_W = R * (body.I_BBcm_B * w_B);
-    const Eigen::Vector3d v_dot = force[i] / body.mass + scenario_.gravity_W;
-    const Eigen::Vector3d w_dot = R * (I_inv_B_[i] * (R.transpose() * (torque[i] - w.cross(h_W))));
-    const double rates[kBodyStates] = {s[7],
-                                       s[8],
-                                       s[9],
-                                       0.5 * q_dot.w(),
-                                       0.5 * q_dot.x(),
-                                       0.5 * q_dot.y(),
-                                       0.5 * q_dot.z(),
-                                       v_dot.x(),
-                                       v_dot.y(),
-                                       v_dot.z(),
-                                       w_dot.x(),
-                                       w_dot.y(),
-                                       w_dot.z()};
-    std::copy(rates, rates + kBodyStates, d);
+    if (offset_[i] >= 0) bodyRates(i, x, dxdt);
   }
   last_x_ = x;
+}
+
+// Pair k's contact at kin_: queried, or its contact when apart when the broad phase
+// screened it out.
+volume::ContactVolume Simulator::pairContact(std::size_t k) {
+  const ContactPair& pair = scenario_.pairs[k];
+  if (!queried_[k]) return apart_[k];
+  // the constructor checked that the method takes the pair's shapes
+  const bool distributed = pair.friction == FrictionMode::kDistributed;
+  const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
+  const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
+  const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
+  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
+  volume::ContactVolume cv =
+      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                             distributed ? &fields_[k] : nullptr, &caches_[k]);
+  ++contact_count_;
+  return cv;
+}
+
+// Pair k's contact and model: its wrench into force_ and torque_, its state rates into dxdt.
+void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
+  const ContactPair& pair = scenario_.pairs[k];
+  const BodyKinematics& A = kin_[pair.a];
+  const BodyKinematics& B = kin_[pair.b];
+  PairOutput& out = last_pairs_[k];
+  const bool distributed = pair.friction == FrictionMode::kDistributed;
+  out.cv = pairContact(k);
+  const int state_size = pair.model.stateLayout().size();
+  out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
+  const Eigen::Vector3d& p_c = out.cv.p_WC;
+  const RelativeMotion motion = relativeMotion(A, B, p_c);
+  pair.model.evaluate(out.cv, motion, out.state, out.result,
+                      distributed && out.cv.inContact() ? &fields_[k] : nullptr);
+  const Wrench& w = out.result.wrench;  // on A at p_c; B gets the opposite
+  force_[pair.a] += w.f_W;
+  torque_[pair.a] += w.tau_W + (p_c - A.p_WBcm).cross(w.f_W);
+  force_[pair.b] -= w.f_W;
+  torque_[pair.b] -= w.tau_W + (p_c - B.p_WBcm).cross(w.f_W);
+  out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
+}
+
+// Free body i's 13 rates into dxdt, from force_[i] and torque_[i] (about its Bcm).
+void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
+  const RigidBody& body = scenario_.bodies[i];
+  const double* s = &x[static_cast<std::size_t>(offset_[i])];
+  double* d = &dxdt[static_cast<std::size_t>(offset_[i])];
+  const Eigen::Vector3d& w = kin_[i].w_WB;
+  // q̇ = ½ (0, ω_W) ⊗ q  (ω in the world frame)
+  const Eigen::Quaterniond q(s[3], s[4], s[5], s[6]);
+  const Eigen::Quaterniond q_dot = Eigen::Quaterniond(0.0, w.x(), w.y(), w.z()) * q;
+  // m v̇ = F + m g;  I_W ω̇ = τ − ω × I_W ω,  I_W = R I_B Rᵀ, I_W⁻¹ = R I_B⁻¹ Rᵀ
+  const Eigen::Matrix3d R = kin_[i].X_WB.linear();
+  const Eigen::Vector3d w_B = R.transpose() * w;
+  const Eigen::Vector3d h_W = R * (body.I_BBcm_B * w_B);
+  const Eigen::Vector3d v_dot = force_[i] / body.mass + scenario_.gravity_W;
+  const Eigen::Vector3d w_dot = R * (I_inv_B_[i] * (R.transpose() * (torque_[i] - w.cross(h_W))));
+  const double rates[kBodyStates] = {s[7],
+                                     s[8],
+                                     s[9],
+                                     0.5 * q_dot.w(),
+                                     0.5 * q_dot.x(),
+                                     0.5 * q_dot.y(),
+                                     0.5 * q_dot.z(),
+                                     v_dot.x(),
+                                     v_dot.y(),
+                                     v_dot.z(),
+                                     w_dot.x(),
+                                     w_dot.y(),
+                                     w_dot.z()};
+  std::copy(rates, rates + kBodyStates, d);
 }
 
 Snapshot Simulator::snapshot(const State& x, double t) {

@@ -92,7 +92,14 @@ class Simulator {
                  const ProgressFn& on_progress, SimulationSummary& summary);
   void runBdf(State& x, double& t, const OutputFn& on_output, const ProgressFn& on_progress,
               SimulationSummary& summary);
+  int layoutStates();
+  void setInitialState(int n);
+  void addToBroadPhase();
+  void preparePairs();
   void rhs(const State& x, State& dxdt, double t);
+  volume::ContactVolume pairContact(std::size_t k);
+  void evaluatePair(std::size_t k, const State& x, State& dxdt);
+  void bodyRates(std::size_t i, const State& x, State& dxdt) const;
   void screenPairs();
   bool rhsFinite(const double* x, double* dxdt, double t);
   Snapshot snapshot(const State& x, double t);

@@ -360,6 +360,81 @@ void addDefaultContacts(const Reader& c, const std::map<std::string, dynamics::M
   }
 }
 
+// "bodies": a non-empty array of bodies with distinct names.
+void readBodies(const Reader& r, const std::string& source, const std::string& base_dir,
+                ScenarioFile& file) {
+  if (!r.has("bodies") || !r["bodies"].is_array() || r["bodies"].empty()) {
+    r.fail("bodies", "expected a non-empty array of bodies");
+  }
+  std::vector<dynamics::RigidBody>& bodies = file.scenario.bodies;
+  for (std::size_t i = 0; i < r["bodies"].size(); ++i) {
+    const Reader b(r["bodies"][i], source, "bodies[" + std::to_string(i) + "]");
+    bodies.push_back(readBody(b, base_dir, file.warnings));
+    for (std::size_t k = 0; k < i; ++k) {
+      if (bodies[k].name == bodies[i].name) b.fail("name", "repeats an earlier body's name");
+    }
+  }
+}
+
+// "models": each given inline or as a model file's path.
+std::map<std::string, dynamics::Model> readModels(const Reader& r, const std::string& source,
+                                                  const std::string& base_dir) {
+  std::map<std::string, dynamics::Model> models;
+  if (!r.has("models")) return models;
+  const Reader m = r.child("models");
+  for (const auto& [name, value] : r["models"].items()) {
+    models[name] = value.is_object() ? modelFromJson(value, source, m.at(name))
+                                     : readModelFile(resolve(m.text(name), base_dir));
+  }
+  return models;
+}
+
+// "pairs"[i]: two different bodies not already a pair.
+dynamics::ContactPair readListedPair(const Reader& p,
+                                     const std::map<std::string, dynamics::Model>& models,
+                                     const std::string& base_dir, const dynamics::Scenario& sc) {
+  p.allowOnly({"name", "a", "b", "model", "method", "friction", "columns"});
+  dynamics::ContactPair pair;
+  pair.a = bodyIndex(p, "a", sc.bodies);
+  pair.b = bodyIndex(p, "b", sc.bodies);
+  if (pair.a == pair.b) p.fail("b", "a body cannot touch itself");
+  for (const dynamics::ContactPair& q : sc.pairs) {
+    if (std::minmax(q.a, q.b) == std::minmax(pair.a, pair.b)) {
+      p.fail("b", "bodies '" + sc.bodies[pair.a].name + "' and '" + sc.bodies[pair.b].name +
+                      "' are already a pair ('" + q.name + "')");
+    }
+  }
+  pair.name =
+      p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
+  readPairContact(p, models, base_dir, pair);
+  checkPairMethod(p, pair, sc.bodies);
+  return pair;
+}
+
+// Every pair name once: each names its output file. The first `listed` pairs are from
+// "pairs", the rest from "contacts".
+void checkPairNames(const Reader& r, const std::vector<dynamics::ContactPair>& pairs,
+                    std::size_t listed) {
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    for (std::size_t k = 0; k < i; ++k) {
+      if (pairs[k].name != pairs[i].name) continue;
+      const std::string where =
+          i < listed ? "pairs[" + std::to_string(i) + "].name" : std::string("contacts");
+      r.fail(where, "the pair name '" + pairs[i].name + "' is used twice (pair_" + pairs[i].name +
+                        ".csv would be written twice)");
+    }
+  }
+}
+
+OutputSelection readOutputs(const Reader& o) {
+  o.allowOnly({"bodies", "pairs", "shares"});
+  OutputSelection outputs;
+  outputs.bodies = o.flag("bodies", true);
+  outputs.pairs = o.flag("pairs", true);
+  outputs.shares = o.flag("shares", true);
+  return outputs;
+}
+
 }  // namespace
 
 ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source,
@@ -375,64 +450,19 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   dynamics::Scenario& sc = file.scenario;
   sc.settings = readSettings(r);
   sc.gravity_W = r.vector3("gravity", sc.gravity_W);
-  if (!r.has("bodies") || !r["bodies"].is_array() || r["bodies"].empty()) {
-    r.fail("bodies", "expected a non-empty array of bodies");
-  }
-  for (std::size_t i = 0; i < r["bodies"].size(); ++i) {
-    const Reader b(r["bodies"][i], source, "bodies[" + std::to_string(i) + "]");
-    sc.bodies.push_back(readBody(b, base_dir, file.warnings));
-    for (std::size_t k = 0; k < i; ++k) {
-      if (sc.bodies[k].name == sc.bodies[i].name) b.fail("name", "repeats an earlier body's name");
-    }
-  }
-  std::map<std::string, dynamics::Model> models;
-  if (r.has("models")) {
-    const Reader m = r.child("models");
-    for (const auto& [name, value] : r["models"].items()) {
-      models[name] = value.is_object() ? modelFromJson(value, source, m.at(name))
-                                       : readModelFile(resolve(m.text(name), base_dir));
-    }
-  }
+  readBodies(r, source, base_dir, file);
+  const std::map<std::string, dynamics::Model> models = readModels(r, source, base_dir);
   if (r.has("pairs") ? !r["pairs"].is_array() : !r.has("contacts")) {
     r.fail("pairs", "expected an array of pairs (it may be left out when \"contacts\" is given)");
   }
   const std::size_t listed = r.has("pairs") ? r["pairs"].size() : 0;
   for (std::size_t i = 0; i < listed; ++i) {
     const Reader p(r["pairs"][i], source, "pairs[" + std::to_string(i) + "]");
-    p.allowOnly({"name", "a", "b", "model", "method", "friction", "columns"});
-    dynamics::ContactPair pair;
-    pair.a = bodyIndex(p, "a", sc.bodies);
-    pair.b = bodyIndex(p, "b", sc.bodies);
-    if (pair.a == pair.b) p.fail("b", "a body cannot touch itself");
-    for (const dynamics::ContactPair& q : sc.pairs) {
-      if (std::minmax(q.a, q.b) == std::minmax(pair.a, pair.b)) {
-        p.fail("b", "bodies '" + sc.bodies[pair.a].name + "' and '" + sc.bodies[pair.b].name +
-                        "' are already a pair ('" + q.name + "')");
-      }
-    }
-    pair.name =
-        p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
-    readPairContact(p, models, base_dir, pair);
-    checkPairMethod(p, pair, sc.bodies);
-    sc.pairs.push_back(std::move(pair));
+    sc.pairs.push_back(readListedPair(p, models, base_dir, sc));
   }
   if (r.has("contacts")) addDefaultContacts(r.child("contacts"), models, base_dir, sc);
-  for (std::size_t i = 0; i < sc.pairs.size(); ++i) {
-    for (std::size_t k = 0; k < i; ++k) {
-      if (sc.pairs[k].name != sc.pairs[i].name) continue;
-      const std::string where =
-          i < listed ? "pairs[" + std::to_string(i) + "].name" : std::string("contacts");
-      r.fail(where, "the pair name '" + sc.pairs[i].name + "' is used twice (pair_" +
-                        sc.pairs[i].name + ".csv would be written twice)");
-    }
-  }
-  if (r.has("outputs")) {
-    const Reader o = r.child("outputs");
-    o.allowOnly({"bodies", "pairs", "shares"});
-    file.outputs.bodies = o.flag("bodies", true);
-    file.outputs.pairs = o.flag("pairs", true);
-    file.outputs.shares = o.flag("shares", true);
-  }
+  checkPairNames(r, sc.pairs, listed);
+  if (r.has("outputs")) file.outputs = readOutputs(r.child("outputs"));
   return file;
 }
 

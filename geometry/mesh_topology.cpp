@@ -31,7 +31,12 @@ void buildCsr(int n, const std::vector<std::pair<int, int>>& keyValue, std::vect
 }  // namespace
 
 MeshTopology::MeshTopology(const TriangleMesh& mesh) {
-  const int nv = static_cast<int>(mesh.vertexCount());
+  pairEdges(mesh);
+  buildAdjacency(mesh);
+  floodComponents(mesh);
+}
+
+void MeshTopology::pairEdges(const TriangleMesh& mesh) {
   const int nf = static_cast<int>(mesh.triangleCount());
   // Directed half-edges keyed by their undirected edge; sorting pairs up the two faces.
   struct HalfEdge {
@@ -65,7 +70,11 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
     cornerEdge_[3 * f.face + f.corner] = e;
     cornerEdge_[3 * r.face + r.corner] = e;
   }
+}
 
+void MeshTopology::buildAdjacency(const TriangleMesh& mesh) {
+  const int nv = static_cast<int>(mesh.vertexCount());
+  const int nf = static_cast<int>(mesh.triangleCount());
   std::vector<std::pair<int, int>> vf, ve;
   vf.reserve(3 * static_cast<std::size_t>(nf));
   ve.reserve(2 * edges_.size());
@@ -78,8 +87,10 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   }
   buildCsr(nv, vf, faceStart_, vertexFaces_);
   buildCsr(nv, ve, edgeStart_, vertexEdges_);
+}
 
-  // Components by flood over the edges.
+void MeshTopology::floodComponents(const TriangleMesh& mesh) {
+  const int nv = static_cast<int>(mesh.vertexCount());
   component_.assign(static_cast<std::size_t>(nv), -1);
   std::vector<int> stack;
   for (int seed = 0; seed < nv; ++seed) {

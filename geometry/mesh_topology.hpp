@@ -41,6 +41,13 @@ class MeshTopology {
   const std::vector<MeshComponent>& components() const { return components_; }
 
  private:
+  /// Edges from the faces' half-edges, two opposite ones per edge; throws InputError otherwise.
+  void pairEdges(const TriangleMesh& mesh);
+  /// Vertex → faces and vertex → edges lists.
+  void buildAdjacency(const TriangleMesh& mesh);
+  /// Connected components by flood over the edges.
+  void floodComponents(const TriangleMesh& mesh);
+
   std::vector<MeshEdge> edges_;
   std::vector<int> cornerEdge_;
   std::vector<int> faceStart_, vertexFaces_;

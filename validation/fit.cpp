@@ -234,6 +234,93 @@ void estimateUncertainty(ceres::Problem& problem, const std::vector<FreeParamete
   }
 }
 
+// The result before solving: `start`'s parameters, the free ones marked.
+FitResult startingResult(const Model& start, const std::vector<FreeParameter>& free) {
+  FitResult r;
+  r.model = start;
+  const auto specs = start.parameterSpecs();
+  const auto initial = start.parameters();
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    r.parameters.push_back(
+        {specs[i].name, specs[i].unit, initial[i], initial[i], std::nan(""), true, true});
+  }
+  for (const auto& f : free) {
+    r.parameters[f.index].fixed = false;
+    r.freeNames.push_back(f.spec.name);
+  }
+  r.freeCount = free.size();
+  return r;
+}
+
+// The least-squares problem in u: one residual block over the whole record (central
+// differences), each u bounded by its parameter's bounds.
+void buildProblem(Replayer& replayer, const NoiseLevels& noise, const Model& start,
+                  const std::vector<FreeParameter>& free, Loss loss, std::vector<double>& u,
+                  ceres::Problem& problem) {
+  auto* functor = new RecordResiduals(replayer, noise, start, free, loss);
+  ceres::NumericDiffOptions diff;
+  diff.relative_step_size = kRelativeStep;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<RecordResiduals, ceres::CENTRAL>(
+      functor, ceres::TAKE_OWNERSHIP, diff);
+  for (std::size_t j = 0; j < free.size(); ++j) cost->AddParameterBlock(1);
+  cost->SetNumResiduals(functor->residualCount());
+  std::vector<double*> blocks;
+  for (auto& x : u) blocks.push_back(&x);
+  problem.AddResidualBlock(cost, nullptr, blocks);
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    problem.SetParameterLowerBound(blocks[j], 0, free[j].scaling.toU(free[j].spec.lower));
+    problem.SetParameterUpperBound(blocks[j], 0, free[j].scaling.toU(free[j].spec.upper));
+  }
+}
+
+ceres::Solver::Options solverOptions(const FitOptions& options) {
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = options.maxIterations;
+  so.num_threads = 1;  // candidates run in parallel one level up (TBB)
+  so.logging_type = ceres::SILENT;
+  return so;
+}
+
+// r's model and free parameter values at the solution u, clamped to their bounds.
+void takeSolution(const std::vector<FreeParameter>& free, const std::vector<double>& u,
+                  FitResult& r) {
+  std::vector<double> values = r.model.parameters();
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    values[free[j].index] =
+        std::clamp(free[j].scaling.toP(u[j]), free[j].spec.lower, free[j].spec.upper);
+    r.parameters[free[j].index].value = values[free[j].index];
+  }
+  r.model.setParameters(values);
+}
+
+// r's prediction by its model and that prediction compared with the record.
+void predict(Replayer& replayer, const NoiseLevels& noise, FitResult& r) {
+  r.prediction = replayer.run(r.model);
+  r.comparison = compare(replayer.dataset(), r.prediction, noise);
+}
+
+// Solves for the free parameters from `start` and fills r: solver outcome, fitted model,
+// its prediction and the uncertainty of the free parameters.
+void solveFree(Replayer& replayer, const NoiseLevels& noise, const Model& start,
+               const std::vector<FreeParameter>& free, const FitOptions& options, FitResult& r) {
+  const auto initial = start.parameters();
+  std::vector<double> u;
+  for (const auto& f : free) u.push_back(f.scaling.toU(initial[f.index]));
+  ceres::Problem problem;
+  buildProblem(replayer, noise, start, free, options.loss, u, problem);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solverOptions(options), &problem, &summary);
+  r.iterations = static_cast<int>(summary.iterations.size());
+  r.converged = summary.termination_type == ceres::CONVERGENCE;
+  r.solverReport = summary.BriefReport();
+  takeSolution(free, u, r);
+  predict(replayer, noise, r);
+  estimateUncertainty(problem, free, u, r);
+  if (!r.converged)
+    r.warnings.push_back("the solver stopped before convergence: " + r.solverReport);
+}
+
 }  // namespace
 
 Loss parseLoss(const std::string& name) {
@@ -258,63 +345,11 @@ std::string lossName(Loss loss) {
 FitResult fit(Replayer& replayer, const NoiseLevels& noise, const Model& start,
               const FitOptions& options) {
   const std::vector<FreeParameter> free = freeParameters(start);
-  FitResult r;
-  r.model = start;
-  const auto specs = start.parameterSpecs();
-  const auto initial = start.parameters();
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    r.parameters.push_back(
-        {specs[i].name, specs[i].unit, initial[i], initial[i], std::nan(""), true, true});
-  }
-  for (const auto& f : free) {
-    r.parameters[f.index].fixed = false;
-    r.freeNames.push_back(f.spec.name);
-  }
-  r.freeCount = free.size();
-
-  std::vector<double> u;
-  for (const auto& f : free) u.push_back(f.scaling.toU(initial[f.index]));
+  FitResult r = startingResult(start, free);
   if (!free.empty()) {
-    auto* functor = new RecordResiduals(replayer, noise, start, free, options.loss);
-    ceres::NumericDiffOptions diff;
-    diff.relative_step_size = kRelativeStep;
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<RecordResiduals, ceres::CENTRAL>(
-        functor, ceres::TAKE_OWNERSHIP, diff);
-    for (std::size_t j = 0; j < free.size(); ++j) cost->AddParameterBlock(1);
-    cost->SetNumResiduals(functor->residualCount());
-    ceres::Problem problem;
-    std::vector<double*> blocks;
-    for (auto& x : u) blocks.push_back(&x);
-    problem.AddResidualBlock(cost, nullptr, blocks);
-    for (std::size_t j = 0; j < free.size(); ++j) {
-      problem.SetParameterLowerBound(blocks[j], 0, free[j].scaling.toU(free[j].spec.lower));
-      problem.SetParameterUpperBound(blocks[j], 0, free[j].scaling.toU(free[j].spec.upper));
-    }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = options.maxIterations;
-    so.num_threads = 1;  // candidates run in parallel one level up (TBB)
-    so.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    r.iterations = static_cast<int>(summary.iterations.size());
-    r.converged = summary.termination_type == ceres::CONVERGENCE;
-    r.solverReport = summary.BriefReport();
-    std::vector<double> values = initial;
-    for (std::size_t j = 0; j < free.size(); ++j) {
-      values[free[j].index] =
-          std::clamp(free[j].scaling.toP(u[j]), free[j].spec.lower, free[j].spec.upper);
-      r.parameters[free[j].index].value = values[free[j].index];
-    }
-    r.model.setParameters(values);
-    r.prediction = replayer.run(r.model);
-    r.comparison = compare(replayer.dataset(), r.prediction, noise);
-    estimateUncertainty(problem, free, u, r);
-    if (!r.converged)
-      r.warnings.push_back("the solver stopped before convergence: " + r.solverReport);
+    solveFree(replayer, noise, start, free, options, r);
   } else {
-    r.prediction = replayer.run(r.model);
-    r.comparison = compare(replayer.dataset(), r.prediction, noise);
+    predict(replayer, noise, r);
     r.converged = true;
   }
   r.bic = bic(r.comparison, r.freeCount);

@@ -144,18 +144,51 @@ double segmentAngle(double R, double d) {
   return 2.0 * std::asin(std::sqrt(r));
 }
 
-// Integrated quantities, per unit ζ, about o = −R u + ζ_deep e_z:
-//   0 A, 1 S_ξ', 2 S_ξ'ξ', 3 S_ηη, 4 A z', 5 S_ξ' z', 6 A z'², 7 side shadow, 8 cut-face
-// where z' = ζ − ζ_deep; 7 is ∫|n_s·n| over the slice's wetted arc, 8 the chord / s.
-using Slice = Eigen::Matrix<double, 9, 1>;
+// Integrated quantities, per unit ζ, about o = −R u + ζ_deep e_z, where z' = ζ − ζ_deep.
+struct SliceMoments {
+  double area = 0.0;        // A
+  double s1 = 0.0;          // S_ξ'
+  double s11 = 0.0;         // S_ξ'ξ'
+  double s22 = 0.0;         // S_ηη
+  double areaZ = 0.0;       // A z'
+  double s1Z = 0.0;         // S_ξ' z'
+  double areaZZ = 0.0;      // A z'²
+  double sideShadow = 0.0;  // ∫|n_s·n| over the slice's wetted arc
+  double cutFace = 0.0;     // the chord / s
 
-Slice sliceIntegrand(double R, double s, double theta, double zp) {
+  SliceMoments& operator+=(const SliceMoments& o) {
+    area += o.area;
+    s1 += o.s1;
+    s11 += o.s11;
+    s22 += o.s22;
+    areaZ += o.areaZ;
+    s1Z += o.s1Z;
+    areaZZ += o.areaZZ;
+    sideShadow += o.sideShadow;
+    cutFace += o.cutFace;
+    return *this;
+  }
+};
+
+// SliceMoments in member order, as the vector-valued quadrature integrates it.
+constexpr int kSliceSize = 9;
+using SliceVector = Eigen::Matrix<double, kSliceSize, 1>;
+
+SliceVector pack(const SliceMoments& m) {
+  SliceVector x;
+  x << m.area, m.s1, m.s11, m.s22, m.areaZ, m.s1Z, m.areaZZ, m.sideShadow, m.cutFace;
+  return x;
+}
+
+SliceMoments unpack(const SliceVector& x) {
+  return {x(0), x(1), x(2), x(3), x(4), x(5), x(6), x(7), x(8)};
+}
+
+SliceVector sliceIntegrand(double R, double s, double theta, double zp) {
   const Segment g = segmentMoments(R, theta);
   const double sinT = std::sin(theta);
-  Slice f;
-  f << g.A, g.S1, g.S11, g.S22, g.A * zp, g.S1 * zp, g.A * zp * zp,
-      s * R * 2.0 * (theta <= 0.5 * M_PI ? sinT : 2.0 - sinT), 2.0 * R * sinT / s;
-  return f;
+  return pack({g.A, g.S1, g.S11, g.S22, g.A * zp, g.S1 * zp, g.A * zp * zp,
+               s * R * 2.0 * (theta <= 0.5 * M_PI ? sinT : 2.0 - sinT), 2.0 * R * sinT / s});
 }
 
 struct CylinderSetup {
@@ -165,6 +198,132 @@ struct CylinderSetup {
   double depth(double zeta) const { return R + (h - nz * zeta) / s; }  // segment depth d(ζ)
 };
 
+// The slices integrated over the cylinder's length, with what the projected area needs.
+struct CylinderIntegrals {
+  SliceMoments total;
+  double relErr = 0.0;
+  double capArea = 0.0;  // |n_z| × wetted cap area, both caps
+};
+
+/// Axis along the normal: every slice is a full disc or empty. Wetted length ℓ.
+CylinderIntegrals integrateAxisAlongNormal(CylinderSetup& c, double depth) {
+  const double R = c.R, L = c.L;
+  const double ell = std::min(depth / std::abs(c.nz), L);
+  const double A = M_PI * R * R;
+  CylinderIntegrals out;
+  out.total.area = A * ell;
+  out.total.s1 = A * R * ell;
+  out.total.s11 = 1.25 * M_PI * R * R * R * R * ell;
+  out.total.s22 = 0.25 * M_PI * R * R * R * R * ell;
+  out.total.areaZ = A * ell * ell / 2.0;
+  out.total.s1Z = A * R * ell * ell / 2.0;
+  out.total.areaZZ = A * ell * ell * ell / 3.0;
+  c.u = Vector3d::UnitX();
+  c.v = Vector3d::UnitY();
+  // Seen along n: the deep cap, plus the cut face while the plane crosses the body, or
+  // the far cap once the cylinder is wholly sunk.
+  out.capArea = ell < L ? A : 2.0 * A;
+  out.total.cutFace = ell < L ? A : 0.0;
+  return out;
+}
+
+/// Sorted ζ where the integrand is not smooth: the caps, the tangencies (returned in
+/// `tangency` too) and the axis crossing.
+std::vector<double> sliceCuts(const CylinderSetup& c, std::vector<double>& tangency) {
+  const double L = c.L;
+  std::vector<double> cuts = {-0.5 * L, 0.5 * L};
+  if (c.nz != 0.0) {
+    for (double zeta : {(c.h + c.s * c.R) / c.nz, (c.h - c.s * c.R) / c.nz}) {
+      if (zeta > -0.5 * L && zeta < 0.5 * L) {
+        cuts.push_back(zeta);
+        tangency.push_back(zeta);
+      }
+    }
+    // Where the cut passes the axis (d = R, θ = π/2) the side-shadow term switches from
+    // 2 sin θ to 2(2 − sin θ): continuous with its slope, but its curvature jumps, and an
+    // adaptive rule would bisect towards that point for a long time. Cut there instead.
+    const double axis = c.h / c.nz;
+    if (axis > -0.5 * L && axis < 0.5 * L) cuts.push_back(axis);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  return cuts;
+}
+
+/// Full discs on ζ ∈ [a, b]: polynomial in z'.
+SliceMoments fullDiscs(const CylinderSetup& c, double a, double b) {
+  const double R = c.R;
+  const double za = a - c.zetaDeep, zb = b - c.zetaDeep;
+  const double A = M_PI * R * R, len = b - a;
+  const double p1 = (zb * zb - za * za) / 2.0, p2 = (zb * zb * zb - za * za * za) / 3.0;
+  return {A * len,
+          A * R * len,
+          1.25 * A * R * R * len,
+          0.25 * A * R * R * len,
+          A * p1,
+          A * R * p1,
+          A * p2,
+          4.0 * c.s * R * len,
+          0.0};
+}
+
+/// Segment slices on ζ ∈ [a, b], integrated adaptively in θ or ζ.
+QuadratureResult<kSliceSize> integrateSegments(const CylinderSetup& c, double a, double b,
+                                               bool tangentA, bool tangentB) {
+  const double R = c.R;
+  const double ta = tangentA ? (c.depth(a) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(a));
+  const double tb = tangentB ? (c.depth(b) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(b));
+  // θ is the better variable where d runs close to 0 (or 2R) relative to its range: the
+  // slice moments go like d^{3/2} there. ζ is kept where θ barely moves (the axis almost
+  // parallel to the plane), since ζ(θ) would then be ill-conditioned.
+  const double tLo = std::min(ta, tb), tHi = std::max(ta, tb);
+  const bool nearTangency = tLo < kThetaRatio * tHi || (M_PI - tHi) < kThetaRatio * (M_PI - tLo);
+  if (tangentA || tangentB || (nearTangency && tHi - tLo > kMinThetaRange)) {
+    // ζ(θ) − a = (sR/n_z)(cos θ − cos θ_a), the difference of cosines written as a
+    // product so that it keeps its digits; |dζ/dθ| = sR sin θ / |n_z|.
+    auto f = [&](double theta) -> SliceVector {
+      const double dcos = -2.0 * std::sin(0.5 * (theta + ta)) * std::sin(0.5 * (theta - ta));
+      const double zeta = a + c.s * R * dcos / c.nz;
+      return sliceIntegrand(R, c.s, theta, zeta - c.zetaDeep) *
+             (c.s * R * std::sin(theta) / std::abs(c.nz));
+    };
+    return integrateAdaptive<kSliceSize>(f, tLo, tHi, kQuadratureTolerance);
+  }
+  auto f = [&](double zeta) -> SliceVector {
+    return sliceIntegrand(R, c.s, segmentAngle(R, c.depth(zeta)), zeta - c.zetaDeep);
+  };
+  return integrateAdaptive<kSliceSize>(f, a, b, kQuadratureTolerance);
+}
+
+/// General axis: circular-segment slices, integrated piece by piece between the cuts.
+CylinderIntegrals integrateTiltedAxis(CylinderSetup& c, const Vector3d& n_C) {
+  const double R = c.R, L = c.L;
+  c.u = Vector3d(n_C.x() / c.s, n_C.y() / c.s, 0.0);
+  c.v = Vector3d::UnitZ().cross(c.u);
+  std::vector<double> tangency;
+  const std::vector<double> cuts = sliceCuts(c, tangency);
+  auto isTangency = [&](double z) {
+    return std::find(tangency.begin(), tangency.end(), z) != tangency.end();
+  };
+  CylinderIntegrals out;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double a = cuts[i], b = cuts[i + 1];
+    if (!(b > a)) continue;
+    const double dMid = c.depth(0.5 * (a + b));
+    if (dMid <= 0.0) continue;
+    if (dMid >= 2.0 * R) {
+      out.total += fullDiscs(c, a, b);
+      continue;
+    }
+    const QuadratureResult<kSliceSize> r = integrateSegments(c, a, b, isTangency(a), isTangency(b));
+    out.total += unpack(r.value);
+    out.relErr = std::max(out.relErr, r.relative_error);
+  }
+  for (double zeta : {-0.5 * L, 0.5 * L}) {
+    out.capArea += std::abs(c.nz) * segmentMoments(R, segmentAngle(R, c.depth(zeta))).A;
+  }
+  return out;
+}
+
 ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double h,
                                  const Isometry3d& X_WC, const Vector3d& n_W) {
   CylinderSetup c{R, L, std::hypot(n_C.x(), n_C.y()), n_C.z(), h, {}, {}, 0.0};
@@ -172,99 +331,10 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
   const double depth = h + c.s * R + std::abs(c.nz) * 0.5 * L;  // max of h − n·p
   if (!(depth > 0.0)) return ContactVolume{.method = Method::kAnalytic};
 
-  Slice total = Slice::Zero();
-  double relErr = 0.0;
-  double capArea = 0.0;  // |n_z| × wetted cap area, both caps
-
-  if (c.s == 0.0) {
-    // Axis along the normal: every slice is a full disc or empty. Wetted length ℓ.
-    const double ell = std::min(depth / std::abs(c.nz), L);
-    const double A = M_PI * R * R;
-    total(0) = A * ell;
-    total(1) = A * R * ell;
-    total(2) = 1.25 * M_PI * R * R * R * R * ell;
-    total(3) = 0.25 * M_PI * R * R * R * R * ell;
-    total(4) = A * ell * ell / 2.0;
-    total(5) = A * R * ell * ell / 2.0;
-    total(6) = A * ell * ell * ell / 3.0;
-    c.u = Vector3d::UnitX();
-    c.v = Vector3d::UnitY();
-    // Seen along n: the deep cap, plus the cut face while the plane crosses the body, or
-    // the far cap once the cylinder is wholly sunk.
-    capArea = ell < L ? A : 2.0 * A;
-    total(8) = ell < L ? A : 0.0;
-  } else {
-    c.u = Vector3d(n_C.x() / c.s, n_C.y() / c.s, 0.0);
-    c.v = Vector3d::UnitZ().cross(c.u);
-    std::vector<double> cuts = {-0.5 * L, 0.5 * L};
-    std::vector<double> tangency;
-    if (c.nz != 0.0) {
-      for (double zeta : {(h + c.s * R) / c.nz, (h - c.s * R) / c.nz}) {
-        if (zeta > -0.5 * L && zeta < 0.5 * L) {
-          cuts.push_back(zeta);
-          tangency.push_back(zeta);
-        }
-      }
-      // Where the cut passes the axis (d = R, θ = π/2) the side-shadow term switches from
-      // 2 sin θ to 2(2 − sin θ): continuous with its slope, but its curvature jumps, and an
-      // adaptive rule would bisect towards that point for a long time. Cut there instead.
-      const double axis = h / c.nz;
-      if (axis > -0.5 * L && axis < 0.5 * L) cuts.push_back(axis);
-    }
-    std::sort(cuts.begin(), cuts.end());
-    auto isTangency = [&](double z) {
-      return std::find(tangency.begin(), tangency.end(), z) != tangency.end();
-    };
-    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-      const double a = cuts[i], b = cuts[i + 1];
-      if (!(b > a)) continue;
-      const double dMid = c.depth(0.5 * (a + b));
-      const double za = a - c.zetaDeep, zb = b - c.zetaDeep;
-      if (dMid <= 0.0) continue;
-      if (dMid >= 2.0 * R) {
-        // Full discs: polynomial in z'.
-        const double A = M_PI * R * R, len = b - a;
-        const double p1 = (zb * zb - za * za) / 2.0, p2 = (zb * zb * zb - za * za * za) / 3.0;
-        Slice f;
-        f << A * len, A * R * len, 1.25 * A * R * R * len, 0.25 * A * R * R * len, A * p1,
-            A * R * p1, A * p2, 4.0 * c.s * R * len, 0.0;
-        total += f;
-        continue;
-      }
-      const double ta = isTangency(a) ? (c.depth(a) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(a));
-      const double tb = isTangency(b) ? (c.depth(b) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(b));
-      // θ is the better variable where d runs close to 0 (or 2R) relative to its range: the
-      // slice moments go like d^{3/2} there. ζ is kept where θ barely moves (the axis almost
-      // parallel to the plane), since ζ(θ) would then be ill-conditioned.
-      const double tLo = std::min(ta, tb), tHi = std::max(ta, tb);
-      const bool nearTangency =
-          tLo < kThetaRatio * tHi || (M_PI - tHi) < kThetaRatio * (M_PI - tLo);
-      QuadratureResult<9> r;
-      if (isTangency(a) || isTangency(b) || (nearTangency && tHi - tLo > kMinThetaRange)) {
-        // ζ(θ) − a = (sR/n_z)(cos θ − cos θ_a), the difference of cosines written as a
-        // product so that it keeps its digits; |dζ/dθ| = sR sin θ / |n_z|.
-        auto f = [&](double theta) -> Slice {
-          const double dcos = -2.0 * std::sin(0.5 * (theta + ta)) * std::sin(0.5 * (theta - ta));
-          const double zeta = a + c.s * R * dcos / c.nz;
-          return sliceIntegrand(R, c.s, theta, zeta - c.zetaDeep) *
-                 (c.s * R * std::sin(theta) / std::abs(c.nz));
-        };
-        r = integrateAdaptive<9>(f, tLo, tHi, kQuadratureTolerance);
-      } else {
-        auto f = [&](double zeta) -> Slice {
-          return sliceIntegrand(R, c.s, segmentAngle(R, c.depth(zeta)), zeta - c.zetaDeep);
-        };
-        r = integrateAdaptive<9>(f, a, b, kQuadratureTolerance);
-      }
-      total += r.value;
-      relErr = std::max(relErr, r.relative_error);
-    }
-    for (double zeta : {-0.5 * L, 0.5 * L}) {
-      capArea += std::abs(c.nz) * segmentMoments(R, segmentAngle(R, c.depth(zeta))).A;
-    }
-  }
-
-  const double V = total(0);
+  const CylinderIntegrals in =
+      c.s == 0.0 ? integrateAxisAlongNormal(c, depth) : integrateTiltedAxis(c, n_C);
+  const SliceMoments& total = in.total;
+  const double V = total.area;
   if (!(V > 0.0)) return ContactVolume{.method = Method::kAnalytic};
   // Moments about o in C: m1 = S_ξ' u + (∫A z') e_z, m2 assembled from the slice terms.
   const Vector3d& u = c.u;
@@ -272,16 +342,16 @@ ContactVolume cylinderInOwnFrame(double R, double L, const Vector3d& n_C, double
   const Vector3d e = Vector3d::UnitZ();
   geometry::Moments M;
   M.m0 = V;
-  M.m1 = total(1) * u + total(4) * e;
-  M.m2 = total(2) * u * u.transpose() + total(3) * v * v.transpose() +
-         total(5) * (u * e.transpose() + e * u.transpose()) + total(6) * e * e.transpose();
+  M.m1 = total.s1 * u + total.areaZ * e;
+  M.m2 = total.s11 * u * u.transpose() + total.s22 * v * v.transpose() +
+         total.s1Z * (u * e.transpose() + e * u.transpose()) + total.areaZZ * e * e.transpose();
   const Vector3d o = -R * u + c.zetaDeep * e;
   // Projected area of a convex region: half of ∫|n_s·n| over its boundary.
-  const double area = 0.5 * (total(7) + total(8) + capArea);
+  const double area = 0.5 * (total.sideShadow + total.cutFace + in.capArea);
   // o and the offset are mapped separately: o + offset would round the offset (~d) against
   // the radius, losing digits for shallow contact.
   ContactVolume cv = contactFromMoments(M, o, X_WC, n_W, area, depth, Method::kAnalytic);
-  cv.relative_error = relErr;
+  cv.relative_error = in.relErr;
   return cv;
 }
 
