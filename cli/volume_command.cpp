@@ -23,6 +23,7 @@ struct VolumeOptions {
   std::string poseA = "0,0,0", poseB = "0,0,0";
   std::string method;
   bool json = false;
+  bool repair = false;
   std::string out;
   std::string field;
 };
@@ -44,8 +45,10 @@ volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
 }
 
 void runVolume(const VolumeOptions& o) {
-  const io::ParsedShape a = io::parseShape(o.a, "A (" + o.a + ")");
-  const io::ParsedShape b = io::parseShape(o.b, "B (" + o.b + ")");
+  io::MeshReadOptions mesh;
+  mesh.repair = o.repair;
+  const io::ParsedShape a = io::parseShape(o.a, "A (" + o.a + ")", mesh);
+  const io::ParsedShape b = io::parseShape(o.b, "B (" + o.b + ")", mesh);
   printWarnings(a.warnings);
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
@@ -84,6 +87,7 @@ void addVolumeCommand(CLI::App& app) {
   cmd->add_option("--field", opts->field,
                   "write the penetration-depth map of the column method to this CSV");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");
+  cmd->add_flag("--repair", opts->repair, "repair mesh files first (as mesh-repair does)");
   cmd->add_option("--out", opts->out, "also write the JSON to this file");
   cmd->callback([opts] { runVolume(*opts); });
 }
