@@ -354,8 +354,8 @@ std::size_t checkShells(const TriangleMesh& mesh) {
         continue;
       case PMP::VOLUME_INTERSECTION:
         throw InputError("",
-                         "closed shells intersect each other (their volumes would be "
-                         "added twice where they overlap); " +
+                         "closed shells intersect or touch each other (their volumes would "
+                         "be added twice where they overlap); " +
                              count(shells, "shell", "shells") + where);
       case PMP::INCOMPATIBLE_ORIENTATION:
         throw InputError("",

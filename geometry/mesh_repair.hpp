@@ -29,8 +29,9 @@ namespace vcontact::geometry {
 inline constexpr double kDefaultWeldTolerance = 1e-6;
 
 /// Holes filled on request are at most this fraction of the diagonal around: a missing facet
-/// or a pin-hole of an export, not a missing side of the part.
-inline constexpr double kSmallHolePerimeter = 0.1;
+/// of a coarse tessellation (a 24-segment sphere's is 0.22) or a pin-hole of an export, not a
+/// missing side of the part (a box side is 1.5 to 2 diagonals around).
+inline constexpr double kSmallHolePerimeter = 0.5;
 
 struct RepairOptions {
   double weldTolerance = kDefaultWeldTolerance;  ///< fraction of the bounding-box diagonal
@@ -53,8 +54,9 @@ std::vector<Eigen::Vector3i> triangulatePolygon(const std::vector<Eigen::Vector3
 
 /// Shells of a closed, consistently oriented mesh (CGAL's volume_connected_components).
 /// @return the number of closed shells
-/// @throws InputError (empty source) when two shells intersect, or a shell lies inside
-///   another with an orientation that does not make it a cavity (their volumes would add)
+/// @throws InputError (empty source) when two shells intersect or touch (CGAL counts a shared
+///   point as an intersection), or a shell lies inside another with an orientation that does
+///   not make it a cavity (their volumes would add)
 std::size_t checkShells(const TriangleMesh& mesh);
 
 }  // namespace vcontact::geometry
