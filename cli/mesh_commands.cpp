@@ -202,7 +202,8 @@ void addMeshRepairCommand(CLI::App& app) {
   cmd->add_option("IN", opts->in, "mesh file, MESHFILE[@SCALE]")->required();
   cmd->add_option("--out", opts->out, "output file (.obj full precision, or binary .stl)")
       ->required();
-  cmd->add_flag("--fill-holes", opts->fillHoles, "fill holes shorter around than half the part's diagonal");
+  cmd->add_flag("--fill-holes", opts->fillHoles,
+                "fill holes shorter around than half the part's diagonal");
   cmd->add_option("--weld-tolerance", opts->weldTolerance,
                   "weld vertices closer than this fraction of the bounding-box diagonal")
       ->capture_default_str();
