@@ -4,7 +4,6 @@
 #include <CGAL/Fuzzy_sphere.h>
 #include <CGAL/Kd_tree.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
-#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -272,25 +271,32 @@ void fillSmallHoles(SurfaceMesh& sm, double diagonal, std::vector<std::string>& 
   }
 }
 
-// Step 7.
-void orientToBoundVolume(SurfaceMesh& sm, std::vector<std::string>& changes) {
+// Step 7. A shell inside no other must face outward. A shell inside another is left as it
+// is: facing inward it is a cavity, facing outward checkShells refuses it, since which one the
+// file meant cannot be told.
+void turnOuterShellsOutward(SurfaceMesh& sm, std::vector<std::string>& changes) {
   if (!CGAL::is_closed(sm)) return;
-  std::vector<Kernel::Vector_3> before;
-  for (const auto f : sm.faces()) before.push_back(PMP::compute_face_normal(f, sm));
-  PMP::orient_to_bound_a_volume(sm);
-  std::size_t reversed = 0;
-  Point first;
-  std::size_t i = 0;
+  auto shellOf = sm.add_property_map<Face, std::size_t>("f:outer_shell", 0).first;
+  auto volumeOf = sm.add_property_map<Face, std::size_t>("f:outer_volume", 0).first;
+  std::vector<std::size_t> levels;
+  std::vector<bool> outward;
+  PMP::volume_connected_components(sm, volumeOf,
+                                   CGAL::parameters::face_connected_component_map(shellOf)
+                                       .nesting_levels(std::ref(levels))
+                                       .is_cc_outward_oriented(std::ref(outward))
+                                       .do_self_intersection_tests(true));
+  std::vector<Face> inward;
   for (const auto f : sm.faces()) {
-    if (before[i++] * PMP::compute_face_normal(f, sm) >= 0.0) continue;
-    if (reversed++ == 0) first = sm.point(sm.target(sm.halfedge(f)));
+    const std::size_t shell = shellOf[f];
+    if (shell < levels.size() && levels[shell] == 0 && !outward[shell]) inward.push_back(f);
   }
-  if (reversed > 0) {
-    changes.push_back("reversed " + count(reversed, "face", "faces") +
-                      " so that the shells bound a volume (outer shells outward, cavities "
-                      "inward); first at " +
-                      at(first));
-  }
+  sm.remove_property_map(shellOf);
+  sm.remove_property_map(volumeOf);
+  if (inward.empty()) return;
+  PMP::reverse_face_orientations(inward, sm);
+  changes.push_back("reversed " + count(inward.size(), "face", "faces") +
+                    " of outer shells that faced inward; first at " +
+                    at(sm.point(sm.target(sm.halfedge(inward.front())))));
 }
 
 }  // namespace
@@ -307,7 +313,7 @@ RepairResult repairMesh(const TriangleMesh& soup, const RepairOptions& options) 
   stitch(sm, result.changes);
   dropZeroAreaFaces(sm, result.changes);
   if (options.fillHoles) fillSmallHoles(sm, diagonal, result.changes);
-  orientToBoundVolume(sm, result.changes);
+  turnOuterShellsOutward(sm, result.changes);
   result.mesh = toTriangleMesh(sm);
   if (result.mesh.triangleCount() == 0) throw InputError("", "no face is left after repair");
   return result;
@@ -360,7 +366,7 @@ std::size_t checkShells(const TriangleMesh& mesh) {
       case PMP::INCOMPATIBLE_ORIENTATION:
         throw InputError("",
                          "a closed shell lies inside another with the same orientation "
-                         "(their volumes would be added; a cavity faces inward); " +
+                         "(their volumes would be added: a cavity must face inward); " +
                              count(shells, "shell", "shells") + where);
       case PMP::SURFACE_WITH_SELF_INTERSECTIONS:
         throw InputError(

@@ -12,7 +12,9 @@
 //   5. drop zero-area faces, re-stitching their neighbours (remove_degenerate_faces);
 //   6. when asked, fill holes whose boundary is shorter than kSmallHolePerimeter of the
 //      diagonal (triangulate_hole);
-//   7. orient each closed shell so that the shells bound a volume (orient_to_bound_a_volume).
+//   7. turn outward the closed shells that lie inside no other and face inward
+//      (volume_connected_components, reverse_face_orientations); a nested shell keeps its
+//      orientation (inward: a cavity; outward: refused by checkShells).
 
 #include <string>
 #include <vector>

@@ -125,7 +125,7 @@ TEST(MeshRepair, LargeHoleIsLeftOpen) {
 
 TEST(MeshRepair, InvertedShellIsTurnedOutward) {
   const Repaired r = repairAndCheck(inverted(cadBox()));
-  EXPECT_TRUE(said(r.changes, "reversed 12 faces so that the shells bound a volume"));
+  EXPECT_TRUE(said(r.changes, "reversed 12 faces of outer shells that faced inward"));
   EXPECT_NEAR(r.volume / kBoxVolume, 1.0, kRepairedVolumeTolerance);
 }
 
