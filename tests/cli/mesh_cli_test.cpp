@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "geometry/defect_meshes.hpp"
@@ -111,6 +112,28 @@ TEST_F(MeshCli, VolumeTakesRepair) {
   // The box's lower 5 mm is below the plane: 0.03 x 0.05 x 0.005 m^3. The half-space clip is
   // exact up to the rounding of the cut points, far below 1e-12.
   EXPECT_NEAR(nlohmann::json::parse(r.out).at("volume").get<double>() / 7.5e-6, 1.0, 1e-12);
+}
+
+TEST_F(MeshCli, ScenarioBodyTakesTheRepairKey) {
+  fs::copy_file(fs::path(VCONTACT_ASSETS_DIR) / "scenarios" / "steel_on_aluminium.model.json",
+                path("steel.model.json"));
+  const auto scenario = [&](const std::string& repair) {
+    std::ofstream(path("drop.json"))
+        << R"({"format": "vcontact.scenario/1", "duration": 0.001, "output_rate": 1000,
+  "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
+             {"name": "part", "shape": "seam.obj", "density": 7900, "pose": "0,0,0.1")"
+        << repair << R"(}],
+  "pairs": [{"a": "part", "b": "plate", "model": "steel.model.json"}]})";
+    return run("simulate " + path("drop.json") + " --out " + path("out") + " --quiet");
+  };
+  const auto refused = scenario("");
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.err.find("repairing the mesh welds vertices"), std::string::npos)
+      << refused.err;
+  const auto repaired = scenario(R"(, "repair": true)");
+  EXPECT_EQ(repaired.exitCode, 0) << repaired.err;
+  EXPECT_NE(repaired.err.find("part: " + path("seam.obj") + ": welded 1 vertex"), std::string::npos)
+      << repaired.err;
 }
 
 }  // namespace

@@ -7,12 +7,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "geometry/defect_meshes.hpp"
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/shape_json.hpp"
+#include "support/test_support.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -224,6 +227,29 @@ TEST_F(MeshFiles, MillimetreFileReadAsMetresIsNamedWithItsScale) {
       << r.warnings[0];
   EXPECT_NE(r.warnings[0].find("PATH@mm"), std::string::npos);
   EXPECT_TRUE(readMesh(path("box_mm.stl"), 0.001).warnings.empty());
+}
+
+TEST_F(MeshFiles, ShapeJsonTakesRepairAndAUnitName) {
+  TriangleMesh mm = test::withSeam(box_, 3, 1e-10);
+  mm.vertices *= 1000.0;
+  writeObj(mm, path("seam_mm.obj"));
+  const auto j = nlohmann::json::parse(R"({"mesh": "seam_mm.obj", "scale": "mm"})");
+  EXPECT_NE(test::inputErrorMessage([&] {
+              parseShapeJson(j, "rig.json: payload", dir_.string());
+            }).find("boundary edges"),
+            std::string::npos);
+  nlohmann::json repaired = j;
+  repaired["repair"] = true;
+  const JsonShape s = parseShapeJson(repaired, "rig.json: payload", dir_.string());
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("welded 1 vertex"), std::string::npos);
+  EXPECT_NEAR(geometry::meshMoments(*std::get<geometry::Mesh>(s.shape).mesh).m0 / boxVolume_, 1.0,
+              1e-12);  // a weld of 1e-10 m moves nothing of the box: summation order only
+  repaired["repair"] = "yes";
+  EXPECT_NE(test::inputErrorMessage([&] {
+              parseShapeJson(repaired, "rig.json: payload", ".");
+            }).find("\"repair\" must be true or false"),
+            std::string::npos);
 }
 
 TEST(BundledMeshes, ReadWithoutWarnings) {
