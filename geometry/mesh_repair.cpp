@@ -22,6 +22,7 @@
 #include <numeric>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
@@ -299,6 +300,34 @@ void turnOuterShellsOutward(SurfaceMesh& sm, std::vector<std::string>& changes) 
                     at(sm.point(sm.target(sm.halfedge(inward.front())))));
 }
 
+// Faces joined across shared edges (union-find): the number of shells, without building a
+// CGAL mesh, which costs more than all the other checks together on a one-shell part.
+std::size_t countEdgeConnectedParts(const TriangleMesh& mesh) {
+  std::vector<Eigen::Index> parent(static_cast<std::size_t>(mesh.triangleCount()));
+  std::iota(parent.begin(), parent.end(), Eigen::Index{0});
+  const auto root = [&](Eigen::Index f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  std::unordered_map<std::uint64_t, Eigen::Index> faceOfEdge;
+  faceOfEdge.reserve(parent.size() * 3);
+  std::size_t parts = parent.size();
+  for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const auto [a, b] = std::minmax(mesh.triangles(f, k), mesh.triangles(f, (k + 1) % 3));
+      const std::uint64_t edge =
+          (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+      const auto [it, added] = faceOfEdge.emplace(edge, f);
+      if (added) continue;
+      const Eigen::Index r0 = root(f), r1 = root(it->second);
+      if (r0 == r1) continue;
+      parent[r0] = r1;
+      --parts;
+    }
+  }
+  return parts;
+}
+
 }  // namespace
 
 RepairResult repairMesh(const TriangleMesh& soup, const RepairOptions& options) {
@@ -340,6 +369,7 @@ std::vector<Eigen::Vector3i> triangulatePolygon(const std::vector<Eigen::Vector3
 }
 
 std::size_t checkShells(const TriangleMesh& mesh) {
+  if (countEdgeConnectedParts(mesh) == 1) return 1;
   Soup s = toSoup(mesh);
   if (!PMP::is_polygon_soup_a_polygon_mesh(s.polygons)) {
     PMP::orient_polygon_soup(s.points, s.polygons);  // splits vertices where shells touch
@@ -347,7 +377,6 @@ std::size_t checkShells(const TriangleMesh& mesh) {
   SurfaceMesh sm = toSurfaceMesh(s);
   auto shellOf = sm.add_property_map<Face, std::size_t>("f:shell", 0).first;
   const std::size_t shells = PMP::connected_components(sm, shellOf);
-  if (shells == 1) return 1;
   auto volumeOf = sm.add_property_map<Face, std::size_t>("f:volume", 0).first;
   std::vector<PMP::Volume_error_code> codes;
   PMP::volume_connected_components(
