@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "geometry/defect_meshes.hpp"
 #include "geometry/mass_properties.hpp"
+#include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
 #include "support/run_command.hpp"
 
@@ -112,6 +114,23 @@ TEST_F(MeshCli, VolumeTakesRepair) {
   // The box's lower 5 mm is below the plane: 0.03 x 0.05 x 0.005 m^3. The half-space clip is
   // exact up to the rounding of the cut points, far below 1e-12.
   EXPECT_NEAR(nlohmann::json::parse(r.out).at("volume").get<double>() / 7.5e-6, 1.0, 1e-12);
+}
+
+TEST_F(MeshCli, FlatPartPressed20NanometresKeepsItsVolume) {
+  // Issue 16: a flat part whose underside sits at z0 = 12.3456789012 mm in its own file, pressed
+  // 20 nm into a plate. Read in single precision (before this branch) the volume came out 1.0 %
+  // low; in double the depth is the difference of two 0.012 m numbers, good to 1e-10.
+  const double z0 = 0.0123456789012, depth = 2e-8;
+  io::writeObj(test::translated(geometry::tessellateBox({0.04, 0.04, 0.002}), {0, 0, z0 + 0.001}),
+               path("flat.obj"));
+  std::ostringstream pose;
+  pose.precision(17);
+  pose << "0,0," << -depth - z0;
+  const auto r =
+      run("volume " + path("flat.obj") + " halfspace --pose-a " + pose.str() + " --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out).at("volume").get<double>() / (0.04 * 0.04 * depth), 1.0,
+              1e-9);
 }
 
 TEST_F(MeshCli, ScenarioBodyTakesTheRepairKey) {
