@@ -24,9 +24,12 @@ std::string at(const Eigen::Vector3d& p) {
 }
 
 // What a repair (mesh_repair.hpp) would do about each defect, said in the rejection.
-const char* const kWeldHint =
-    "; repairing the mesh welds vertices closer than 1e-6 of its size and, when asked, fills "
-    "small holes";
+std::string weldHint() {
+  std::ostringstream os;
+  os << "; repairing the mesh welds vertices closer than " << kDefaultWeldTolerance
+     << " of its size and, when asked, fills small holes";
+  return os.str();
+}
 const char* const kDropZeroAreaHint = "; repairing the mesh drops zero-area faces";
 const char* const kDropDuplicateHint = "; repairing the mesh drops duplicate faces";
 const char* const kOrientHint = "; repairing the mesh orients its faces consistently";
@@ -126,7 +129,7 @@ void checkClosedAndOriented(const TriangleMesh& mesh) {
   if (boundary > 0) {
     reject(boundary,
            std::string(boundary == 1 ? "boundary edge" : "boundary edges") + ", mesh is not closed",
-           "at vertex " + at(mesh.vertex(firstBoundary)), kWeldHint);
+           "at vertex " + at(mesh.vertex(firstBoundary)), weldHint());
   }
   if (nonManifold > 0) {
     reject(nonManifold,
