@@ -212,12 +212,17 @@ std::vector<Halfedge> borderHalfedges(const SurfaceMesh& sm) {
 // Step 4.
 void stitch(SurfaceMesh& sm, std::vector<std::string>& changes) {
   const std::vector<Halfedge> border = borderHalfedges(sm);
+  std::vector<Point> targets;
+  for (const Halfedge h : border) targets.push_back(sm.point(sm.target(h)));
   const std::size_t stitched = PMP::stitch_borders(sm);
   if (stitched == 0) return;
-  const auto first = std::find_if(border.begin(), border.end(),
-                                  [&](Halfedge h) { return sm.is_removed(h) || !sm.is_border(h); });
+  std::size_t first = 0;
+  while (first + 1 < border.size() && !sm.is_removed(border[first]) &&
+         sm.is_border(border[first])) {
+    ++first;
+  }
   changes.push_back("stitched " + count(stitched, "pair", "pairs") +
-                    " of coincident border edges; first at " + at(sm.point(sm.target(*first))));
+                    " of coincident border edges; first at " + at(targets[first]));
 }
 
 // Step 5.
