@@ -34,12 +34,14 @@ int exitCode(const CLI::App& app, const CLI::ParseError& e) {
 int main(int argc, char** argv) {
   CLI::App app{
       "vcontact: volumetric contact between rigid bodies (Gonthier-McPhee model).\n"
-      "Shapes: sphere:R | cylinder:R,L | box:X,Y,Z | halfspace | MESHFILE[@SCALE] (metres).\n"
+      "Shapes: sphere:R | cylinder:R,L | box:X,Y,Z | halfspace | MESHFILE[@SCALE] (metres;\n"
+      "SCALE a number or m, cm, mm, um, in, ft).\n"
       "Poses: x,y,z | x,y,z,roll,pitch,yaw (degrees) | x,y,z,qw,qx,qy,qz."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "vcontact 0.1.0");
   vcontact::cli::addVolumeCommand(app);
   vcontact::cli::addMeshInfoCommand(app);
+  vcontact::cli::addMeshRepairCommand(app);
   vcontact::cli::addTessellateCommand(app);
   vcontact::cli::addSimulateCommand(app);
   vcontact::cli::addValidationCommands(app);

@@ -1,9 +1,12 @@
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <variant>
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
+#include "geometry/mesh_repair.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
 #include "io/shape_spec.hpp"
@@ -14,13 +17,63 @@ namespace {
 struct MeshInfoOptions {
   std::string shape;
   double density = 7900.0;
+  bool repair = false;
+  bool fillHoles = false;
+  bool json = false;
 };
 
-void runMeshInfo(const MeshInfoOptions& o) {
-  const io::ParsedShape s = io::parseShape(o.shape, o.shape);
-  printWarnings(s.warnings);
-  const geometry::Moments M = geometry::solidMoments(s.shape);
-  const geometry::MassProperties p = geometry::massProperties(M, o.density);
+io::MeshReadOptions meshReadOptions(bool repair, bool fillHoles) {
+  io::MeshReadOptions options;
+  options.repair = repair || fillHoles;
+  options.repairOptions.fillHoles = fillHoles;
+  return options;
+}
+
+std::vector<std::string> densityWarnings(const io::ParsedShape& s, double density) {
+  std::vector<std::string> out;
+  if (!(density > 0.0)) {
+    std::ostringstream os;
+    os << "density is " << density << " kg/m^3: the mass and inertia below are zero or negative";
+    out.push_back(os.str());
+  }
+  if (const auto* m = std::get_if<geometry::Mesh>(&s.shape)) {
+    if (auto w = io::lightPartWarning(*m->mesh, density)) out.push_back(m->name + ": " + *w);
+  }
+  return out;
+}
+
+nlohmann::json row(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json meshInfoJson(const io::ParsedShape& s, const geometry::MassProperties& p,
+                            double volume, double density,
+                            const std::vector<std::string>& warnings) {
+  nlohmann::json j = {
+      {"ok", true},
+      {"shape", geometry::describe(s.shape)},
+      {"watertight", true},
+      {"shells", 1},
+      {"repairs", nlohmann::json::array()},
+      {"warnings", warnings},
+      {"volume", volume},
+      {"centroid", row(p.com)},
+      {"density", density},
+      {"mass", p.mass},
+      {"inertia_com", {row(p.inertia.row(0)), row(p.inertia.row(1)), row(p.inertia.row(2))}}};
+  if (const auto* m = std::get_if<geometry::Mesh>(&s.shape)) {
+    const geometry::Aabb box = geometry::bounds(*m->mesh);
+    j["file"] = m->name;
+    j["precision"] = s.mesh.precision;
+    j["vertices"] = m->mesh->vertexCount();
+    j["triangles"] = m->mesh->triangleCount();
+    j["bounds"] = {row(box.min), row(box.max)};
+    j["shells"] = s.mesh.shells;
+    j["repairs"] = s.mesh.repairs;
+  }
+  return j;
+}
+
+void printMeshInfo(const io::ParsedShape& s, const geometry::MassProperties& p, double volume,
+                   double density) {
   std::cout.precision(10);
   std::cout << geometry::describe(s.shape) << "\n";
   if (const auto* m = std::get_if<geometry::Mesh>(&s.shape)) {
@@ -29,15 +82,74 @@ void runMeshInfo(const MeshInfoOptions& o) {
               << "  triangles      " << m->mesh->triangleCount() << "\n"
               << "  bounds         (" << box.min.transpose() << ") .. (" << box.max.transpose()
               << ")  m\n"
-              << "  checks         closed, consistently oriented, outward, no degenerate faces\n";
+              << "  checks         closed, consistently oriented, outward, no degenerate faces\n"
+              << "  shells         " << s.mesh.shells << "\n"
+              << "  precision      " << s.mesh.precision << "\n"
+              << "  repairs        " << s.mesh.repairs.size() << "\n";
   }
-  std::cout << "  volume         " << M.m0 << "  m^3\n"
+  std::cout << "  volume         " << volume << "  m^3\n"
             << "  centroid       (" << p.com.transpose() << ")  m\n"
-            << "  density        " << o.density << "  kg/m^3\n"
+            << "  density        " << density << "  kg/m^3\n"
             << "  mass           " << p.mass << "  kg\n"
             << "  inertia (com)  " << p.inertia.row(0) << "\n"
             << "                 " << p.inertia.row(1) << "\n"
             << "                 " << p.inertia.row(2) << "  kg m^2\n";
+}
+
+void runMeshInfo(const MeshInfoOptions& o) {
+  const io::ParsedShape s =
+      io::parseShape(o.shape, o.shape, meshReadOptions(o.repair, o.fillHoles));
+  std::vector<std::string> warnings = s.warnings;
+  const auto more = densityWarnings(s, o.density);
+  warnings.insert(warnings.end(), more.begin(), more.end());
+  printWarnings(warnings);
+  const geometry::Moments M = geometry::solidMoments(s.shape);
+  const geometry::MassProperties p = geometry::massProperties(M, o.density);
+  if (o.json) {
+    std::cout << meshInfoJson(s, p, M.m0, o.density, warnings).dump(2) << "\n";
+  } else {
+    printMeshInfo(s, p, M.m0, o.density);
+  }
+}
+
+/// With --json, every failure is bad input (exit 2) and is also printed as JSON on stdout.
+void runMeshInfoJson(const MeshInfoOptions& o) {
+  try {
+    runMeshInfo(o);
+  } catch (const std::exception& e) {
+    std::cout << nlohmann::json{{"ok", false}, {"error", e.what()}}.dump(2) << "\n";
+    if (const auto* input = dynamic_cast<const InputError*>(&e)) throw *input;
+    throw InputError(o.shape, e.what());
+  }
+}
+
+struct MeshRepairOptions {
+  std::string in, out;
+  bool fillHoles = false;
+  double weldTolerance = geometry::kDefaultWeldTolerance;
+};
+
+void writeMesh(const geometry::TriangleMesh& mesh, const std::string& path) {
+  const bool obj = path.size() > 4 && path.substr(path.size() - 4) == ".obj";
+  obj ? io::writeObj(mesh, path) : io::writeStl(mesh, path);
+}
+
+void runMeshRepair(const MeshRepairOptions& o) {
+  if (!(o.weldTolerance >= 0.0)) {
+    throw InputError("--weld-tolerance", "must be zero or positive");
+  }
+  io::MeshReadOptions options = meshReadOptions(true, o.fillHoles);
+  options.repairOptions.weldTolerance = o.weldTolerance;
+  const auto [path, scale] = io::splitMeshScale(o.in);
+  const io::MeshReadResult r = io::readMesh(path, scale, options);
+  for (const auto& change : r.report.repairs) std::cout << "repaired: " << change << "\n";
+  if (r.report.repairs.empty()) std::cout << "no repair needed\n";
+  for (const auto& doubt : r.report.doubts) printWarnings({path + ": " + doubt});
+  writeMesh(r.mesh, o.out);
+  std::cout << "wrote " << o.out << ": " << r.mesh.vertexCount() << " vertices, "
+            << r.mesh.triangleCount() << " triangles, " << r.report.shells
+            << (r.report.shells == 1 ? " shell" : " shells") << ", volume "
+            << geometry::meshMoments(r.mesh).m0 << " m^3\n";
 }
 
 struct TessellateOptions {
@@ -61,8 +173,7 @@ void runTessellate(const TessellateOptions& o) {
   } else {
     throw InputError(o.shape, "only a sphere, cylinder or box can be tessellated");
   }
-  const bool obj = o.out.size() > 4 && o.out.substr(o.out.size() - 4) == ".obj";
-  obj ? io::writeObj(mesh, o.out) : io::writeStl(mesh, o.out);
+  writeMesh(mesh, o.out);
   std::cout << "wrote " << o.out << ": " << mesh.triangleCount() << " triangles, volume "
             << geometry::meshMoments(mesh).m0 << " m^3\n";
 }
@@ -75,7 +186,28 @@ void addMeshInfoCommand(CLI::App& app) {
       "mesh-info", "Check a shape or mesh file and print its volume, centre of mass and inertia.");
   cmd->add_option("SHAPE", opts->shape, "shape or mesh file")->required();
   cmd->add_option("--density", opts->density, "kg/m^3")->capture_default_str();
-  cmd->callback([opts] { runMeshInfo(*opts); });
+  cmd->add_flag("--repair", opts->repair, "repair the mesh first (as mesh-repair does)");
+  cmd->add_flag("--fill-holes", opts->fillHoles, "repair, and fill small holes");
+  cmd->add_flag("--json", opts->json,
+                "print JSON (also on failure, with \"ok\": false; exit 2 for bad input)");
+  cmd->callback([opts] { opts->json ? runMeshInfoJson(*opts) : runMeshInfo(*opts); });
+}
+
+void addMeshRepairCommand(CLI::App& app) {
+  auto opts = std::make_shared<MeshRepairOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "mesh-repair",
+      "Repair a mesh file (weld seams, drop zero-area and duplicate faces, orient, optionally "
+      "fill small holes), print each change and write the result in metres.");
+  cmd->add_option("IN", opts->in, "mesh file, MESHFILE[@SCALE]")->required();
+  cmd->add_option("--out", opts->out, "output file (.obj full precision, or binary .stl)")
+      ->required();
+  cmd->add_flag("--fill-holes", opts->fillHoles,
+                "fill holes shorter around than half the part's diagonal");
+  cmd->add_option("--weld-tolerance", opts->weldTolerance,
+                  "weld vertices closer than this fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  cmd->callback([opts] { runMeshRepair(*opts); });
 }
 
 void addTessellateCommand(CLI::App& app) {

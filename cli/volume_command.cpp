@@ -24,6 +24,7 @@ struct VolumeOptions {
   std::string poseA = "0,0,0", poseB = "0,0,0";
   std::string method;
   bool json = false;
+  bool repair = false;
   std::string out;
   std::string field;
 };
@@ -84,8 +85,10 @@ std::string methodHelp() {
 }
 
 void runVolume(const VolumeOptions& o) {
-  const io::ParsedShape a = io::parseShape(o.a, "A (" + o.a + ")");
-  const io::ParsedShape b = io::parseShape(o.b, "B (" + o.b + ")");
+  io::MeshReadOptions mesh;
+  mesh.repair = o.repair;
+  const io::ParsedShape a = io::parseShape(o.a, "A (" + o.a + ")", mesh);
+  const io::ParsedShape b = io::parseShape(o.b, "B (" + o.b + ")", mesh);
   printWarnings(a.warnings);
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
@@ -123,6 +126,7 @@ void addVolumeCommand(CLI::App& app) {
                       methodNames([](const auto& row) { return row.fills_depth_field; }) +
                       ", the first that takes the pair unless --method says)");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");
+  cmd->add_flag("--repair", opts->repair, "repair mesh files first (as mesh-repair does)");
   cmd->add_option("--out", opts->out, "also write the JSON to this file");
   cmd->callback([opts] { runVolume(*opts); });
 }

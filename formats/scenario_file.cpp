@@ -168,12 +168,14 @@ void readMass(const Reader& r, dynamics::RigidBody& body) {
 dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
                              std::vector<std::string>& warnings) {
   r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density", "mass",
-               "inertia", "com", "prescribed"});
+               "inertia", "com", "prescribed", "repair"});
   dynamics::RigidBody body;
   body.name = r.text("name");
   std::string shape = r.text("shape");
   if (!isPrimitive(shape)) shape = resolve(shape, base_dir);
-  ParsedShape parsed = parseShape(shape, r.source() + ": " + r.at("shape"));
+  MeshReadOptions mesh;
+  mesh.repair = r.flag("repair", false);
+  ParsedShape parsed = parseShape(shape, r.source() + ": " + r.at("shape"), mesh);
   body.shape = std::move(parsed.shape);
   for (const auto& w : parsed.warnings) warnings.push_back(body.name + ": " + w);
   body.X_WB0 = readPose(r, "pose");

@@ -6,6 +6,7 @@
 
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
+#include "geometry/mesh_repair.hpp"
 
 namespace vcontact::geometry {
 namespace {
@@ -22,11 +23,25 @@ std::string at(const Eigen::Vector3d& p) {
   return os.str();
 }
 
-[[noreturn]] void reject(std::size_t count, const std::string& what, const std::string& where) {
+// What a repair (mesh_repair.hpp) would do about each defect, said in the rejection.
+std::string weldHint() {
   std::ostringstream os;
-  os << count << " " << what << "; first " << where;
+  os << "; repairing the mesh welds vertices closer than " << kDefaultWeldTolerance
+     << " of its size and, when asked, fills small holes";
+  return os.str();
+}
+const char* const kDropZeroAreaHint = "; repairing the mesh drops zero-area faces";
+const char* const kDropDuplicateHint = "; repairing the mesh drops duplicate faces";
+const char* const kOrientHint = "; repairing the mesh orients its faces consistently";
+
+[[noreturn]] void reject(std::size_t count, const std::string& what, const std::string& where,
+                         const std::string& hint = "") {
+  std::ostringstream os;
+  os << count << " " << what << "; first " << where << hint;
   throw InputError("", os.str());
 }
+
+}  // namespace
 
 void checkFinite(const TriangleMesh& mesh) {
   std::size_t bad = 0;
@@ -43,6 +58,8 @@ void checkFinite(const TriangleMesh& mesh) {
            "is vertex " + std::to_string(first));
   }
 }
+
+namespace {
 
 void checkIndices(const TriangleMesh& mesh) {
   for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
@@ -73,7 +90,8 @@ void checkDegenerate(const TriangleMesh& mesh) {
   }
   if (bad > 0) {
     reject(bad, bad == 1 ? "degenerate face (zero area)" : "degenerate faces (zero area)",
-           "is face " + std::to_string(first) + " at vertex " + at(mesh.corner(first, 0)));
+           "is face " + std::to_string(first) + " at vertex " + at(mesh.corner(first, 0)),
+           kDropZeroAreaHint);
   }
 }
 
@@ -111,19 +129,19 @@ void checkClosedAndOriented(const TriangleMesh& mesh) {
   if (boundary > 0) {
     reject(boundary,
            std::string(boundary == 1 ? "boundary edge" : "boundary edges") + ", mesh is not closed",
-           "at vertex " + at(mesh.vertex(firstBoundary)));
+           "at vertex " + at(mesh.vertex(firstBoundary)), weldHint());
   }
   if (nonManifold > 0) {
     reject(nonManifold,
            std::string(nonManifold == 1 ? "edge" : "edges") +
                " shared by more than two faces, mesh is not a manifold",
-           "at vertex " + at(mesh.vertex(firstNonManifold)));
+           "at vertex " + at(mesh.vertex(firstNonManifold)), kDropDuplicateHint);
   }
   if (misoriented > 0) {
     reject(misoriented,
            std::string(misoriented == 1 ? "edge" : "edges") +
                " listed in the same direction by both faces, orientation is inconsistent",
-           "at vertex " + at(mesh.vertex(firstMisoriented)));
+           "at vertex " + at(mesh.vertex(firstMisoriented)), kOrientHint);
   }
 }
 
@@ -150,6 +168,7 @@ MeshCheckResult checkAndRepair(TriangleMesh& mesh) {
     result.warnings.push_back("faces were oriented inward (negative volume); flipped all " +
                               std::to_string(mesh.triangleCount()) + " faces");
   }
+  result.shells = checkShells(mesh);
   return result;
 }
 

@@ -7,7 +7,10 @@
 //   - a degenerate face (repeated vertex or zero area);
 //   - an edge used by one face only (the mesh is not closed) or by more than two;
 //   - two faces listing a shared edge in the same direction (inconsistent orientation);
-//   - zero enclosed volume.
+//   - zero enclosed volume;
+//   - closed shells that intersect, or one inside another with the same orientation
+//     (mesh_repair.hpp, checkShells).
+// Each message about the surface names the repair (mesh_repair.hpp) that would fix it.
 // Repaired with a warning: a consistently inverted mesh (negative enclosed volume) is flipped.
 
 #include <string>
@@ -20,7 +23,12 @@ namespace vcontact::geometry {
 struct MeshCheckResult {
   std::vector<std::string> warnings;  ///< repairs made, one sentence each
   bool flipped = false;               ///< the faces were inverted and have been flipped
+  std::size_t shells = 1;             ///< closed shells (connected parts of the surface)
 };
+
+/// @throws InputError (empty source) naming the count and the first vertex with a NaN or
+///   infinite coordinate
+void checkFinite(const TriangleMesh& mesh);
 
 /// @param[in,out] mesh  the mesh; flipped in place when inverted
 /// @throws InputError (empty source: the caller names the file) on any defect listed above

@@ -1,8 +1,12 @@
 #include "io/mesh_io.hpp"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/STL.h>
+#include <CGAL/IO/polygon_soup_io.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <array>
 #include <assimp/Importer.hpp>
 #include <cmath>
@@ -10,58 +14,70 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "geometry/error.hpp"
+#include "geometry/mass_properties.hpp"
 #include "geometry/mesh_check.hpp"
 
 namespace vcontact::io {
 namespace {
 
-geometry::TriangleMesh weld(const aiScene& scene, double scale) {
-  // Exact-position welding: STL stores every triangle's corners separately, and assimp's
-  // own JoinIdenticalVertices keeps corners apart whose normals differ.
-  std::map<std::array<float, 3>, int> index;
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> faces;
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene.mMeshes[m];
-    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    std::vector<int> local(mesh.mNumVertices);
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const aiVector3D& p = mesh.mVertices[v];
-      const auto [it, added] =
-          index.emplace(std::array<float, 3>{p.x, p.y, p.z}, static_cast<int>(vertices.size()));
-      if (added) vertices.emplace_back(scale * p.x, scale * p.y, scale * p.z);
-      local[v] = it->second;
+// The faces of a file as read, before any welding: coordinates in the file's unit.
+struct FileMesh {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  std::string precision;
+  std::vector<std::string> notes;
+};
+
+// A point as CGAL's STL reader merges them (a std::map keyed on the point): ordered so that
+// a coordinate that is NaN never compares equal to a number, hence no vertex with a NaN
+// vanishes into another before the finiteness check (issue 20). -0 and +0 are equal.
+struct StlPoint {
+  std::array<double, 3> x{};
+  double& operator[](std::size_t i) { return x[i]; }
+  double operator[](std::size_t i) const { return x[i]; }
+  std::size_t size() const { return 3; }
+  friend bool operator<(const StlPoint& a, const StlPoint& b) {
+    const auto key = [](double v) { return std::pair(std::isnan(v), std::isnan(v) ? 0.0 : v); };
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (key(a[k]) != key(b[k])) return key(a[k]) < key(b[k]);
     }
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines carry no volume
-      faces.emplace_back(local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]);
-    }
+    return false;
   }
-  geometry::TriangleMesh out;
-  out.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  out.triangles.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    out.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i];
-  }
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    out.triangles.row(static_cast<Eigen::Index>(i)) = faces[i];
-  }
-  return out;
+};
+
+bool readStl(const std::string& path, FileMesh& out) {
+  std::vector<StlPoint> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  if (!CGAL::IO::read_STL(path, points, triangles)) return false;
+  for (const auto& p : points) out.points.emplace_back(p[0], p[1], p[2]);
+  for (const auto& t : triangles) out.polygons.push_back({t[0], t[1], t[2]});
+  // Binary STL stores float32; an ASCII file holds the digits it was written with.
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  in >> first;
+  const bool ascii = first == "solid" && out.polygons.size() > 0 &&
+                     std::filesystem::file_size(path) != 84 + 50 * out.polygons.size();
+  out.precision = ascii ? "double" : "single";
+  return true;
 }
 
-}  // namespace
+bool readSoup(const std::string& path, const std::string& extension, FileMesh& out) {
+  using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+  std::vector<Point> points;
+  if (!CGAL::IO::read_polygon_soup(path, points, out.polygons)) return false;
+  for (const auto& p : points) out.points.emplace_back(p.x(), p.y(), p.z());
+  // A PLY file declares its coordinate type; CGAL reads float properties as float.
+  std::ifstream in(path);
+  std::string header, line;
+  while (extension == ".ply" && std::getline(in, line) && line != "end_header") header += line;
+  out.precision = header.find("property float x") != std::string::npos ? "single" : "double";
+  return true;
+}
 
-MeshReadResult readMesh(const std::string& path, double scale) {
-  if (!std::isfinite(scale) || scale <= 0.0) {
-    throw InputError(path, "scale must be a finite positive number, got " + std::to_string(scale));
-  }
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(path, "no such file");
-  }
+FileMesh readAssimp(const std::string& path) {
   Assimp::Importer importer;
   // Keep assimp from inventing geometry: no normal generation, no smoothing; bake node
   // transforms (glTF) and split polygons into triangles.
@@ -71,15 +87,172 @@ MeshReadResult readMesh(const std::string& path, double scale) {
   if (scene == nullptr) {
     throw InputError(path, std::string("cannot read mesh: ") + importer.GetErrorString());
   }
-  MeshReadResult result;
-  result.mesh = weld(*scene, scale);
-  if (result.mesh.triangleCount() == 0) throw InputError(path, "file holds no triangles");
-  try {
-    for (auto& w : geometry::checkAndRepair(result.mesh).warnings) {
-      result.warnings.push_back(path + ": " + w);
+  FileMesh out;
+  out.precision = "single";
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene->mMeshes[m];
+    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const std::size_t offset = out.points.size();
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      out.points.emplace_back(p.x, p.y, p.z);
     }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      out.polygons.emplace_back();
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        out.polygons.back().push_back(offset + face.mIndices[k]);
+      }
+    }
+  }
+  return out;
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+FileMesh readFile(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  const bool cgalFormat = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
+  if (!cgalFormat) return readAssimp(path);
+  FileMesh out;
+  if (ext == ".stl" ? readStl(path, out) : readSoup(path, ext, out)) return out;
+  out = readAssimp(path);
+  out.notes.push_back("the double-precision reader refused the file; read in single precision");
+  return out;
+}
+
+void checkPolygonIndices(const FileMesh& file) {
+  for (std::size_t f = 0; f < file.polygons.size(); ++f) {
+    for (const std::size_t v : file.polygons[f]) {
+      if (v >= file.points.size()) {
+        throw InputError("", "face " + std::to_string(f) + " refers to vertex " +
+                                 std::to_string(v) + ", but the file has " +
+                                 std::to_string(file.points.size()) + " vertices");
+      }
+    }
+  }
+}
+
+// The file's triangles on its own vertices; polygons split (points and lines carry no volume).
+geometry::TriangleMesh triangles(const FileMesh& file) {
+  std::vector<Eigen::Vector3i> faces;
+  for (const auto& polygon : file.polygons) {
+    if (polygon.size() == 3) {
+      faces.emplace_back(polygon[0], polygon[1], polygon[2]);
+    } else if (polygon.size() > 3) {
+      std::vector<Eigen::Vector3d> corners;
+      for (const std::size_t v : polygon) corners.push_back(file.points[v]);
+      for (const auto& t : geometry::triangulatePolygon(corners)) {
+        faces.emplace_back(polygon[t[0]], polygon[t[1]], polygon[t[2]]);
+      }
+    }
+  }
+  geometry::TriangleMesh out;
+  out.vertices.resize(static_cast<Eigen::Index>(file.points.size()), 3);
+  for (std::size_t i = 0; i < file.points.size(); ++i) {
+    out.vertices.row(static_cast<Eigen::Index>(i)) = file.points[i];
+  }
+  out.triangles.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    out.triangles.row(static_cast<Eigen::Index>(i)) = faces[i];
+  }
+  return out;
+}
+
+// Exact-position welding, in the order vertices are first used: STL stores every triangle's
+// corners separately, and other formats may repeat a vertex where normals differ.
+geometry::TriangleMesh weld(const geometry::TriangleMesh& raw, double scale) {
+  std::map<std::array<double, 3>, int> index;
+  std::vector<int> welded(static_cast<std::size_t>(raw.vertexCount()), -1);
+  geometry::TriangleMesh out;
+  out.triangles.resize(raw.triangleCount(), 3);
+  std::vector<Eigen::Vector3d> vertices;
+  for (Eigen::Index f = 0; f < raw.triangleCount(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int v = raw.triangles(f, k);
+      if (welded[v] < 0) {
+        const Eigen::Vector3d p = raw.vertex(v);
+        const auto [it, added] =
+            index.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, vertices.size());
+        if (added) vertices.emplace_back(scale * p.x(), scale * p.y(), scale * p.z());
+        welded[v] = it->second;
+      }
+      out.triangles(f, k) = welded[v];
+    }
+  }
+  out.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    out.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i];
+  }
+  return out;
+}
+
+std::optional<std::string> largePartWarning(const geometry::TriangleMesh& mesh) {
+  const double size = geometry::bounds(mesh).size().maxCoeff();
+  if (size <= kLargestPlausibleSize) return std::nullopt;
+  std::ostringstream os;
+  os.precision(4);
+  os << "the part is " << size << " m across, implausible for a file in metres; if the file is "
+     << "in millimetres, read it with scale 0.001 (PATH@mm)";
+  return os.str();
+}
+
+}  // namespace
+
+std::optional<double> unitScale(const std::string& name) {
+  static const std::map<std::string, double> kUnits = {
+      {"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"um", 1e-6}, {"in", 0.0254}, {"ft", 0.3048}};
+  const auto it = kUnits.find(name);
+  return it == kUnits.end() ? std::nullopt : std::optional<double>(it->second);
+}
+
+std::optional<std::string> lightPartWarning(const geometry::TriangleMesh& mesh, double density) {
+  const double mass = density * geometry::meshMoments(mesh).m0;
+  if (!(density > 0.0) || mass >= kLightestPlausibleMass) return std::nullopt;
+  std::ostringstream os;
+  os.precision(4);
+  os << "the part weighs " << mass << " kg at " << density
+     << " kg/m^3, less than a milligram; if the file is in metres, read it with scale 1 "
+     << "(no @SCALE)";
+  return os.str();
+}
+
+MeshReadResult readMesh(const std::string& path, double scale, const MeshReadOptions& options) {
+  if (!std::isfinite(scale) || scale <= 0.0) {
+    throw InputError(path, "scale must be a finite positive number, got " + std::to_string(scale));
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "no such file");
+  MeshReadResult result;
+  try {
+    const FileMesh file = readFile(path);
+    checkPolygonIndices(file);
+    const geometry::TriangleMesh raw = triangles(file);
+    if (raw.triangleCount() == 0) throw InputError("", "file holds no triangles");
+    geometry::checkFinite(raw);
+    result.report.precision = file.precision;
+    result.report.doubts = file.notes;
+    result.mesh = weld(raw, scale);
+    if (options.repair) {
+      geometry::RepairResult repaired = geometry::repairMesh(result.mesh, options.repairOptions);
+      result.mesh = std::move(repaired.mesh);
+      result.report.repairs = std::move(repaired.changes);
+    }
+    geometry::MeshCheckResult checked = geometry::checkAndRepair(result.mesh);
+    auto& repairs = result.report.repairs;
+    repairs.insert(repairs.end(), checked.warnings.begin(), checked.warnings.end());
+    result.report.shells = checked.shells;
   } catch (const InputError& e) {
     throw e.withSource(path);
+  }
+  if (auto w = largePartWarning(result.mesh)) result.report.doubts.push_back(*w);
+  for (const auto* list : {&result.report.repairs, &result.report.doubts}) {
+    for (const auto& w : *list) result.warnings.push_back(path + ": " + w);
   }
   return result;
 }

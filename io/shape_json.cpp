@@ -21,16 +21,39 @@ double requireNumber(const nlohmann::json& j, const std::string& key, const std:
   return x;
 }
 
+namespace {
+
+// "scale": a number, or a unit name ("mm").
+double meshScale(const nlohmann::json& j, const std::string& where) {
+  if (!j.contains("scale")) return 1.0;
+  if (!j.at("scale").is_string()) return requireNumber(j, "scale", where);
+  const auto unit = unitScale(j.at("scale").get<std::string>());
+  if (!unit) {
+    throw InputError(where, "\"scale\" must be a number or one of m, cm, mm, um, in, ft, got " +
+                                j.at("scale").dump());
+  }
+  return *unit;
+}
+
+MeshReadOptions meshReadOptions(const nlohmann::json& j, const std::string& where) {
+  MeshReadOptions options;
+  if (!j.contains("repair")) return options;
+  if (!j.at("repair").is_boolean()) throw InputError(where, "\"repair\" must be true or false");
+  options.repair = j.at("repair").get<bool>();
+  return options;
+}
+
+}  // namespace
+
 JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
                          const std::string& baseDir) {
   if (!j.is_object()) throw InputError(where, "a shape must be a JSON object, got " + j.dump());
   JsonShape out;
   if (j.contains("mesh")) {
     if (!j.at("mesh").is_string()) throw InputError(where, "\"mesh\" must be a file name");
-    const double scale = j.contains("scale") ? requireNumber(j, "scale", where) : 1.0;
     std::filesystem::path path = j.at("mesh").get<std::string>();
     if (path.is_relative()) path = std::filesystem::path(baseDir) / path;
-    auto read = readMesh(path.string(), scale);
+    auto read = readMesh(path.string(), meshScale(j, where), meshReadOptions(j, where));
     out.warnings = std::move(read.warnings);
     out.shape = geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)),
                                path.string()};

@@ -4,7 +4,9 @@
 //   {"shape": "cylinder", "radius": R, "length": L}
 //   {"shape": "box", "size": [X, Y, Z]}
 //   {"shape": "halfspace"}
-//   {"mesh": "part.stl", "scale": 0.001}     (path relative to the JSON file's folder)
+//   {"mesh": "part.stl", "scale": 0.001}     (path relative to the JSON file's folder;
+//                                             "scale" may be a unit name: "mm", "in")
+//   {"mesh": "part.stl", "repair": true}      (repairs the mesh: geometry/mesh_repair.hpp)
 
 #include <nlohmann/json_fwd.hpp>
 #include <string>

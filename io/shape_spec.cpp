@@ -92,7 +92,23 @@ Eigen::Isometry3d parsePose(const std::string& text, const std::string& source) 
   }
 }
 
-ParsedShape parseShape(const std::string& text, const std::string& source) {
+std::pair<std::string, double> splitMeshScale(const std::string& text) {
+  const auto at = text.rfind('@');
+  if (at == std::string::npos) return {text, 1.0};
+  const std::string suffix = text.substr(at + 1);
+  if (const auto unit = unitScale(suffix)) return {text.substr(0, at), *unit};
+  std::size_t used = 0;
+  try {
+    const double scale = std::stod(suffix, &used);
+    if (used == suffix.size()) return {text.substr(0, at), scale};
+  } catch (const std::exception&) {
+    // Not a number: the '@' belongs to the path.
+  }
+  return {text, 1.0};
+}
+
+ParsedShape parseShape(const std::string& text, const std::string& source,
+                       const MeshReadOptions& mesh) {
   const auto colon = text.find(':');
   const std::string kind = text.substr(0, colon);
   const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
@@ -115,18 +131,10 @@ ParsedShape parseShape(const std::string& text, const std::string& source) {
   } else if (kind == "halfspace" && args.empty()) {
     out.shape = geometry::HalfSpace{};
   } else {
-    // A mesh file, optionally PATH@SCALE.
-    const auto at = text.rfind('@');
-    std::string path = text;
-    double scale = 1.0;
-    if (at != std::string::npos) {
-      path = text.substr(0, at);
-      const auto s = parseNumberList(text.substr(at + 1), source);
-      if (s.size() != 1) throw InputError(source, "expected PATH@SCALE, got '" + text + "'");
-      scale = s[0];
-    }
-    auto read = readMesh(path, scale);
+    const auto [path, scale] = splitMeshScale(text);
+    auto read = readMesh(path, scale, mesh);
     out.warnings = std::move(read.warnings);
+    out.mesh = std::move(read.report);
     out.shape =
         geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)), path};
   }

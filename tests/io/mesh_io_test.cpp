@@ -7,10 +7,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 
+#include "geometry/defect_meshes.hpp"
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/shape_json.hpp"
+#include "support/test_support.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -42,9 +47,9 @@ class MeshFiles : public testing::Test {
   const double boxVolume_ = 0.03 * 0.05 * 0.07;
 };
 
-std::string asciiStl(const TriangleMesh& m) {
+std::string asciiStl(const TriangleMesh& m, int digits = 9) {
   std::ostringstream os;
-  os.precision(9);
+  os.precision(digits);
   os << "solid box\n";
   for (Eigen::Index f = 0; f < m.triangleCount(); ++f) {
     os << " facet normal 0 0 0\n  outer loop\n";
@@ -55,20 +60,20 @@ std::string asciiStl(const TriangleMesh& m) {
   return os.str();
 }
 
-std::string ply(const TriangleMesh& m) {
+std::string ply(const TriangleMesh& m, int digits = 9, const std::string& type = "float") {
   std::ostringstream os;
-  os.precision(9);
-  os << "ply\nformat ascii 1.0\nelement vertex " << m.vertexCount()
-     << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m.triangleCount()
-     << "\nproperty list uchar int vertex_indices\nend_header\n";
+  os.precision(digits);
+  os << "ply\nformat ascii 1.0\nelement vertex " << m.vertexCount() << "\nproperty " << type
+     << " x\nproperty " << type << " y\nproperty " << type << " z\nelement face "
+     << m.triangleCount() << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (Eigen::Index i = 0; i < m.vertexCount(); ++i) os << m.vertex(i).transpose() << "\n";
   for (Eigen::Index f = 0; f < m.triangleCount(); ++f) os << "3 " << m.triangles.row(f) << "\n";
   return os.str();
 }
 
-std::string off(const TriangleMesh& m) {
+std::string off(const TriangleMesh& m, int digits = 9) {
   std::ostringstream os;
-  os.precision(9);
+  os.precision(digits);
   os << "OFF\n" << m.vertexCount() << " " << m.triangleCount() << " 0\n";
   for (Eigen::Index i = 0; i < m.vertexCount(); ++i) os << m.vertex(i).transpose() << "\n";
   for (Eigen::Index f = 0; f < m.triangleCount(); ++f) os << "3 " << m.triangles.row(f) << "\n";
@@ -162,6 +167,121 @@ TEST_F(MeshFiles, InvertedFileIsFlippedWithAWarningNamingTheFile) {
   EXPECT_GT(geometry::meshMoments(r.mesh).m0, 0.0);
 }
 
+TEST_F(MeshFiles, TextFormatsAreReadInDoublePrecision) {
+  // A part whose coordinates need 12 significant digits, away from the origin, as a flat
+  // part pressed nanometres into a plate needs them.
+  TriangleMesh part = geometry::tessellateBox({0.0123456789012, 0.0234567890123, 2.0345678901e-5});
+  part.vertices.rowwise() += Eigen::RowVector3d(0.123456789012, -0.0456789012345, 0.0789012345678);
+  const double volume = geometry::meshMoments(part).m0;
+  writeObj(part, path("part.obj"));
+  const std::vector<std::string> files = {write("part.stl", asciiStl(part, 17)), path("part.obj"),
+                                          write("part.off", off(part, 17)),
+                                          write("part.ply", ply(part, 17, "double"))};
+  for (const auto& file : files) {
+    SCOPED_TRACE(file);
+    const MeshReadResult r = readMesh(file);
+    EXPECT_EQ(r.report.precision, "double");
+    // 17 digits give back every double, so only the summation order can differ: 1e-12 is the
+    // issue's bound, a float coordinate would miss it by five orders.
+    EXPECT_NEAR(geometry::meshMoments(r.mesh).m0 / volume, 1.0, 1e-12);
+  }
+}
+
+TEST_F(MeshFiles, BinaryStlAndFloatPlyAreSinglePrecision) {
+  writeStl(box_, path("box.stl"));
+  EXPECT_EQ(readMesh(path("box.stl")).report.precision, "single");
+  EXPECT_EQ(readMesh(write("box.ply", ply(box_))).report.precision, "single");
+  EXPECT_EQ(readMesh(write("box.gltf", gltf(box_))).report.precision, "single");
+}
+
+TEST_F(MeshFiles, PolygonFacesAreSplitIntoTriangles) {
+  // The box as six quads in an OFF file.
+  const std::string quads =
+      "OFF\n8 6 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+      "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+  const MeshReadResult r = readMesh(write("quads.off", quads));
+  EXPECT_EQ(r.mesh.triangleCount(), 12);
+  EXPECT_DOUBLE_EQ(geometry::meshMoments(r.mesh).m0, 1.0);
+}
+
+TEST_F(MeshFiles, RepairedMeshWrittenAndReadBackIsTheSame) {
+  writeObj(test::withSeam(box_, 3, 1e-10), path("seam.obj"));
+  MeshReadOptions repair;
+  repair.repair = true;
+  const MeshReadResult first = readMesh(path("seam.obj"), 1.0, repair);
+  ASSERT_FALSE(first.report.repairs.empty());
+  writeObj(first.mesh, path("repaired.obj"));
+  const MeshReadResult again = readMesh(path("repaired.obj"));
+  EXPECT_TRUE(again.report.repairs.empty());
+  EXPECT_EQ(again.mesh.vertices, first.mesh.vertices);
+  EXPECT_EQ(again.mesh.triangles, first.mesh.triangles);
+}
+
+TEST_F(MeshFiles, MillimetreFileReadAsMetresIsNamedWithItsScale) {
+  TriangleMesh mm = box_;
+  mm.vertices *= 1000.0;
+  writeStl(mm, path("box_mm.stl"));
+  const MeshReadResult r = readMesh(path("box_mm.stl"));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("70 m across, implausible for a file in metres"), std::string::npos)
+      << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("PATH@mm"), std::string::npos);
+  EXPECT_TRUE(readMesh(path("box_mm.stl"), 0.001).warnings.empty());
+}
+
+TEST_F(MeshFiles, ShapeJsonTakesRepairAndAUnitName) {
+  TriangleMesh mm = test::withSeam(box_, 3, 1e-10);
+  mm.vertices *= 1000.0;
+  writeObj(mm, path("seam_mm.obj"));
+  const auto j = nlohmann::json::parse(R"({"mesh": "seam_mm.obj", "scale": "mm"})");
+  EXPECT_NE(test::inputErrorMessage([&] {
+              parseShapeJson(j, "rig.json: payload", dir_.string());
+            }).find("boundary edges"),
+            std::string::npos);
+  nlohmann::json repaired = j;
+  repaired["repair"] = true;
+  const JsonShape s = parseShapeJson(repaired, "rig.json: payload", dir_.string());
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("welded 1 vertex"), std::string::npos);
+  EXPECT_NEAR(geometry::meshMoments(*std::get<geometry::Mesh>(s.shape).mesh).m0 / boxVolume_, 1.0,
+              1e-12);  // a weld of 1e-10 m moves nothing of the box: summation order only
+  repaired["repair"] = "yes";
+  EXPECT_NE(test::inputErrorMessage([&] {
+              parseShapeJson(repaired, "rig.json: payload", ".");
+            }).find("\"repair\" must be true or false"),
+            std::string::npos);
+}
+
+TEST(BundledMeshes, ReadWithoutWarnings) {
+  for (const auto& dir : {"meshes", "scenarios/meshes"}) {
+    for (const auto& entry : fs::directory_iterator(fs::path(VCONTACT_ASSETS_DIR) / dir)) {
+      if (entry.path().extension() != ".stl") continue;
+      SCOPED_TRACE(entry.path().string());
+      const MeshReadResult r = readMesh(entry.path().string());
+      EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+      EXPECT_FALSE(lightPartWarning(r.mesh, 7900.0).has_value());
+    }
+  }
+}
+
+TEST(LightPart, WarnsBelowAMilligramAndNamesTheScale) {
+  // A 1 mm cube of steel weighs 7.9 mg; read as millimetres from a metre file, 7.9e-9 mg.
+  const TriangleMesh mm = geometry::tessellateBox({1e-3, 1e-3, 1e-3});
+  EXPECT_FALSE(lightPartWarning(mm, 7900.0).has_value());
+  const auto w = lightPartWarning(geometry::tessellateBox({1e-6, 1e-6, 1e-6}), 7900.0);
+  ASSERT_TRUE(w.has_value());
+  EXPECT_NE(w->find("less than a milligram; if the file is in metres, read it with scale 1"),
+            std::string::npos)
+      << *w;
+}
+
+TEST(UnitNames, AreTheirFactors) {
+  EXPECT_EQ(unitScale("mm"), 0.001);
+  EXPECT_EQ(unitScale("in"), 0.0254);
+  EXPECT_EQ(unitScale("ft"), 0.3048);
+  EXPECT_FALSE(unitScale("furlong").has_value());
+}
+
 std::string rejection(const std::string& file, double scale = 1.0) {
   try {
     readMesh(file, scale);
@@ -195,6 +315,19 @@ TEST_F(MeshFiles, NonPositiveScale) {
   writeStl(box_, path("box.stl"));
   EXPECT_NE(rejection(path("box.stl"), 0.0).find("scale must be a finite positive number"),
             std::string::npos);
+}
+
+TEST_F(MeshFiles, NanVertexIsRejectedBeforeWelding) {
+  // Issue 20: a NaN corner used to vanish into a welded vertex. Vertex 5 gets a sentinel x,
+  // written wherever a face uses it (as STL does), then replaced by "nan" in the text.
+  TriangleMesh marked = box_;
+  marked.vertices(5, 0) = 12345.0;
+  std::string stl = asciiStl(marked);
+  for (auto at = stl.find("12345"); at != std::string::npos; at = stl.find("12345", at)) {
+    stl.replace(at, 5, "  nan");
+  }
+  const std::string msg = rejection(write("nan.stl", stl));
+  EXPECT_NE(msg.find("with a NaN or infinite coordinate"), std::string::npos) << msg;
 }
 
 TEST_F(MeshFiles, DegenerateFaceInFile) {

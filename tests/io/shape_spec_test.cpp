@@ -3,8 +3,13 @@
 #include "io/shape_spec.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include "geometry/error.hpp"
+#include "geometry/tessellate.hpp"
+#include "io/mesh_io.hpp"
 #include "support/test_support.hpp"
 
 namespace vcontact::io {
@@ -53,6 +58,57 @@ TEST(Pose, BadPoses) {
             std::string::npos);
   EXPECT_NE(rejection([] { parsePose("0,0,inf", "--pose-b"); }).find("not finite"),
             std::string::npos);
+}
+
+class MeshText : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("vcontact_shape_spec_" +
+            std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_ / "a@b");
+    // The part in millimetres (30 x 50 x 70), a number a float holds exactly.
+    TriangleMesh mm = geometry::tessellateBox({30, 50, 70});
+    writeObj(mm, (dir_ / "part.obj").string());
+    writeObj(mm, (dir_ / "a@b" / "part.obj").string());
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  const geometry::TriangleMesh& mesh(const ParsedShape& s) {
+    return *std::get<geometry::Mesh>(s.shape).mesh;
+  }
+  std::filesystem::path dir_;
+  using TriangleMesh = geometry::TriangleMesh;
+};
+
+TEST_F(MeshText, UnitNameEqualsItsFactorToTheBit) {
+  const std::string part = (dir_ / "part.obj").string();
+  const ParsedShape mm = parseShape(part + "@mm", "A");
+  const ParsedShape factor = parseShape(part + "@0.001", "A");
+  EXPECT_EQ(mesh(mm).vertices, mesh(factor).vertices);
+  EXPECT_TRUE(mm.warnings.empty());
+  const ParsedShape in = parseShape(part + "@in", "A");
+  EXPECT_EQ(mesh(in).vertices, (mesh(parseShape(part, "A")).vertices * 0.0254).eval());
+}
+
+TEST_F(MeshText, AtSignInAFolderNameIsPartOfThePath) {
+  const std::string inFolder = (dir_ / "a@b" / "part.obj").string();
+  EXPECT_EQ(splitMeshScale(inFolder), std::make_pair(inFolder, 1.0));
+  EXPECT_EQ(splitMeshScale(inFolder + "@mm"), std::make_pair(inFolder, 0.001));
+  EXPECT_EQ(std::get<geometry::Mesh>(parseShape(inFolder + "@mm", "A").shape).mesh->vertexCount(),
+            8);
+}
+
+TEST_F(MeshText, UnknownSuffixIsReadAsAPath) {
+  const std::string part = (dir_ / "part.obj").string();
+  EXPECT_EQ(rejection([&] { parseShape(part + "@furlong", "A"); }),
+            part + "@furlong: no such file");
+}
+
+TEST_F(MeshText, MetreReadingOfAMillimetreFileWarns) {
+  const ParsedShape s = parseShape((dir_ / "part.obj").string(), "A");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("implausible for a file in metres"), std::string::npos);
 }
 
 }  // namespace
