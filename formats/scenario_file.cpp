@@ -9,6 +9,7 @@
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
+#include "io/mesh_io.hpp"
 #include "io/shape_spec.hpp"
 #include "volume/contact.hpp"
 
@@ -165,6 +166,16 @@ void readMass(const Reader& r, dynamics::RigidBody& body) {
   body.p_BBcm = r.vector3("com", Eigen::Vector3d::Zero());
 }
 
+/// A mesh body whose density gives less than a milligram was most likely scaled twice
+/// (io::lightPartWarning names the likely scale); the bounding-box check ran when it was read.
+void warnIfLight(const Reader& r, const dynamics::RigidBody& body,
+                 std::vector<std::string>& warnings) {
+  const auto* mesh = std::get_if<geometry::Mesh>(&body.shape);
+  if (mesh == nullptr || !r.has("density")) return;
+  const auto w = lightPartWarning(*mesh->mesh, r.positive("density", 0.0));
+  if (w) warnings.push_back(body.name + ": " + *w);
+}
+
 dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
                              std::vector<std::string>& warnings) {
   r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density", "mass",
@@ -188,6 +199,7 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
   } else if (motion == "free") {
     body.motion = dynamics::BodyMotion::kFree;
     readMass(r, body);
+    warnIfLight(r, body, warnings);
     body.w_WB0 = r.vector3("angular_velocity", Eigen::Vector3d::Zero());
     // "velocity" is that of the body frame origin; store that of the centre of mass.
     const Eigen::Vector3d v_WBo = r.vector3("velocity", Eigen::Vector3d::Zero());

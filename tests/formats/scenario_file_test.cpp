@@ -47,6 +47,26 @@ TEST(ScenarioFile, BundledScenariosRead) {
   EXPECT_GE(count, 5);
 }
 
+// A free mesh body lighter than a milligram at its density was most likely scaled twice: the
+// 10 mm ball read "@mm" is a 10 µm ball of 3.3e-11 kg. The bundled scenarios warn about nothing.
+TEST(ScenarioFile, AMeshBodyLighterThanAMilligramIsWarnedAbout) {
+  nlohmann::json j = ballOnPlate();
+  j["bodies"][1]["shape"] = std::string(VCONTACT_ASSETS_DIR) + "/meshes/ball_r10mm.stl@mm";
+  const ScenarioFile twice = scenarioFromJson(j, "s.json", kScenarios);
+  ASSERT_EQ(twice.warnings.size(), 1u);
+  EXPECT_NE(twice.warnings[0].find("ball: the part weighs"), std::string::npos)
+      << twice.warnings[0];
+  EXPECT_NE(twice.warnings[0].find("less than a milligram"), std::string::npos);
+
+  j["bodies"][1]["shape"] = std::string(VCONTACT_ASSETS_DIR) + "/meshes/ball_r10mm.stl";
+  EXPECT_TRUE(scenarioFromJson(j, "s.json", kScenarios).warnings.empty());
+  for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name.find(".model.") != std::string::npos) continue;
+    EXPECT_TRUE(readScenarioFile(entry.path().string()).warnings.empty()) << name;
+  }
+}
+
 TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
   struct Case {
     const char* pointer;
