@@ -70,7 +70,7 @@ ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
   // Fan about a vertex of the region, so that the terms are of the region's size.
   const Vector3d o = faces.front().p[0];
   geometry::Moments M;
-  Vector3d areaOnA = Vector3d::Zero();  // ∫_{∂B1∩B2} n_B1 dA
+  Vector3d areaOnA = Vector3d::Zero();  // ∫_{∂A∩B} n_A dA
   for (const RegionFace& f : faces) {
     M += geometry::tetrahedronMoments(Vector3d::Zero(), f.p[0] - o, f.p[1] - o, f.p[2] - o);
     if (f.onA) areaOnA += 0.5 * (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);

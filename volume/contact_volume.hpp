@@ -2,8 +2,8 @@
 // The seam between geometry and forces (ARCHITECTURE.md): every volume backend fills this
 // struct, every force model reads it. Definitions follow docs/MODEL.md §1.
 //
-// Frames: all quantities are in the world frame W. Body B1 ("a", the payload) and body B2
-// ("b", the plate); the normal n points out of B2 into B1.
+// Frames: all quantities are in the world frame W. Body A ("a", the payload; B1 in the papers)
+// and body B ("b", the plate or other body; B2); the normal n points out of B into A.
 
 #include <Eigen/Core>
 #include <limits>

@@ -582,7 +582,7 @@ TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
   // At most 64 × 64 columns, the disc filling π/4 of its bounding square less the rim.
   EXPECT_LE(field.depth.size(), 64u * 64u);
   EXPECT_GT(field.depth.size(), 0.7 * 64 * 64);
-  // The plate as body A: the same columns, the normal out of B2 (the punch) into B1.
+  // The plate as body A: the same columns, the normal out of B (the punch) into A.
   volume::DepthField swappedField;
   const volume::ContactVolume swapped =
       volume::columnsContact(geometry::HalfSpace{}, ref.X_WH, punch, X_WP, &swappedField,

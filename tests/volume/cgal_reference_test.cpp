@@ -73,7 +73,7 @@ TEST(CgalReference, AgreesWithHalfspaceClip) {
 
 // Box A (a_x, a_y, a_z) resting with its bottom d into box B below, A's footprint inside B's:
 // the region is a box a_x × a_y × d; V = a_x a_y d, centroid at the middle of it,
-// Σ = V diag(a_x², a_y², d²)/12, n = +z (MODEL.md §1: out of B2 into B1). Re-run under a
+// Σ = V diag(a_x², a_y², d²)/12, n = +z (MODEL.md §1: out of B into A). Re-run under a
 // pose that moves both, with dimensions not representable in binary.
 TEST(CgalReference, OverlappingBoxesClosedForm) {
   const Vector3d a(0.0113, 0.0071, 0.0093), b(0.031, 0.027, 0.0117);
