@@ -46,6 +46,7 @@ TEST(MassProperties, PrimitiveClosedFormsMatchTheirMeshesInTheLimit) {
   const Vector3d s(0.2, 0.3, 0.5);
   const Moments box = solidMoments(Box{s});
   const Moments boxMesh = meshMoments(tessellateBox(s));
+  // The same solid, summed in 12 triangles instead of a closed form: rounding only (a few ulps).
   EXPECT_NEAR(box.m0 / boxMesh.m0, 1.0, 1e-14);
   EXPECT_LT(relativeDifference(box.m2, boxMesh.m2), 1e-14);
 }
@@ -80,6 +81,7 @@ TEST(MassProperties, CylinderMatchesPolygonPrismExactly) {
   for (int n : {3, 7, 64, 1000}) {
     const Moments M = meshMoments(tessellateCylinder(R, L, n));
     const double V = 0.5 * n * R * R * std::sin(2 * M_PI / n) * L;
+    // Exact for the prism: rounding of sums over up to 4,000 faces (1e-12 is ~5,000 ulps).
     EXPECT_NEAR(M.m0 / V, 1.0, 1e-12) << n;
     // Axial moment of inertia of the prism: ∫z² dV = V L²/12.
     EXPECT_NEAR(M.m2(2, 2) / (V * L * L / 12), 1.0, 1e-12) << n;
@@ -95,6 +97,8 @@ TEST(MassProperties, MomentsTransformLikeTheSolid) {
   const Eigen::Isometry3d X = test::randomPose(9);
   const Moments direct = meshMoments(movedMesh(torus, X));
   const Moments mapped = transformed(meshMoments(torus), X);
+  // Moving the 1,152 vertices rounds each coordinate once, and the two sums of 2,304 faces
+  // round differently: 1e-13 is some hundred ulps of the sums, far below any formula error.
   EXPECT_NEAR(direct.m0 / mapped.m0, 1.0, 1e-13);
   EXPECT_LT((direct.m1 - mapped.m1).norm() / mapped.m1.norm(), 1e-13);
   EXPECT_LT(relativeDifference(direct.m2, mapped.m2), 1e-13);
@@ -103,6 +107,7 @@ TEST(MassProperties, MomentsTransformLikeTheSolid) {
 TEST(MassProperties, DensityScalesMassAndInertia) {
   const MassProperties p = massProperties(solidMoments(Sphere{0.01}), 7900.0);
   const double m = 7900.0 * 4.0 / 3.0 * M_PI * 1e-6;
+  // Products of the same constants in another order: rounding only.
   EXPECT_NEAR(p.mass / m, 1.0, 1e-14);
   EXPECT_NEAR(p.inertia(0, 0) / (0.4 * m * 1e-4), 1.0, 1e-14);  // (2/5) m R²
 }
