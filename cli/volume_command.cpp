@@ -67,7 +67,7 @@ volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
   volume::DepthField field;
   const volume::ContactVolume cv =
       volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
-  io::writeDepthMapCsv(field, o.field);
+  report::writeDepthMapCsv(field, o.field);
   return cv;
 }
 
@@ -95,7 +95,7 @@ void runVolume(const VolumeOptions& o) {
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
   const volume::ContactVolume cv = compute(o, a, X_WA, b, X_WB);
 
-  nlohmann::json j = io::toJson(cv);
+  nlohmann::json j = report::toJson(cv);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
   if (!o.out.empty()) io::writeJson(j, o.out);
@@ -104,7 +104,7 @@ void runVolume(const VolumeOptions& o) {
   } else {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
-              << io::toTable(cv);
+              << report::toTable(cv);
   }
 }
 

@@ -14,7 +14,7 @@
 #include "io/json_file.hpp"
 #include "io/shape_json.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 namespace fs = std::filesystem;
@@ -205,7 +205,7 @@ void readOutputsAndNoise(const json& j, const std::string& where, const std::str
 }  // namespace
 
 DatasetReadResult readDataset(const std::string& sidecarPath) {
-  const json j = readJsonFile(sidecarPath);
+  const json j = io::readJsonFile(sidecarPath);
   const std::string& where = sidecarPath;
   if (!j.is_object()) throw InputError(where, "the sidecar must be a JSON object");
   const std::string format = requireString(j, "format", where);
@@ -236,7 +236,7 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   }
   for (const char* body : {"payload", "plate"}) {
     if (!j.contains(body)) throw InputError(where, std::string("missing \"") + body + "\"");
-    JsonShape s = parseShapeJson(j.at(body), where + ": " + body, base.string());
+    io::JsonShape s = io::parseShapeJson(j.at(body), where + ": " + body, base.string());
     result.warnings.insert(result.warnings.end(), s.warnings.begin(), s.warnings.end());
     (std::string(body) == "payload" ? d.payload : d.plate) = std::move(s.shape);
   }
@@ -264,8 +264,8 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) 
             {"name", d.name},
             {"data", csv.filename().string()},
             {"mode", "kinematic"},
-            {"payload", shapeJson(d.payload, "payload")},
-            {"plate", shapeJson(d.plate, "plate")},
+            {"payload", io::shapeJson(d.payload, "payload")},
+            {"plate", io::shapeJson(d.plate, "plate")},
             {"outputs", d.outputs},
             {"notes", d.notes}};
   if (!d.noise.empty()) j["noise"] = d.noise;
@@ -275,7 +275,7 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) 
   for (const auto& n : names) {
     if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
   }
-  writeJson(j, sidecar.string());
+  io::writeJson(j, sidecar.string());
   std::ofstream out(csv);
   if (!out) throw InputError(csv.string(), "cannot open for writing");
   out.precision(std::numeric_limits<double>::max_digits10);
@@ -288,4 +288,4 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) 
   }
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

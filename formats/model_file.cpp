@@ -8,7 +8,7 @@
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 constexpr const char* kFormat = "vcontact.model/1";
@@ -125,7 +125,7 @@ dynamics::Model modelFromJson(const nlohmann::json& j, const std::string& source
 }
 
 dynamics::Model readModelFile(const std::string& path) {
-  const nlohmann::json j = readJsonFile(path);
+  const nlohmann::json j = io::readJsonFile(path);
   return modelFromJson(j, path);
 }
 
@@ -144,4 +144,4 @@ nlohmann::json modelToJson(const dynamics::Model& model) {
           {"settings", {{"v_eps", model.settings.v_eps}}}};
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

@@ -13,7 +13,7 @@
 #include "io/shape_spec.hpp"
 #include "volume/contact.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 constexpr const char* kFormat = "vcontact.scenario/1";
@@ -115,7 +115,7 @@ std::string resolve(const std::string& path, const std::string& base_dir) {
 Eigen::Isometry3d readPose(const Reader& r, const std::string& key) {
   if (!r.has(key)) return Eigen::Isometry3d::Identity();
   const auto& v = r[key];
-  if (v.is_string()) return parsePose(v.get<std::string>(), r.source() + ": " + r.at(key));
+  if (v.is_string()) return io::parsePose(v.get<std::string>(), r.source() + ": " + r.at(key));
   const auto n = r.numbers(key);
   if (n.size() != 3 && n.size() != 6 && n.size() != 7) {
     r.fail(key,
@@ -125,7 +125,7 @@ Eigen::Isometry3d readPose(const Reader& r, const std::string& key) {
   std::ostringstream s;
   s.precision(17);
   for (std::size_t i = 0; i < n.size(); ++i) s << (i ? "," : "") << n[i];
-  return parsePose(s.str(), r.source() + ": " + r.at(key));
+  return io::parsePose(s.str(), r.source() + ": " + r.at(key));
 }
 
 Eigen::Matrix3d readInertia(const Reader& r) {
@@ -172,7 +172,7 @@ void warnIfLight(const Reader& r, const dynamics::RigidBody& body,
                  std::vector<std::string>& warnings) {
   const auto* mesh = std::get_if<geometry::Mesh>(&body.shape);
   if (mesh == nullptr || !r.has("density")) return;
-  const auto w = lightPartWarning(*mesh->mesh, r.positive("density", 0.0));
+  const auto w = io::lightPartWarning(*mesh->mesh, r.positive("density", 0.0));
   if (w) warnings.push_back(body.name + ": " + *w);
 }
 
@@ -184,9 +184,9 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
   body.name = r.text("name");
   std::string shape = r.text("shape");
   if (!isPrimitive(shape)) shape = resolve(shape, base_dir);
-  MeshReadOptions mesh;
+  io::MeshReadOptions mesh;
   mesh.repair = r.flag("repair", false);
-  ParsedShape parsed = parseShape(shape, r.source() + ": " + r.at("shape"), mesh);
+  io::ParsedShape parsed = io::parseShape(shape, r.source() + ": " + r.at("shape"), mesh);
   body.shape = std::move(parsed.shape);
   for (const auto& w : parsed.warnings) warnings.push_back(body.name + ": " + w);
   body.X_WB0 = readPose(r, "pose");
@@ -481,9 +481,9 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
 }
 
 ScenarioFile readScenarioFile(const std::string& path) {
-  const nlohmann::json j = readJsonFile(path);
+  const nlohmann::json j = io::readJsonFile(path);
   const std::string dir = std::filesystem::path(path).parent_path().string();
   return scenarioFromJson(j, path, dir.empty() ? "." : dir);
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

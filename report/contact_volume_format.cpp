@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -73,4 +73,4 @@ std::string toTable(const volume::ContactVolume& cv) {
   return os.str();
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -6,9 +6,9 @@
 
 #include "volume/contact_volume.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 nlohmann::json toJson(const volume::ContactVolume& cv);
 std::string toTable(const volume::ContactVolume& cv);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

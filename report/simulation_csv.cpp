@@ -6,7 +6,7 @@
 
 #include "geometry/error.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 // Shortest round-trip form of a double (std::to_chars): exact, and several times faster than
@@ -54,7 +54,7 @@ std::ofstream SimulationCsvWriter::open(const std::string& path) {
 }
 
 SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
-                                         const OutputSelection& outputs)
+                                         const formats::OutputSelection& outputs)
     : scenario_(scenario), outputs_(outputs) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -125,4 +125,4 @@ void SimulationCsvWriter::flush() {
   for (auto& f : pairs_) f.flush();
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

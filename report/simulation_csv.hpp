@@ -11,13 +11,13 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 class SimulationCsvWriter {
  public:
   /// Creates `dir` if needed and writes the headers. @throws InputError when a file cannot open
   SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
-                      const OutputSelection& outputs);
+                      const formats::OutputSelection& outputs);
 
   /// Appends one row per body and per pair (buffered; flushed by flush() and on destruction,
   /// so a run that stops with an error keeps its rows).
@@ -31,7 +31,7 @@ class SimulationCsvWriter {
   std::ofstream open(const std::string& path);
 
   const dynamics::Scenario& scenario_;
-  OutputSelection outputs_;
+  formats::OutputSelection outputs_;
   std::ofstream bodies_;
   std::vector<std::ofstream> pairs_;
   std::vector<std::string> files_;
@@ -40,4 +40,4 @@ class SimulationCsvWriter {
 /// A file-name-safe form of a pair name: letters, digits, '-', '_' kept, others '_'.
 std::string fileSafe(const std::string& name);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -8,7 +8,7 @@
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 using nlohmann::json;
@@ -135,7 +135,7 @@ json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validat
           {"parameters", params},
           {"correlation", {{"names", fit.freeNames}, {"matrix", corr}}},
           {"warnings", fit.warnings},
-          {"model", modelToJson(fit.model)}};
+          {"model", formats::modelToJson(fit.model)}};
 }
 
 json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels& noise) {
@@ -157,9 +157,9 @@ json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels
     j["stages"] = std::move(stages);
     j["final"] = {{"effects", d.final().model.effectIds()},
                   {"chi", d.final().comparison.chi},
-                  {"model", modelToJson(d.final().model)}};
+                  {"model", formats::modelToJson(d.final().model)}};
   }
   return j;
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

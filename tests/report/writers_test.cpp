@@ -16,7 +16,7 @@
 #include "report/friction_map_csv.hpp"
 #include "report/report_html.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 namespace fs = std::filesystem;
@@ -45,7 +45,7 @@ std::string errorSource(Write write) {
 
 TEST(ReportWriters, AFileThatCannotBeOpenedIsAnInputErrorNamingIt) {
   const std::string path = (tempFile("no_such_folder") / "out").string();
-  EXPECT_EQ(errorSource([&] { writeJson(nlohmann::json::object(), path); }), path);
+  EXPECT_EQ(errorSource([&] { io::writeJson(nlohmann::json::object(), path); }), path);
   // The HTML is not built when the file does not open, so an empty input is never read.
   EXPECT_EQ(errorSource([&] { writeReportHtml(ReportInput{}, path); }), path);
   EXPECT_EQ(errorSource([&] { writeDepthMapCsv(volume::DepthField{}, path); }), path);
@@ -82,4 +82,4 @@ TEST(ReportWriters, FrictionMapCsvLeavesTheExactColumnsEmptyWithoutAClosedForm) 
 }
 
 }  // namespace
-}  // namespace vcontact::io
+}  // namespace vcontact::report
