@@ -53,9 +53,9 @@ std::optional<volume::Method> chosenMethod(const VolumeOptions& o, const io::Par
 
 /// The contact by the chosen method; with --field, by a method that samples the δ map (by
 /// default the first the pair allows) and the map.
-volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
-                              const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
-                              const Eigen::Isometry3d& X_WB) {
+volume::ContactPatches compute(const VolumeOptions& o, const io::ParsedShape& a,
+                               const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
+                               const Eigen::Isometry3d& X_WB) {
   const volume::QueryOptions query{chosenMethod(o, a, b)};
   if (o.field.empty()) return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query);
   if (query.method && !volume::fillsDepthField(*query.method)) {
@@ -64,10 +64,10 @@ volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
                          methodNames([](const auto& row) { return row.fills_depth_field; }));
   }
   volume::DepthField field;
-  const volume::ContactVolume cv =
+  volume::ContactPatches contact =
       volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
   io::writeDepthMapCsv(field, o.field);
-  return cv;
+  return contact;
 }
 
 /// --method's help, from the method table.
@@ -90,7 +90,7 @@ void runVolume(const VolumeOptions& o) {
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
-  const volume::ContactVolume cv = compute(o, a, X_WA, b, X_WB);
+  const volume::ContactVolume cv = compute(o, a, X_WA, b, X_WB).aggregate;
 
   nlohmann::json j = io::toJson(cv);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};

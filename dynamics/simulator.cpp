@@ -211,7 +211,8 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
       const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
       const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
       out.cv = volume::computeContact(shapeA, X_WA, shapeB, B.X_WB, query,
-                                      distributed ? &fields_[k] : nullptr, &caches_[k]);
+                                      distributed ? &fields_[k] : nullptr, &caches_[k])
+                   .aggregate;
       ++contact_count_;
     } else {
       out.cv = apart_[k];  // the query's answer for bodies apart

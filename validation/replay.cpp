@@ -62,7 +62,8 @@ class HalfspaceVolumes {
       const geometry::Shape halfspace = geometry::HalfSpace{};
       it = cache_
                .emplace(key, volume::computeContact(payload, X_c, halfspace,
-                                                    Eigen::Isometry3d::Identity()))
+                                                    Eigen::Isometry3d::Identity())
+                                 .aggregate)
                .first;
     }
     return moved(it->second, X * X_c.inverse());
@@ -106,7 +107,7 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
   SampleGeometry g;
   g.cv = std::holds_alternative<geometry::HalfSpace>(d.plate)
              ? halfspace.at(d.payload, X_PB)
-             : volume::computeContact(d.payload, X_PB, d.plate, X_PP);
+             : volume::computeContact(d.payload, X_PB, d.plate, X_PP).aggregate;
   if (!g.cv.inContact()) return g;
   g.p_BoC_P = g.cv.centroid - X_PB.translation();
   // v_c = v_PBo + w_PB × p_BoC (MODEL.md §2; the plate does not move).

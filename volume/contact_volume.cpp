@@ -1,5 +1,6 @@
 #include "volume/contact_volume.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -52,6 +53,27 @@ ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector
 ContactVolume swapped(ContactVolume cv) {
   cv.normal = -cv.normal;
   return cv;
+}
+
+ContactPatches swapped(ContactPatches contact) {
+  for (ContactVolume& patch : contact.patches) patch = swapped(patch);
+  contact.aggregate = swapped(contact.aggregate);
+  return contact;
+}
+
+void sortPatches(std::vector<ContactVolume>& patches) {
+  std::sort(patches.begin(), patches.end(), [](const ContactVolume& l, const ContactVolume& r) {
+    if (l.volume != r.volume) return l.volume > r.volume;
+    return std::lexicographical_compare(l.centroid.begin(), l.centroid.end(), r.centroid.begin(),
+                                        r.centroid.end());
+  });
+}
+
+ContactPatches singlePatch(const ContactVolume& cv) {
+  ContactPatches contact;
+  contact.aggregate = cv;
+  if (cv.inContact()) contact.patches.push_back(cv);
+  return contact;
 }
 
 }  // namespace vcontact::volume

@@ -38,8 +38,8 @@ TEST(ComputeContact, HalfspaceInEitherOrder) {
   const Isometry3d X_WM = X_WH * test::translation({0.001, 0.0, 0.0071 - 0.002});
   const auto& mesh = *std::get<geometry::Mesh>(torus).mesh;
   const ContactVolume ref = meshHalfspaceContact(mesh, X_WM, X_WH);
-  const ContactVolume ab = computeContact(torus, X_WM, geometry::HalfSpace{}, X_WH);
-  const ContactVolume ba = computeContact(geometry::HalfSpace{}, X_WH, torus, X_WM);
+  const ContactVolume ab = computeContact(torus, X_WM, geometry::HalfSpace{}, X_WH).aggregate;
+  const ContactVolume ba = computeContact(geometry::HalfSpace{}, X_WH, torus, X_WM).aggregate;
   ASSERT_GT(ref.volume, 0.0);
   EXPECT_EQ(ab.method, Method::kHalfspace);
   EXPECT_NEAR(ab.volume, ref.volume, 1e-12 * ref.volume);
@@ -62,9 +62,9 @@ TEST(ComputeContact, MeshPairMethods) {
   const Isometry3d X_WP = test::translation({0.0004, 0.0, 0.003});
   EXPECT_EQ(defaultMethod(peg, ring), Method::kFast);
   const ContactVolume col =
-      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kColumns});
+      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kColumns}).aggregate;
   const ContactVolume cgal =
-      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kCgal});
+      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kCgal}).aggregate;
   ASSERT_GT(cgal.volume, 0.0);
   EXPECT_EQ(col.method, Method::kColumns);
   EXPECT_EQ(cgal.method, Method::kCgal);
@@ -182,7 +182,7 @@ TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
   const Isometry3d X_WM = X_WH * test::translation({0.001, 0.0, 0.0071 - 0.002});
   const geometry::Shape plane = geometry::HalfSpace{};
   DepthField field;
-  const ContactVolume cv = computeContact(torus, X_WM, plane, X_WH, {}, &field);
+  const ContactVolume cv = computeContact(torus, X_WM, plane, X_WH, {}, &field).aggregate;
   DepthField direct;
   const ContactVolume ref = columnsContact(torus, X_WM, plane, X_WH, &direct);
   ASSERT_GT(ref.volume, 0.0);
@@ -198,8 +198,10 @@ TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
 
   DepthField fixed;
   const int lines = 32;
-  const ContactVolume coarse = computeContact(
-      torus, X_WM, plane, X_WH, {.method = cv.method, .fixed_resolution = lines}, &fixed);
+  const ContactVolume coarse =
+      computeContact(torus, X_WM, plane, X_WH, {.method = cv.method, .fixed_resolution = lines},
+                     &fixed)
+          .aggregate;
   EXPECT_TRUE(std::isinf(coarse.relative_error));
   EXPECT_LE(fixed.depth.size(), std::size_t(lines * lines));
   EXPECT_GT(fixed.depth.size(), 0u);
@@ -210,6 +212,39 @@ TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
     EXPECT_THROW(computeContact(torus, X_WM, plane, X_WH, {row.id}, &none), InputError) << row.name;
     EXPECT_TRUE(none.depth.empty()) << row.name;
   }
+}
+
+// A primitive on a half-space is one convex region: the aggregate is the only patch, equal to
+// it to the bit; apart, there is no patch and the aggregate is empty.
+TEST(ComputeContact, AnalyticIsOnePatch) {
+  const Isometry3d X_WH = test::randomPose(7);
+  const double R = 0.0103, d = 0.0007;
+  const Isometry3d X_WS = X_WH * test::translation({0.0, 0.0, R - d});
+  const ContactPatches touching =
+      computeContact(geometry::Sphere{R}, X_WS, geometry::HalfSpace{}, X_WH);
+  ASSERT_EQ(touching.patches.size(), 1u);
+  EXPECT_TRUE(touching.inContact());
+  EXPECT_EQ(touching.patches[0].volume, touching.aggregate.volume);
+  EXPECT_EQ(touching.patches[0].centroid, touching.aggregate.centroid);
+  EXPECT_EQ(touching.patches[0].J_s, touching.aggregate.J_s);
+  const ContactPatches apart = computeContact(
+      geometry::Sphere{R}, X_WH * test::translation({0, 0, 2 * R}), geometry::HalfSpace{}, X_WH);
+  EXPECT_FALSE(apart.inContact());
+  EXPECT_EQ(apart.aggregate.volume, 0.0);
+}
+
+// Decreasing volume, then the lexicographic centroid.
+TEST(ContactPatches, SortOrder) {
+  std::vector<ContactVolume> patches(3);
+  patches[0].volume = 1.0;
+  patches[0].centroid = Vector3d(0.0, 1.0, 0.0);
+  patches[1].volume = 2.0;
+  patches[2].volume = 1.0;
+  patches[2].centroid = Vector3d(0.0, -1.0, 5.0);
+  sortPatches(patches);
+  EXPECT_EQ(patches[0].volume, 2.0);
+  EXPECT_EQ(patches[1].centroid.y(), -1.0);
+  EXPECT_EQ(patches[2].centroid.y(), 1.0);
 }
 
 // The tree is built once per mesh and shared.
