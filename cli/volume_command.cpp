@@ -90,9 +90,9 @@ void runVolume(const VolumeOptions& o) {
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
-  const volume::ContactVolume cv = compute(o, a, X_WA, b, X_WB).aggregate;
+  const volume::ContactPatches contact = compute(o, a, X_WA, b, X_WB);
 
-  nlohmann::json j = io::toJson(cv);
+  nlohmann::json j = io::toJson(contact);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
   if (!o.out.empty()) io::writeJson(j, o.out);
@@ -101,7 +101,7 @@ void runVolume(const VolumeOptions& o) {
   } else {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
-              << io::toTable(cv);
+              << io::toTable(contact);
   }
 }
 
