@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
+#include <vector>
 
 #include "geometry/bvh.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "support/test_support.hpp"
+#include "volume/cgal_reference.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume/mesh_mesh.hpp"
 #include "volume_fixtures.hpp"
@@ -46,11 +49,19 @@ Isometry3d profileUp() {
   return Isometry3d(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d::UnitX()));
 }
 
+/// The patch of `list` whose centroid is nearest to that of `p` (the tests match patches
+/// across methods by place: equal volumes may sort either way by rounding).
+const ContactVolume& nearest(const std::vector<ContactVolume>& list, const ContactVolume& p) {
+  return *std::min_element(list.begin(), list.end(), [&p](const auto& x, const auto& y) {
+    return (x.centroid - p.centroid).norm() < (y.centroid - p.centroid).norm();
+  });
+}
+
 void expectSamePatches(const ContactPatches& fast, const ContactPatches& clip, double size) {
   ASSERT_EQ(fast.patches.size(), clip.patches.size());
   for (std::size_t k = 0; k < clip.patches.size(); ++k) {
-    const ContactVolume& a = fast.patches[k];
     const ContactVolume& b = clip.patches[k];
+    const ContactVolume& a = nearest(fast.patches, b);
     EXPECT_NEAR(a.volume, b.volume, kVolumeTol * b.volume) << k;
     EXPECT_LE((a.centroid - b.centroid).norm(), kMomentTol * size) << k;
     EXPECT_LE(test::relativeDifference(a.J_v, b.J_v), kMomentTol) << k;
@@ -89,6 +100,50 @@ TEST(FastMeshMeshPatches, RingOnOnePlateFace) {
   const ContactPatches fast =
       meshMeshContact(cup.bvh, cup.topo, X_WM, plate().bvh, plate().topo, X_WH);
   expectSamePatches(fast, clip, 0.0217);
+}
+
+// A round peg tilted in a hole with 0.2 mm clearance, longer than the hole: it bears on the
+// hole's wall near the top on one side and near the bottom on the other (two-point contact).
+// Two patches on opposite walls, with opposite in-plane normals; fast agrees with cgal.
+TEST(FastMeshMeshPatches, TiltedPegBearsOnOppositeWalls) {
+  const Body hole(test::tube(0.0203, 0.0101, 0.0203, 64));
+  const Body peg(geometry::tessellateCylinder(0.0099, 0.0407, 64));
+  const Isometry3d X_WH = test::randomPose(15);
+  const Isometry3d X_WP = X_WH * Isometry3d(Eigen::AngleAxisd(0.03, Vector3d::UnitX()));
+  const ContactPatches fast = meshMeshContact(peg.bvh, peg.topo, X_WP, hole.bvh, hole.topo, X_WH);
+  const ContactPatches cgal = cgalMeshMeshContact(peg.bvh.mesh(), X_WP, hole.bvh.mesh(), X_WH);
+  ASSERT_EQ(fast.patches.size(), 2u);
+  expectSamePatches(fast, cgal, 0.0203);
+  const Vector3d axis_W = X_WP.linear().col(2);
+  const Vector3d& n0 = fast.patches[0].normal;
+  const Vector3d& n1 = fast.patches[1].normal;
+  EXPECT_LT(n0.dot(n1), -0.99);  // opposite, up to the facets and the 0.03 rad tilt
+  EXPECT_LT(std::abs(n0.dot(axis_W)), 0.05);
+  // the two centroids lie on either side of the hole's centre along the axis
+  EXPECT_LT((fast.patches[0].centroid - X_WH.translation()).dot(X_WH.linear().col(2)) *
+                (fast.patches[1].centroid - X_WH.translation()).dot(X_WH.linear().col(2)),
+            0.0);
+}
+
+// Two spheres of one body (a dumbbell's ends, two shells) pressed into a plate: each patch is
+// the exact clip of its sphere alone by the plate's top plane.
+TEST(FastMeshMeshPatches, DumbbellEndsMatchEachSphereAlone) {
+  const double R = 0.0103, d = 0.0017, half = 0.031;
+  TriangleMesh left = geometry::tessellateSphere(R, 48, 24);
+  TriangleMesh right = left;
+  left.vertices.col(0).array() -= half;
+  right.vertices.col(0).array() += half;
+  const Body dumbbell(test::twoShells(left, right));
+  const Body leftAlone(left), rightAlone(right);
+  const Isometry3d X_WH = test::randomPose(16);
+  const Isometry3d X_WM = X_WH * test::translation({0.004, -0.007, R - d});
+  const ContactPatches fast =
+      meshMeshContact(dumbbell.bvh, dumbbell.topo, X_WM, plate().bvh, plate().topo, X_WH);
+  ContactPatches alone;
+  for (const Body* b : {&leftAlone, &rightAlone}) {
+    alone.patches.push_back(meshHalfspacePatches(b->bvh, b->topo, X_WM, X_WH).aggregate);
+  }
+  expectSamePatches(fast, alone, R);
 }
 
 }  // namespace

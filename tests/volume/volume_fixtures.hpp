@@ -94,6 +94,39 @@ inline geometry::TriangleMesh squareCup(double a, double b, double h, double flo
   return m;
 }
 
+/// A tube of axis z centred at the origin: outer radius ro, a round hole of radius ri, length
+/// h, `segments` around (both circles inscribed). 4·segments vertices, 8·segments faces.
+inline geometry::TriangleMesh tube(double ro, double ri, double h, int segments) {
+  geometry::TriangleMesh m;
+  m.vertices.resize(4 * segments, 3);
+  const auto olo = [](int j) { return 4 * j; };
+  const auto ohi = [](int j) { return 4 * j + 1; };
+  const auto ilo = [](int j) { return 4 * j + 2; };
+  const auto ihi = [](int j) { return 4 * j + 3; };
+  for (int j = 0; j < segments; ++j) {
+    const double az = 2.0 * M_PI * j / segments, c = std::cos(az), s = std::sin(az);
+    m.vertices.row(olo(j)) << ro * c, ro * s, -0.5 * h;
+    m.vertices.row(ohi(j)) << ro * c, ro * s, 0.5 * h;
+    m.vertices.row(ilo(j)) << ri * c, ri * s, -0.5 * h;
+    m.vertices.row(ihi(j)) << ri * c, ri * s, 0.5 * h;
+  }
+  std::vector<Eigen::Vector3i> f;
+  for (int j = 0; j < segments; ++j) {
+    const int k = (j + 1) % segments;
+    f.emplace_back(olo(j), olo(k), ohi(k));  // outer wall, facing out
+    f.emplace_back(olo(j), ohi(k), ohi(j));
+    f.emplace_back(ilo(j), ihi(j), ihi(k));  // hole wall, facing the axis
+    f.emplace_back(ilo(j), ihi(k), ilo(k));
+    f.emplace_back(ohi(j), ohi(k), ihi(k));  // top, facing +z
+    f.emplace_back(ohi(j), ihi(k), ihi(j));
+    f.emplace_back(olo(j), ilo(k), olo(k));  // bottom, facing −z
+    f.emplace_back(olo(j), ilo(j), ilo(k));
+  }
+  m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<Eigen::Index>(i)) = f[i];
+  return m;
+}
+
 /// Meshes a and b as one mesh of two shells.
 inline geometry::TriangleMesh twoShells(const geometry::TriangleMesh& a,
                                         const geometry::TriangleMesh& b) {
