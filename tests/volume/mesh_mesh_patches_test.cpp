@@ -146,5 +146,40 @@ TEST(FastMeshMeshPatches, DumbbellEndsMatchEachSphereAlone) {
   expectSamePatches(fast, alone, R);
 }
 
+// A keyed shaft turned by 0.03 rad in a hub of four blocks, one beside the leading flank of
+// each key with 0.2 mm clearance: one patch per flank, with tangential normals (across the
+// flank, neither radial nor axial); cgal finds the same four components.
+TEST(FastMeshMeshPatches, KeyedShaftTurnedInItsHub) {
+  const double a = 0.0041, L = 0.0149, gap = 0.0002, w = 0.0051;
+  const Body shaft(test::keyedShaft(a, L, 0.0203));
+  // The block beside the +y flank of the +x key, then the others by quarter turns.
+  TriangleMesh block = geometry::tessellateBox(Vector3d(0.0071, w, 0.0121));
+  block.vertices.rowwise() += Eigen::RowVector3d(0.0101, a + gap + 0.5 * w, 0.0);
+  std::vector<TriangleMesh> blocks(4, block);
+  for (int k = 1; k < 4; ++k) {
+    const Eigen::Matrix3d R(Eigen::AngleAxisd(k * std::numbers::pi / 2, Vector3d::UnitZ()));
+    blocks[static_cast<std::size_t>(k)].vertices = block.vertices * R.transpose();
+  }
+  const Body hub(test::twoShells(test::twoShells(blocks[0], blocks[1]),
+                                 test::twoShells(blocks[2], blocks[3])));
+  const Isometry3d X_WH = test::randomPose(17);
+  const Isometry3d X_WS = X_WH * Isometry3d(Eigen::AngleAxisd(0.03, Vector3d::UnitZ()));
+  const ContactPatches fast = meshMeshContact(shaft.bvh, shaft.topo, X_WS, hub.bvh, hub.topo, X_WH);
+  const ContactPatches cgal = cgalMeshMeshContact(shaft.bvh.mesh(), X_WS, hub.bvh.mesh(), X_WH);
+  ASSERT_EQ(fast.patches.size(), 4u);
+  expectSamePatches(fast, cgal, L);
+  const Vector3d axis_W = X_WH.linear().col(2);
+  for (const ContactVolume& p : fast.patches) {
+    // the key's own direction (of the four quarter turns of the shaft's x axis, the one
+    // nearest the patch): the flank's normal is across it
+    const Vector3d p_S = X_WS.inverse() * p.centroid;
+    const Vector3d key_S =
+        std::abs(p_S.x()) > std::abs(p_S.y()) ? Vector3d::UnitX() : Vector3d::UnitY();
+    EXPECT_LT(std::abs(p.normal.dot(X_WS.linear() * key_S)), 0.05);  // the hub is 0.03 rad off
+    EXPECT_LT(std::abs(p.normal.dot(axis_W)), 1e-9);                 // flanks parallel to the axis
+    EXPECT_NEAR(p.volume, fast.patches[0].volume, 1e-9 * p.volume);  // four-fold symmetry
+  }
+}
+
 }  // namespace
 }  // namespace vcontact::volume

@@ -127,6 +127,27 @@ inline geometry::TriangleMesh tube(double ro, double ri, double h, int segments)
   return m;
 }
 
+/// A shaft with four keys, a "+" of arms of half-width a reaching to radius L, length h along
+/// z, centred at the origin. One shell, 12 profile corners.
+inline geometry::TriangleMesh keyedShaft(double a, double L, double h) {
+  const std::vector<Eigen::Vector2d> poly = {{a, -a},  {L, -a},  {L, a},   {a, a},
+                                             {a, L},   {-a, L},  {-a, a},  {-L, a},
+                                             {-L, -a}, {-a, -a}, {-a, -L}, {a, -L}};
+  geometry::TriangleMesh m = extrudeTriangulated(poly, h,
+                                                 {{9, 0, 3},
+                                                  {9, 3, 6},
+                                                  {0, 1, 2},
+                                                  {0, 2, 3},
+                                                  {3, 4, 5},
+                                                  {3, 5, 6},
+                                                  {6, 7, 8},
+                                                  {6, 8, 9},
+                                                  {9, 10, 11},
+                                                  {9, 11, 0}});
+  m.vertices.col(2).array() -= 0.5 * h;
+  return m;
+}
+
 /// Meshes a and b as one mesh of two shells.
 inline geometry::TriangleMesh twoShells(const geometry::TriangleMesh& a,
                                         const geometry::TriangleMesh& b) {
