@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "volume/bvh_cache.hpp"
+#include "volume/mesh_convexity.hpp"
 #include "volume/mesh_topology_cache.hpp"
 #include "volume/stamp_set.hpp"
 
@@ -691,16 +692,27 @@ ContactPatches meshHalfspacePatches(const MeshBvh& bvh, const MeshTopology& topo
   return contact;
 }
 
+namespace {
+
+/// A mesh shape (B1) against a half-space: a convex mesh is one patch, the clip itself.
+ContactPatches meshShapeHalfspacePatches(const std::shared_ptr<const geometry::TriangleMesh>& mesh,
+                                         const Eigen::Isometry3d& X_WM,
+                                         const Eigen::Isometry3d& X_WH) {
+  if (isConvex(mesh)) return singlePatch(meshHalfspaceContact(*bvhOf(mesh), X_WM, X_WH));
+  return meshHalfspacePatches(*bvhOf(mesh), *topologyOf(mesh), X_WM, X_WH);
+}
+
+}  // namespace
+
 ContactPatches halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                                     const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
   if (const auto* mesh = std::get_if<geometry::Mesh>(&a)) {
     assert(std::holds_alternative<geometry::HalfSpace>(b));
-    return meshHalfspacePatches(*bvhOf(mesh->mesh), *topologyOf(mesh->mesh), X_WA, X_WB);
+    return meshShapeHalfspacePatches(mesh->mesh, X_WA, X_WB);
   }
   assert(std::holds_alternative<geometry::HalfSpace>(a) &&
          std::holds_alternative<geometry::Mesh>(b));
-  const auto& mesh = std::get<geometry::Mesh>(b).mesh;
-  return swapped(meshHalfspacePatches(*bvhOf(mesh), *topologyOf(mesh), X_WB, X_WA));
+  return swapped(meshShapeHalfspacePatches(std::get<geometry::Mesh>(b).mesh, X_WB, X_WA));
 }
 
 }  // namespace vcontact::volume

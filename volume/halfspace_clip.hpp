@@ -60,7 +60,8 @@ ContactPatches meshHalfspacePatches(const geometry::MeshBvh& bvh,
 
 /// The method table's backend of `halfspace` (methods.hpp): a mesh (B1 or B2, its tree from
 /// bvh_cache.hpp, its topology from mesh_topology_cache.hpp) against a half-space, by
-/// meshHalfspacePatches, in either order.
+/// meshHalfspacePatches, in either order; a convex mesh (mesh_convexity.hpp) is one patch,
+/// the accelerated clip alone.
 /// @pre one of a, b a mesh and the other a half-space
 ContactPatches halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                                     const geometry::Shape& b, const Eigen::Isometry3d& X_WB);

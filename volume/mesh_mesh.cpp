@@ -77,7 +77,9 @@ ContactPatches Intersector::run(MeshMeshCache* cache) {
     collectWholeFaces(side);
   }
   ContactPatches out = singlePatch(integrate());
-  if (!out.inContact() || groupPieces() == 1 || joinHolesWithinFaces() == 1) return out;
+  if (!out.inContact() || (groupPieces() <= 1 && !wholeShellInside_)) return out;
+  joinWholeFaces();
+  if (joinHolesWithinFaces() == 1) return out;
   out.patches = integratePatches();
   sortPatches(out.patches);
   return out;

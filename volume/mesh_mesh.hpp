@@ -89,7 +89,8 @@ struct MeshMeshCache {
 /// is bounded by several such groups joins each hole loop to the smallest outer loop around
 /// it on that face. With no cavities in A or B, each component of A ∩ B has one connected
 /// boundary, so the groups are exactly its components. A query whose pieces form one group
-/// pays one union-find pass over its pieces; only multi-group queries integrate again.
+/// (and with no shell wholly inside the other body) pays one union-find pass over its pieces;
+/// only multi-group queries join whole faces and integrate again.
 /// All outputs in W.
 /// @param a, b        the trees of the two meshes (body frames A and B)
 /// @param topoA, topoB the topology of the same meshes

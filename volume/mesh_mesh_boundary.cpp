@@ -200,6 +200,7 @@ void Intersector::classifyUnseededComponents(int side) {
     }
     if (!contains(1 - side, m.placedVertex(comps[c].vertices.front()), perturbationSign(side)))
       continue;
+    wholeShellInside_ = true;
     for (const int v : comps[c].vertices) markInside(side, v);
   }
 }

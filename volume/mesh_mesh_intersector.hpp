@@ -234,6 +234,7 @@ class Intersector {
   int findNode(int node);
   void joinNodes(int a, int b);
   int groupPieces();
+  void joinWholeFaces();
   int countGroups() const;
   int joinHolesWithinFaces();
   void joinHoles(const std::vector<FaceLoops>& loops, const PlaneAxes& axes);
@@ -242,7 +243,8 @@ class Intersector {
   Body body_[2];
   Scratch& scratch_;
   double margin_ = 0.0;
-  bool anyCoplanar_ = false;  ///< flagIfCoplanar has flagged a face pair in this query
+  bool anyCoplanar_ = false;       ///< flagIfCoplanar has flagged a face pair in this query
+  bool wholeShellInside_ = false;  ///< classifyUnseededComponents found a shell inside
 };
 
 }  // namespace vcontact::volume::internal

@@ -64,17 +64,28 @@ void Intersector::joinNodes(int a, int b) {
   if (a != b) scratch_.nodeParent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
 }
 
-/// Joins the ends of every piece and the corners of every whole face; returns the number of
-/// groups (every node ends a piece or is a whole face's corner).
+/// Joins the ends of every piece; returns the number of groups of the pieces' nodes. Each
+/// piece's ends are joined once: a segment and a part of an edge come as a pair of opposite
+/// pieces (one per face), and a whole edge of a cut face without its opposite lies on a whole
+/// face. Whole faces are not joined here: each connected set of them borders a cut face along
+/// a whole edge (a face with two inside corners is whole or cut), so it adds no group unless
+/// it is a shell wholly inside the other body (wholeShellInside_).
 int Intersector::groupPieces() {
-  for (const Piece& pc : scratch_.pieces) joinNodes(pc.from, pc.to);
+  for (const Piece& pc : scratch_.pieces) {
+    if (pc.from < pc.to) joinNodes(pc.from, pc.to);
+  }
+  return countGroups();
+}
+
+/// Joins the corners of every whole face (for integratePatches, which finds a whole face's
+/// group from its first corner).
+void Intersector::joinWholeFaces() {
   for (const WholeFace& wf : scratch_.wholes) {
     const auto& tri = body_[wf.side].mesh().triangles;
     const int a = vertexNode(wf.side, tri(wf.face, 0));
     joinNodes(a, vertexNode(wf.side, tri(wf.face, 1)));
     joinNodes(a, vertexNode(wf.side, tri(wf.face, 2)));
   }
-  return countGroups();
 }
 
 int Intersector::countGroups() const {

@@ -12,6 +12,7 @@
 #include "geometry/mesh_topology.hpp"
 #include "support/test_support.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/mesh_convexity.hpp"
 #include "volume_fixtures.hpp"
 
 namespace vcontact::volume {
@@ -169,6 +170,19 @@ TEST(HalfspacePatches, EitherOrderThroughTheBackend) {
     EXPECT_EQ(ab.patches[k].volume, ba.patches[k].volume);
     EXPECT_EQ(ab.patches[k].normal, -ba.patches[k].normal);
   }
+}
+
+// Convex meshes skip the patch labels; every concave edge or second shell disqualifies.
+TEST(HalfspacePatches, ConvexityOfTheFixtures) {
+  const TriangleMesh box = geometry::tessellateBox(Vector3d(0.01, 0.02, 0.03));
+  EXPECT_TRUE(MeshConvexity(geometry::tessellateSphere(0.01, 24, 12)).convex);
+  EXPECT_TRUE(MeshConvexity(box).convex);
+  EXPECT_FALSE(MeshConvexity(uPrism({0.0107, 0.0213, 0.0071, 0.0093, 0.0161}, 0.0123)).convex);
+  EXPECT_FALSE(MeshConvexity(test::squareCup(0.0131, 0.0093, 0.0217, 0.0041)).convex);
+  EXPECT_FALSE(MeshConvexity(twoShells(box, box)).convex);
+  TriangleMesh open = box;
+  open.triangles.conservativeResize(10, 3);
+  EXPECT_FALSE(MeshConvexity(open).convex);
 }
 
 }  // namespace
