@@ -178,6 +178,14 @@ TEST(FastMeshMeshPatches, KeyedShaftTurnedInItsHub) {
     EXPECT_LT(std::abs(p.normal.dot(X_WS.linear() * key_S)), 0.05);  // the hub is 0.03 rad off
     EXPECT_LT(std::abs(p.normal.dot(axis_W)), 1e-9);                 // flanks parallel to the axis
     EXPECT_NEAR(p.volume, fast.patches[0].volume, 1e-9 * p.volume);  // four-fold symmetry
+    // Deepest penetration: the key's flank point (x, a) turned by φ reaches y = x sin φ +
+    // a cos φ, the block's face is at a + gap, deepest at the block's far end x = 0.01365:
+    // 2.076e-4 m. depth is the patch's extent along its own n (tilted by up to φ from the
+    // block's face), 2 % more here; 5 % bounds it. The merged region's extent is 30 mm.
+    const double phi = 0.03, x = 0.0101 + 0.00355;
+    const double deepest = x * std::sin(phi) + a * std::cos(phi) - a - gap;
+    EXPECT_NEAR(p.depth, deepest, 0.05 * deepest);
+    EXPECT_GT(fast.aggregate.depth, 100 * p.depth);
   }
 }
 
