@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -231,6 +232,41 @@ TEST(ComputeContact, AnalyticIsOnePatch) {
       geometry::Sphere{R}, X_WH * test::translation({0, 0, 2 * R}), geometry::HalfSpace{}, X_WH);
   EXPECT_FALSE(apart.inContact());
   EXPECT_EQ(apart.aggregate.volume, 0.0);
+}
+
+// Every method that takes the pair finds the U's two feet, on a half-space and on a plate
+// mesh whose top face is the same plane, each foot's V equal to the exact clip's: to 1e-9 for
+// the exact methods (two exact methods, cgal_reference_test), to twice the reported estimate
+// for columns (columns_test).
+TEST(ComputeContact, EveryMethodFindsTheSamePatches) {
+  const auto u = std::make_shared<const geometry::TriangleMesh>(
+      test::uPrism({0.0107, 0.0213, 0.0071, 0.0093, 0.0161}, 0.0123));
+  const geometry::Shape shape = geometry::Mesh{u, "U"};
+  const geometry::Shape plane = geometry::HalfSpace{};
+  geometry::TriangleMesh slab = geometry::tessellateBox(Vector3d(0.2, 0.2, 0.05));
+  slab.vertices.col(2).array() -= 0.025;  // top face z_H = 0
+  const geometry::Shape plate =
+      geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(slab), "plate"};
+  const Isometry3d X_WH = test::randomPose(18);
+  const Isometry3d X_WM = X_WH * test::translation({0, 0, -0.0031}) *
+                          Isometry3d(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d::UnitX()));
+  const ContactPatches exact = computeContact(shape, X_WM, plane, X_WH, {Method::kHalfspace});
+  ASSERT_EQ(exact.patches.size(), 2u);
+  int checked = 0;
+  for (const MethodRow& row : methodTable()) {
+    for (const geometry::Shape* other : {&plane, &plate}) {
+      if (!row.handles(shape, *other)) continue;
+      SCOPED_TRACE(std::string(row.name) + " on " + geometry::describe(*other));
+      const ContactPatches c = computeContact(shape, X_WM, *other, X_WH, {row.id});
+      ASSERT_EQ(c.patches.size(), 2u);
+      for (std::size_t k = 0; k < 2; ++k) {
+        const double tol = row.exact ? 1e-9 : 2.0 * c.patches[k].relative_error;
+        EXPECT_NEAR(c.patches[k].volume, exact.patches[k].volume, tol * exact.patches[k].volume);
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 6);  // halfspace; fast on the plate; cgal and columns on both
 }
 
 // Decreasing volume, then the lexicographic centroid.
