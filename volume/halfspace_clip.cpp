@@ -161,6 +161,7 @@ ClippedMoments toHalfspaceFrame(const geometry::Moments& inH, const geometry::Mo
 /// a below: polygon a → p_ab → p_ca, cap p_ca → p_ab; a above: cap p_ab → p_ca).
 struct CapSegment {
   int from = -1, to = -1;  ///< topology edge indices
+  int face = -1;           ///< the face it lies on
 };
 CapSegment capSegment(const MeshTopology& topo, int f, const Vector3d* const (&p_H)[3]) {
   const int inside = (p_H[0]->z() < 0.0) + (p_H[1]->z() < 0.0) + (p_H[2]->z() < 0.0);
@@ -169,7 +170,7 @@ CapSegment capSegment(const MeshTopology& topo, int f, const Vector3d* const (&p
   int k0 = 0;
   while ((p_H[k0]->z() < 0.0) != loneInside) ++k0;
   const int ab = topo.cornerEdge(f, k0), ca = topo.cornerEdge(f, (k0 + 2) % 3);
-  return loneInside ? CapSegment{ca, ab} : CapSegment{ab, ca};
+  return loneInside ? CapSegment{ca, ab, f} : CapSegment{ab, ca, f};
 }
 
 /// The cap loops of one query: the successor of each crossing edge along the cap boundary.
@@ -235,7 +236,7 @@ class LabelUnion {
 struct CapLoop {
   std::vector<Eigen::Vector2d> points;
   double signedArea = 0.0;
-  int label = -1;  ///< the face label of the surface it bounds
+  int face = -1;  ///< a face of the surface it bounds
 
   /// Crossing-number test (Haines, "Point in Polygon Strategies", Graphics Gems IV).
   bool contains(const Eigen::Vector2d& q) const {
@@ -251,6 +252,42 @@ struct CapLoop {
     return in;
   }
 };
+
+/// Where edge e crosses the plane, (x_H, y_H), from its lower-index end (one value per edge);
+/// `placed(v)` is vertex v in H.
+template <class Placed>
+Eigen::Vector2d capCrossing(const MeshTopology& topo, int e, Placed& placed) {
+  const geometry::MeshEdge& edge = topo.edges()[static_cast<std::size_t>(e)];
+  const Vector3d& a = placed(edge.v0);
+  const Vector3d& b = placed(edge.v1);
+  const double t = a.z() / (a.z() - b.z());
+  return {a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y())};
+}
+
+/// The closed loops of the recorded cap segments, with their crossing points and signed areas
+/// (shoelace formula).
+template <class Placed>
+std::vector<CapLoop> traceCapLoops(CapLoops& caps, const MeshTopology& topo, Placed placed) {
+  thread_local StampSet seen;
+  seen.reset(topo.edges().size());
+  std::vector<CapLoop> loops;
+  for (const CapSegment& s : caps.segments()) {
+    if (!seen.insert(s.from)) continue;
+    CapLoop loop;
+    loop.face = s.face;
+    for (int e = s.from;;) {
+      loop.points.push_back(capCrossing(topo, e, placed));
+      e = caps.next(e);
+      if (!seen.insert(e)) break;
+    }
+    for (std::size_t i = 0, j = loop.points.size() - 1; i < loop.points.size(); j = i++) {
+      loop.signedArea +=
+          0.5 * (loop.points[j].x() * loop.points[i].y() - loop.points[i].x() * loop.points[j].y());
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
 
 /// The clip split into the connected components of mesh ∩ {z_H ≤ 0}, for queries the single
 /// patch test (CapLoops::oneLoop) could not settle. Steps:
@@ -324,27 +361,16 @@ class PatchClip {
     }
   }
 
-  /// Where edge e crosses the plane, (x_H, y_H), from its lower-index end (one value per edge).
-  Eigen::Vector2d crossing(int e) {
-    const geometry::MeshEdge& edge = topo_.edges()[static_cast<std::size_t>(e)];
-    const Vector3d& a = p(edge.v0);
-    const Vector3d& b = p(edge.v1);
-    const double t = a.z() / (a.z() - b.z());
-    return {a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y())};
-  }
-
   /// Step 2: the cap loops of the labelled faces, and each hole joined to its outer loop.
   void joinThroughCaps(LabelUnion& components) {
     CapLoops& caps = CapLoops::forQuery(topo_.edges().size());
     for (int f : *faces_) {
       const Vector3d* corners[3] = {&p(mesh_.triangles(f, 0)), &p(mesh_.triangles(f, 1)),
                                     &p(mesh_.triangles(f, 2))};
-      const CapSegment s = capSegment(topo_, f, corners);
-      if (s.from < 0) continue;
-      caps.add(s);
-      edgeLabel_.emplace_back(s.from, (*label_)[f]);
+      caps.add(capSegment(topo_, f, corners));
     }
-    std::vector<CapLoop> loops = traceLoops(caps);
+    const std::vector<CapLoop> loops =
+        traceCapLoops(caps, topo_, [this](int v) -> const Vector3d& { return p(v); });
     for (const CapLoop& hole : loops) {
       if (hole.signedArea >= 0.0) continue;
       const CapLoop* around = nullptr;
@@ -354,36 +380,8 @@ class PatchClip {
           around = &outer;
         }
       }
-      if (around) components.join(hole.label, around->label);
+      if (around) components.join((*label_)[hole.face], (*label_)[around->face]);
     }
-  }
-
-  std::vector<CapLoop> traceLoops(CapLoops& caps) {
-    StampSet& seen = seenEdges();
-    std::vector<CapLoop> loops;
-    for (const auto& [start, id] : edgeLabel_) {
-      if (!seen.insert(start)) continue;
-      CapLoop loop;
-      loop.label = id;
-      for (int e = start;;) {
-        loop.points.push_back(crossing(e));
-        e = caps.next(e);
-        if (!seen.insert(e)) break;
-      }
-      // Shoelace formula.
-      for (std::size_t i = 0, j = loop.points.size() - 1; i < loop.points.size(); j = i++) {
-        loop.signedArea += 0.5 * (loop.points[j].x() * loop.points[i].y() -
-                                  loop.points[i].x() * loop.points[j].y());
-      }
-      loops.push_back(std::move(loop));
-    }
-    return loops;
-  }
-
-  StampSet& seenEdges() {
-    thread_local StampSet seen;
-    seen.reset(topo_.edges().size());
-    return seen;
   }
 
   /// Step 3: each component's faces clipped about its own apex.
@@ -433,7 +431,6 @@ class PatchClip {
   StampedValues<int>* label_ = nullptr;
   std::vector<int>* faces_ = nullptr;       ///< labelled faces, grouped by label
   std::vector<int>* labelStart_ = nullptr;  ///< label l's faces: [labelStart[l], labelStart[l+1])
-  std::vector<std::pair<int, int>> edgeLabel_;  ///< (a cap segment's first edge, its face label)
 };
 
 // A straddling subtree of at most this many triangles is clipped triangle by triangle rather
@@ -503,8 +500,8 @@ class BvhClip {
         clipPlacedFace(bvh_.order()[i], placed, apex.o_H, clipped, caps);
       }
     }
-    onePatch_ =
-        caps && caps->oneLoop() && !caps->segments().empty() && topo_->components().size() == 1;
+    onePatch_ = caps && !caps->segments().empty() && topo_->components().size() == 1 &&
+                (caps->oneLoop() || oneCapRegion(*caps, placed));
     // Wholly-below subtrees are summed about o in M axes and rotated into H once.
     geometry::Moments belowInM;
     double area = clipped.area;
@@ -523,6 +520,15 @@ class BvhClip {
   /// Clips triangle f with each corner placed in H once per query: the ~6 triangles around a
   /// vertex of a straddling leaf share its coordinates. They are the numbers clipFace places
   /// (same sums, same order), so the clip stays bit-identical to the reference.
+  /// Do the cap loops bound a single planar region (one outer loop, any holes)? Then the clip
+  /// of a one-shell mesh is one component (each component has a region of its own).
+  bool oneCapRegion(CapLoops& caps, PlacedVertices& placed) const {
+    const std::vector<CapLoop> loops = traceCapLoops(
+        caps, *topo_, [&](int v) -> const Vector3d& { return placed.get(mesh_, v, placement_); });
+    return std::count_if(loops.begin(), loops.end(),
+                         [](const CapLoop& l) { return l.signedArea > 0.0; }) == 1;
+  }
+
   /// With `caps`, also records the face's cap segment.
   void clipPlacedFace(int f, PlacedVertices& placed, const Vector3d& o_H, FanSum& out,
                       CapLoops* caps) const {

@@ -122,6 +122,23 @@ TEST(HalfspacePatches, CupCutThroughItsWallsIsOnePatch) {
   expectSumIsAggregate(c);
 }
 
+// The same cup beside a box in one mesh (two shells, so the labelled path): the cup's
+// outer and pocket walls join through its cap, the box is the other patch.
+TEST(HalfspacePatches, CupBesideABoxJoinsThroughItsCap) {
+  const double a = 0.0131, b = 0.0093, h = 0.0217, floor = 0.0041, d = 0.0113, s = 0.0101;
+  TriangleMesh box = geometry::tessellateBox(Vector3d(s, s, s));
+  box.vertices.rowwise() += Eigen::RowVector3d(0.05, 0, 0.5 * s);  // on z = 0, like the cup
+  const Body body(twoShells(test::squareCup(a, b, h, floor), box));
+  const Isometry3d X_WH = test::randomPose(19);
+  const ContactPatches c =
+      meshHalfspacePatches(body.bvh, body.topo, X_WH * test::translation({0, 0, -d}), X_WH);
+  ASSERT_EQ(c.patches.size(), 2u);
+  const double V = 4 * a * a * d - 4 * b * b * (d - floor);
+  EXPECT_NEAR(c.patches[0].volume, V, kClosedFormTol * V);
+  EXPECT_NEAR(c.patches[1].volume, s * s * s, kClosedFormTol * s * s * s);  // d > s: all below
+  expectSumIsAggregate(c);
+}
+
 // A torus standing on edge, cut above its centre: two loops, two cap regions, joined through
 // the bottom of the ring's surface: one patch.
 TEST(HalfspacePatches, RingCutAboveItsCentreIsOnePatch) {
