@@ -108,34 +108,39 @@ TEST(HalfspacePatches, OneLoopIsTheAggregate) {
   EXPECT_EQ(c.patches[0].J_v, c.aggregate.J_v);
 }
 
+/// The square cup of the cup tests, lowered by d through its walls (floor < d < h).
+struct CupCase {
+  double a = 0.0131, b = 0.0093, h = 0.0217, floor = 0.0041, d = 0.0113;
+  TriangleMesh mesh() const { return test::squareCup(a, b, h, floor); }
+  /// V below the plane: the outer block less the pocket, 4a²d − 4b²(d − floor).
+  double volume() const { return 4 * a * a * d - 4 * b * b * (d - floor); }
+  /// Its patches with the plane at pose X_WH and the mesh lowered by d in it.
+  ContactPatches patches(const Body& body, const Isometry3d& X_WH) const {
+    return meshHalfspacePatches(body.bvh, body.topo, X_WH * test::translation({0, 0, -d}), X_WH);
+  }
+};
+
 // A square cup cut through its walls: its outer surface and its pocket below the plane meet
-// only at the annular cap (two loops, one region): one patch, V = 4a²d − 4b²(d − floor).
+// only at the annular cap (two loops, one region): one patch of the closed-form V.
 TEST(HalfspacePatches, CupCutThroughItsWallsIsOnePatch) {
-  const double a = 0.0131, b = 0.0093, h = 0.0217, floor = 0.0041, d = 0.0113;
-  const Body body(test::squareCup(a, b, h, floor));
-  const Isometry3d X_WH = test::randomPose(6);
-  const ContactPatches c =
-      meshHalfspacePatches(body.bvh, body.topo, X_WH * test::translation({0, 0, -d}), X_WH);
+  const CupCase cup;
+  const ContactPatches c = cup.patches(Body(cup.mesh()), test::randomPose(6));
   ASSERT_EQ(c.patches.size(), 1u);
-  const double V = 4 * a * a * d - 4 * b * b * (d - floor);
-  EXPECT_NEAR(c.patches[0].volume, V, kClosedFormTol * V);
+  EXPECT_NEAR(c.patches[0].volume, cup.volume(), kClosedFormTol * cup.volume());
   expectSumIsAggregate(c);
 }
 
 // The same cup beside a box in one mesh (two shells, so the labelled path): the cup's
-// outer and pocket walls join through its cap, the box is the other patch.
+// outer and pocket walls join through its cap, the box, wholly below, is the other patch.
 TEST(HalfspacePatches, CupBesideABoxJoinsThroughItsCap) {
-  const double a = 0.0131, b = 0.0093, h = 0.0217, floor = 0.0041, d = 0.0113, s = 0.0101;
+  const CupCase cup;
+  const double s = 0.0101;  // < d: the box ends below the plane
   TriangleMesh box = geometry::tessellateBox(Vector3d(s, s, s));
   box.vertices.rowwise() += Eigen::RowVector3d(0.05, 0, 0.5 * s);  // on z = 0, like the cup
-  const Body body(twoShells(test::squareCup(a, b, h, floor), box));
-  const Isometry3d X_WH = test::randomPose(19);
-  const ContactPatches c =
-      meshHalfspacePatches(body.bvh, body.topo, X_WH * test::translation({0, 0, -d}), X_WH);
+  const ContactPatches c = cup.patches(Body(twoShells(cup.mesh(), box)), test::randomPose(19));
   ASSERT_EQ(c.patches.size(), 2u);
-  const double V = 4 * a * a * d - 4 * b * b * (d - floor);
-  EXPECT_NEAR(c.patches[0].volume, V, kClosedFormTol * V);
-  EXPECT_NEAR(c.patches[1].volume, s * s * s, kClosedFormTol * s * s * s);  // d > s: all below
+  EXPECT_NEAR(c.patches[0].volume, cup.volume(), kClosedFormTol * cup.volume());
+  EXPECT_NEAR(c.patches[1].volume, s * s * s, kClosedFormTol * s * s * s);
   expectSumIsAggregate(c);
 }
 
