@@ -298,7 +298,8 @@ std::vector<CapLoop> traceCapLoops(CapLoops& caps, const MeshTopology& topo, Pla
 ///     and inner walls only through the annular cap);
 ///  3. clip each face about its component's own apex (its deepest vertex dropped onto the
 ///     plane), so each patch keeps the digits of its own size.
-/// Costs O(faces below the plane), paid only by multi-loop queries.
+/// Costs O(faces below the plane), paid only by queries with several cap regions; step 3 only
+/// when there are several components.
 /// @pre the mesh's shells are not nested (no cavities)
 class PatchClip {
  public:
@@ -327,6 +328,9 @@ class PatchClip {
     const int labels = static_cast<int>(labelStart.size()) - 1;
     LabelUnion components(labels);
     joinThroughCaps(components);
+    int roots = 0;
+    for (int l = 0; l < labels; ++l) roots += components.find(l) == l;
+    if (roots == 1) return {};  // one component: the merged clip is it
     return clipComponents(components, labels);
   }
 
@@ -471,7 +475,8 @@ class BvhClip {
   /// patches() then finds one component. @pre constructed with a topology
   bool onePatch() const { return onePatch_; }
 
-  /// The connected components of the last run()'s clip (PatchClip). @pre run() found contact
+  /// The connected components of the last run()'s clip (PatchClip), or none when it is one
+  /// (the merged clip is then the patch). @pre run() found contact
   std::vector<ClippedMoments> patches() const {
     return PatchClip(mesh_, *topo_, placement_, *placed_).run(*straddling_, bvh_.order());
   }
@@ -690,8 +695,10 @@ ContactPatches meshHalfspacePatches(const MeshBvh& bvh, const MeshTopology& topo
   ContactPatches contact =
       singlePatch(contactFromClippedMoments(clip.run(), X_WH, Method::kHalfspace));
   if (!contact.inContact() || clip.onePatch()) return contact;
+  const std::vector<ClippedMoments> patches = clip.patches();
+  if (patches.empty()) return contact;
   contact.patches.clear();
-  for (const ClippedMoments& patch : clip.patches()) {
+  for (const ClippedMoments& patch : patches) {
     contact.patches.push_back(contactFromClippedMoments(patch, X_WH, Method::kHalfspace));
   }
   sortPatches(contact.patches);
