@@ -30,7 +30,7 @@ std::string scenarioPath(const std::string& name) {
 
 void simulate(benchmark::State& state, const std::string& name,
               std::optional<Integrator> integrator) {
-  vcontact::io::ScenarioFile file = vcontact::io::readScenarioFile(scenarioPath(name));
+  vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
   if (integrator) file.scenario.settings.integrator = *integrator;
   double simulated = 0.0, final_height = 0.0;
   long steps = 0, contacts = 0, jacobians = 0, samples = 0;

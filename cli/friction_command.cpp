@@ -66,7 +66,7 @@ void printTable(const validation::FrictionMap& map) {
 
 void runFrictionMap(const FrictionMapCommand& o) {
   const validation::FrictionMap map = frictionMap(o);
-  io::writeFrictionMapCsv(map, o.out);
+  report::writeFrictionMapCsv(map, o.out);
   printTable(map);
   std::cout << "wrote " << o.out << '\n';
 }

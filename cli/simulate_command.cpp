@@ -48,7 +48,7 @@ class Progress {
 
 void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
                   const std::string& status) {
-  io::writeJson(io::simulationSummaryJson(s, status), dir + "/summary.json");
+  io::writeJson(report::simulationSummaryJson(s, status), dir + "/summary.json");
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
             << s.rejected_steps << " rejected), " << s.contact_evaluations
@@ -58,10 +58,10 @@ void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
 }
 
 void runSimulate(const SimulateOptions& o) {
-  const io::ScenarioFile file = io::readScenarioFile(o.scenario);
+  const formats::ScenarioFile file = formats::readScenarioFile(o.scenario);
   printWarnings(file.warnings);
   dynamics::Simulator sim(file.scenario);
-  io::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
+  report::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
   Progress progress(file.scenario.settings.duration, o.quiet);
   dynamics::SimulationSummary summary;
   try {

@@ -31,7 +31,7 @@ struct ValidationOptions {
 };
 
 struct Inputs {
-  io::DatasetReadResult data;
+  formats::DatasetReadResult data;
   dynamics::Model model;
   validation::Loss loss;
 };
@@ -43,7 +43,7 @@ Inputs readInputs(const ValidationOptions& o) {
   }
   if (o.maxIterations < 1) throw InputError("--max-iterations", "expected a positive count");
   Inputs in{
-      io::readDataset(o.dataset), io::readModelFile(o.model),
+      formats::readDataset(o.dataset), formats::readModelFile(o.model),
       namingOptions({{"robust loss", "--loss"}}, [&] { return validation::parseLoss(o.loss); })};
   printWarnings(in.data.warnings);
   return in;
@@ -75,8 +75,8 @@ std::string label(const std::vector<std::string>& effects) {
   return effects.empty() ? std::string("(no effects)") : joined(effects, " + ");
 }
 
-void writeReport(const std::string& dir, const io::ReportInput& report) {
-  io::writeReportHtml(report, dir + "/report.html");
+void writeReport(const std::string& dir, const report::ReportInput& report) {
+  report::writeReportHtml(report, dir + "/report.html");
 }
 
 // Every parameter held: the model exactly as given.
@@ -95,8 +95,8 @@ void runCompare(const ValidationOptions& o) {
   printNoise(noise);
   printComparison("model", r.comparison);
   fs::create_directories(o.out);
-  io::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
-  io::writeJson(io::comparisonJson(r.comparison, noise), o.out + "/compare.json");
+  report::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
+  io::writeJson(report::comparisonJson(r.comparison, noise), o.out + "/compare.json");
   writeReport(o.out, {"compare",
                       &d,
                       noise,
@@ -122,9 +122,9 @@ void runFit(const ValidationOptions& o) {
   }
   printWarnings(r.warnings);
   fs::create_directories(o.out);
-  io::writeJson(io::modelToJson(r.model), o.out + "/model.json");
-  io::writeJson(io::fitJson(r, noise, in.loss), o.out + "/fit.json");
-  io::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
+  io::writeJson(formats::modelToJson(r.model), o.out + "/model.json");
+  io::writeJson(report::fitJson(r, noise, in.loss), o.out + "/fit.json");
+  report::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
   writeReport(o.out, {"fit",
                       &d,
                       noise,
@@ -143,7 +143,7 @@ void runDiagnose(const ValidationOptions& o) {
       validation::diagnose(d, noise, in.model, {{in.loss, o.maxIterations}, o.iterate});
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  io::ReportInput report{
+  report::ReportInput report{
       "diagnose", &d, noise, {}, diag.stages.front().where, &diag.stages.front().ranking};
   for (std::size_t i = 0; i < diag.stages.size(); ++i) {
     const auto& s = diag.stages[i];
@@ -166,9 +166,9 @@ void runDiagnose(const ValidationOptions& o) {
   }
   std::cout << "diagnose took " << seconds << " s\n";
   fs::create_directories(o.out);
-  io::writeJson(io::diagnosisJson(diag, noise), o.out + "/diagnosis.json");
-  io::writeJson(io::modelToJson(diag.final().model), o.out + "/model.json");
-  io::writeResidualsCsv(d, diag.final().comparison, o.out + "/residuals.csv");
+  io::writeJson(report::diagnosisJson(diag, noise), o.out + "/diagnosis.json");
+  io::writeJson(formats::modelToJson(diag.final().model), o.out + "/model.json");
+  report::writeResidualsCsv(d, diag.final().comparison, o.out + "/residuals.csv");
   writeReport(o.out, report);
 }
 
@@ -186,7 +186,7 @@ void runSynth(const SynthOptions& o) {
     throw InputError("--out", out.parent_path().string() + " is not a directory");
   }
   if (!(o.noiseScale >= 0.0)) throw InputError("--noise-scale", "expected a number >= 0");
-  const dynamics::Model truth = io::readModelFile(o.model);
+  const dynamics::Model truth = formats::readModelFile(o.model);
   validation::Dataset d =
       namingOptions({{"rig profile", "--profile"}, {"sample count", "--samples"}},
                     [&] { return validation::rigMotion(o.profile, o.samples); });
@@ -195,10 +195,10 @@ void runSynth(const SynthOptions& o) {
   d.name = out.stem().string();
   std::ostringstream notes;
   notes << d.notes << " (true model " << fs::path(o.model).filename().string() << ": "
-        << io::modelToJson(truth)["effects"].dump() << "; seed " << o.seed << ")";
+        << formats::modelToJson(truth)["effects"].dump() << "; seed " << o.seed << ")";
   d.notes = notes.str();
   validation::synthesizeMeasurement(d, truth, o.seed);
-  io::writeDataset(d, o.out);
+  formats::writeDataset(d, o.out);
   std::cout << "wrote " << o.out << " (" << d.size() << " samples, profile " << o.profile << ")\n";
 }
 

@@ -66,7 +66,7 @@ volume::ContactPatches compute(const VolumeOptions& o, const io::ParsedShape& a,
   volume::DepthField field;
   volume::ContactPatches contact =
       volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
-  io::writeDepthMapCsv(field, o.field);
+  report::writeDepthMapCsv(field, o.field);
   return contact;
 }
 
@@ -92,7 +92,7 @@ void runVolume(const VolumeOptions& o) {
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
   const volume::ContactPatches contact = compute(o, a, X_WA, b, X_WB);
 
-  nlohmann::json j = io::toJson(contact);
+  nlohmann::json j = report::toJson(contact);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
   if (!o.out.empty()) io::writeJson(j, o.out);
@@ -101,7 +101,7 @@ void runVolume(const VolumeOptions& o) {
   } else {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
-              << io::toTable(contact);
+              << report::toTable(contact);
   }
 }
 

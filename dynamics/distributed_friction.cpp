@@ -48,8 +48,8 @@ DistributedFriction distributedFriction(const volume::ContactVolume& cv,
   require(std::abs(volume - cv.volume) <= kFieldVolumeTolerance * cv.volume,
           "the field does not belong to this contact: sum of delta dS differs from V", volume);
 
-  const Vector3d& n = cv.normal;
-  const Vector3d& p_c = cv.centroid;
+  const Vector3d& n = cv.n_W;
+  const Vector3d& p_c = cv.p_WC;
   // MODEL.md §2: δ̇_c = −v_c·n; §3: f_n = kv V (1 + a δ̇_c) clamped ≥ 0.
   const double damping = std::max(0.0, 1.0 + law.a * -motion.v_c_W.dot(n));
   const Vector3d v_t = motion.v_c_W - motion.v_c_W.dot(n) * n;

@@ -175,7 +175,7 @@ ContactContext Model::makeContext(const volume::ContactVolume& cv, const Relativ
   ContactContext ctx;
   ctx.cv = &cv;
   ctx.settings = settings;
-  ctx.n = cv.normal;
+  ctx.n = cv.n_W;
   ctx.state = state;
   ctx.state.z_W -= ctx.n * ctx.n.dot(state.z_W);  // z lives in the contact plane
   const Eigen::Vector3d& v_c = motion.v_c_W;

@@ -74,7 +74,7 @@ class Model {
   Eigen::Isometry3d adjustPayloadPose(const Eigen::Isometry3d& X_W1,
                                       const Eigen::Isometry3d& X_W2) const;
 
-  /// Wrench on B1 at cv.centroid, state rates and per-effect shares. No contact (V = 0)
+  /// Wrench on B1 at cv.p_WC, state rates and per-effect shares. No contact (V = 0)
   /// gives zero wrench and zero rates.
   /// @param field  the δ map of cv for distributed friction (ContactContext::field), or null
   ///   for the lumped friction of MODEL.md §3; with a field the model must pass

@@ -218,7 +218,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
       out.cv = apart_[k];  // the query's answer for bodies apart
     }
     out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])]);
-    const Eigen::Vector3d& p_c = out.cv.centroid;
+    const Eigen::Vector3d& p_c = out.cv.p_WC;
     const RelativeMotion motion{A.pointVelocity(p_c) - B.pointVelocity(p_c), A.w_WB - B.w_WB};
     pair.model.evaluate(out.cv, motion, out.state, out.result,
                         distributed && out.cv.inContact() ? &fields_[k] : nullptr);
@@ -304,7 +304,7 @@ bool Simulator::settlePairs(State& x, double t) {
     const BodyKinematics A = kinematics(x, pair.a, t);
     const BodyKinematics B = kinematics(x, pair.b, t);
     const volume::ContactVolume& cv = last_pairs_[k].cv;
-    const RelativeMotion motion{A.pointVelocity(cv.centroid) - B.pointVelocity(cv.centroid),
+    const RelativeMotion motion{A.pointVelocity(cv.p_WC) - B.pointVelocity(cv.p_WC),
                                 A.w_WB - B.w_WB};
     double* s = &x[static_cast<std::size_t>(pair_offset_[k])];
     PairState state = PairState::unpack(s);

@@ -14,7 +14,7 @@
 #include "io/json_file.hpp"
 #include "io/shape_json.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 namespace fs = std::filesystem;
@@ -288,4 +288,4 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) 
   }
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

@@ -13,7 +13,7 @@
 
 #include "validation/dataset.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 
 struct DatasetReadResult {
   validation::Dataset dataset;
@@ -31,4 +31,4 @@ DatasetReadResult readDataset(const std::string& sidecarPath);
 /// @throws InputError when the payload or plate is a mesh (only primitives are written)
 void writeDataset(const validation::Dataset& dataset, const std::string& sidecarPath);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

@@ -8,7 +8,7 @@
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 constexpr const char* kFormat = "vcontact.model/1";
@@ -144,4 +144,4 @@ nlohmann::json modelToJson(const dynamics::Model& model) {
           {"settings", {{"v_eps", model.settings.v_eps}}}};
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

@@ -14,7 +14,7 @@
 
 #include "dynamics/model.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 
 /// @param source file name for messages; `place` prefixes JSON places (e.g. "pairs[0].model")
 /// @throws InputError on unknown effects or parameters, non-numbers, out-of-bounds values,
@@ -25,4 +25,4 @@ dynamics::Model readModelFile(const std::string& path);
 
 nlohmann::json modelToJson(const dynamics::Model& model);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

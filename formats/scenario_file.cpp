@@ -12,7 +12,7 @@
 #include "io/shape_spec.hpp"
 #include "volume/contact.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 constexpr const char* kFormat = "vcontact.scenario/1";
@@ -442,4 +442,4 @@ ScenarioFile readScenarioFile(const std::string& path) {
   return scenarioFromJson(j, path, dir.empty() ? "." : dir);
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

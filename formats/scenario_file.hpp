@@ -9,7 +9,7 @@
 
 #include "dynamics/scenario.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 
 /// Which CSV files and columns a simulation writes.
 struct OutputSelection {
@@ -30,4 +30,4 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir);
 ScenarioFile readScenarioFile(const std::string& path);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

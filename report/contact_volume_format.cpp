@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -20,8 +20,8 @@ nlohmann::json toJson(const volume::ContactVolume& cv) {
   j["in_contact"] = cv.inContact();
   j["method"] = volume::methodName(cv.method);
   j["volume"] = cv.volume;
-  j["centroid"] = vec(cv.centroid);
-  j["normal"] = vec(cv.normal);
+  j["centroid"] = vec(cv.p_WC);
+  j["normal"] = vec(cv.n_W);
   j["depth"] = cv.depth;
   j["area"] = cv.area;
   j["r_gyr"] = cv.r_gyr;
@@ -53,8 +53,8 @@ void writeRows(std::ostream& os, const volume::ContactVolume& cv, const std::str
     return s.str();
   };
   row("V", num(cv.volume), "m^3");
-  row("centroid p_c", v3(cv.centroid), "m");
-  row("normal n", v3(cv.normal), "");
+  row("centroid p_c", v3(cv.p_WC), "m");
+  row("normal n", v3(cv.n_W), "");
   row("depth", num(cv.depth), "m");
   row("area A", num(cv.area), "m^2");
   row("r_gyr", num(cv.r_gyr), "m");
@@ -107,4 +107,4 @@ std::string toTable(const volume::ContactPatches& contact) {
   return os.str();
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

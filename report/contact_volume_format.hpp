@@ -7,7 +7,7 @@
 
 #include "volume/contact_volume.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 nlohmann::json toJson(const volume::ContactVolume& cv);
 std::string toTable(const volume::ContactVolume& cv);
@@ -18,4 +18,4 @@ nlohmann::json toJson(const volume::ContactPatches& contact);
 /// The aggregate's table, the patch count, and each patch's table when there are several.
 std::string toTable(const volume::ContactPatches& contact);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

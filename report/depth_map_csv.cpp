@@ -4,7 +4,7 @@
 
 #include "geometry/error.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 void writeDepthMapCsv(const volume::DepthField& field, const std::string& path) {
   std::ofstream f(path);
@@ -17,4 +17,4 @@ void writeDepthMapCsv(const volume::DepthField& field, const std::string& path) 
   }
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

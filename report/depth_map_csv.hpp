@@ -6,9 +6,9 @@
 
 #include "volume/contact_volume.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 /// @throws InputError naming `path` when it cannot be opened for writing
 void writeDepthMapCsv(const volume::DepthField& field, const std::string& path);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -4,7 +4,7 @@
 
 #include "geometry/error.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 void writeFrictionMapCsv(const validation::FrictionMap& map, const std::string& path) {
   std::ofstream f(path);
@@ -24,4 +24,4 @@ void writeFrictionMapCsv(const validation::FrictionMap& map, const std::string& 
   }
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -6,9 +6,9 @@
 
 #include "validation/friction_map.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 /// @throws InputError naming `path` when it cannot be opened for writing
 void writeFrictionMapCsv(const validation::FrictionMap& map, const std::string& path);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -8,7 +8,7 @@
 #include "geometry/error.hpp"
 #include "report/svg_chart.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 using validation::FitResult;
@@ -220,4 +220,4 @@ void writeReportHtml(const ReportInput& input, const std::string& path) {
   out << reportHtml(input);
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

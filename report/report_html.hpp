@@ -13,7 +13,7 @@
 
 #include "validation/diagnose.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 struct ReportStage {
   std::string label;                 ///< e.g. "stiffness + coulomb", "+ contensou"
@@ -35,4 +35,4 @@ std::string reportHtml(const ReportInput& input);
 /// @throws InputError naming `path` when it cannot be opened for writing
 void writeReportHtml(const ReportInput& input, const std::string& path);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

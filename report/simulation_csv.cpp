@@ -6,7 +6,7 @@
 
 #include "geometry/error.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 // Shortest round-trip form of a double (std::to_chars): exact, and several times faster than
@@ -105,8 +105,8 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
     const dynamics::PairOutput& p = s.pairs[k];
     std::string row = startRow(s.t);
     for (double x : {p.cv.volume, p.cv.depth, p.cv.area, p.cv.r_gyr}) put(row, x);
-    put(row, p.cv.centroid);
-    put(row, p.cv.normal);
+    put(row, p.cv.p_WC);
+    put(row, p.cv.n_W);
     put(row, p.result.wrench.f_W);
     put(row, p.result.wrench.tau_W);
     for (double x : {p.result.f_n, p.result.s, p.result.mu_max}) put(row, x);
@@ -128,4 +128,4 @@ void SimulationCsvWriter::flush() {
   for (auto& f : pairs_) f.flush();
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -11,7 +11,7 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 class SimulationCsvWriter {
  public:
@@ -40,4 +40,4 @@ class SimulationCsvWriter {
 /// A file-name-safe form of a pair name: letters, digits, '-', '_' kept, others '_'.
 std::string fileSafe(const std::string& name);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

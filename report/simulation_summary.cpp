@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
                                      const std::string& status) {
@@ -17,4 +17,4 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
           {"jacobian_evaluations", s.jacobian_evaluations}};
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -7,10 +7,10 @@
 
 #include "dynamics/simulator.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 /// @param status "completed", or what stopped the run
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& summary,
                                      const std::string& status);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

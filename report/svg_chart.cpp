@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 const char* const kPalette[] = {"#1f5fa8", "#d1495b", "#2e8540", "#e08e0b", "#6a4c93", "#00798c"};
@@ -215,4 +215,4 @@ std::string barChart(const Axes& axes, const std::vector<std::string>& labels,
   return os.str();
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 struct Series {
   std::string label;
@@ -41,4 +41,4 @@ std::vector<double> niceTicks(double lo, double hi, int target = 5);
 /// Escapes &, <, >, " for text and attributes.
 std::string escapeXml(const std::string& text);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -8,7 +8,7 @@
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 using nlohmann::json;
@@ -162,4 +162,4 @@ json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels
   return j;
 }
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -9,7 +9,7 @@
 #include "validation/fit.hpp"
 #include "validation/residuals.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 
 /// residuals.csv: t, then per output measured, predicted, residual, residual/σ.
 void writeResidualsCsv(const validation::Dataset& dataset, const validation::Comparison& comparison,
@@ -27,4 +27,4 @@ nlohmann::json fitJson(const validation::FitResult& fit, const validation::Noise
 nlohmann::json diagnosisJson(const validation::Diagnosis& diagnosis,
                              const validation::NoiseLevels& noise);
 
-}  // namespace vcontact::io
+}  // namespace vcontact::report

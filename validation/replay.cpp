@@ -90,8 +90,8 @@ class HalfspaceVolumes {
   static volume::ContactVolume moved(volume::ContactVolume cv, const Eigen::Isometry3d& T) {
     if (!cv.inContact()) return cv;
     const Eigen::Matrix3d R = T.linear();
-    cv.centroid = T * cv.centroid;
-    cv.normal = R * cv.normal;
+    cv.p_WC = T * cv.p_WC;
+    cv.n_W = R * cv.n_W;
     cv.J_v = R * cv.J_v * R.transpose();
     cv.J_s = R * cv.J_s * R.transpose();
     return cv;
@@ -109,7 +109,7 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
              ? halfspace.at(d.payload, X_PB)
              : volume::computeContact(d.payload, X_PB, d.plate, X_PP).aggregate;
   if (!g.cv.inContact()) return g;
-  g.p_BoC_P = g.cv.centroid - X_PB.translation();
+  g.p_BoC_P = g.cv.p_WC - X_PB.translation();
   // v_c = v_PBo + w_PB × p_BoC (MODEL.md §2; the plate does not move).
   g.motion.v_c_W = s.v_PB + s.w_PB.cross(g.p_BoC_P);
   g.motion.w_W = s.w_PB;
@@ -120,7 +120,7 @@ RegimeSample regimeOf(const SampleGeometry& g, double load, double v_eps) {
   RegimeSample r;
   r.load = load;
   if (!g.cv.inContact()) return r;
-  const Eigen::Vector3d& n = g.cv.normal;
+  const Eigen::Vector3d& n = g.cv.n_W;
   const Eigen::Vector3d v = g.motion.v_c_W;
   const Eigen::Vector3d v_t = v - v.dot(n) * n;
   r.speed = v_t.norm();
@@ -140,7 +140,7 @@ struct RestClock {
       lastRest = 0.0;
       return;
     }
-    const double spin = g.cv.r_gyr * std::abs(g.motion.w_W.dot(g.cv.normal));
+    const double spin = g.cv.r_gyr * std::abs(g.motion.w_W.dot(g.cv.n_W));
     const bool atRest = std::hypot(r.speed, spin) < kRestSpeed;
     if (atRest && !resting) since = t;
     if (!atRest && resting) lastRest = t - since;

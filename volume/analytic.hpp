@@ -14,8 +14,8 @@ namespace vcontact::volume {
 /// in either order).
 bool analyticSupports(const geometry::Shape& a, const geometry::Shape& b);
 
-/// ContactVolume of A (B1) and B (B2), one a half-space and the other a sphere, cylinder or
-/// box. No contact gives volume 0.
+/// ContactVolume of A (the payload) and B (the plate or other body), one a half-space and the other
+/// a sphere, cylinder or box. No contact gives volume 0.
 /// @throws InputError when the pair is not supported (see analyticSupports)
 ContactVolume analyticContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                               const geometry::Shape& b, const Eigen::Isometry3d& X_WB);

@@ -79,7 +79,7 @@ ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
   // Fan about a vertex of the region, so that the terms are of the region's size.
   const Vector3d o = faces.front().p[0];
   geometry::Moments M;
-  Vector3d areaOnA = Vector3d::Zero();  // ∫_{∂B1∩B2} n_B1 dA
+  Vector3d areaOnA = Vector3d::Zero();  // ∫_{∂A∩B} n_A dA
   for (const RegionFace& f : faces) {
     M += geometry::tetrahedronMoments(Vector3d::Zero(), f.p[0] - o, f.p[1] - o, f.p[2] - o);
     if (f.onA) areaOnA += 0.5 * (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
@@ -130,7 +130,7 @@ ContactPatches intersect(Mesh a, Mesh b) {
 ContactVolume halfspaceToWorld(const ContactVolume& cv, const Eigen::Isometry3d& X_WH) {
   const Eigen::Matrix3d R = X_WH.linear();
   const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
-  return assembleContactVolume(cv.volume, X_WH * cv.centroid, R * Sigma_H * R.transpose(), R.col(2),
+  return assembleContactVolume(cv.volume, X_WH * cv.p_WC, R * Sigma_H * R.transpose(), R.col(2),
                                cv.area, cv.depth, Method::kCgal);
 }
 

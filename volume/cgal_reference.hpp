@@ -11,11 +11,12 @@
 
 namespace vcontact::volume {
 
-/// The patches of mesh A (B1, pose X_WA) and mesh B (B2, pose X_WB): the connected components
-/// of the corefined intersection polyhedron (PMP::connected_components), each by the formulas
-/// below from its own faces, sorted by sortPatches, beside the whole region as the aggregate:
+/// The patches of mesh A (the payload, pose X_WA) and mesh B (the plate or other body, pose X_WB):
+/// the connected components of the corefined intersection polyhedron (PMP::connected_components),
+/// each by the formulas below from its own faces, sorted by sortPatches, beside the whole region as
+/// the aggregate:
 ///   V, p_c, Σ from the fan of the intersection's faces about a point of the region;
-///   n ∝ ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA = −2 ∫_{∂B1∩B2} n_B1 dA (MODEL.md §1; the
+///   n ∝ ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA = −2 ∫_{∂A∩B} n_A dA (MODEL.md §1; the
 ///   region's boundary is closed, so the two parts' area vectors cancel);
 ///   area = ½ Σ_faces |n_f·n| A_f, the projection of the region onto the plate, exact when
 ///   every column along n crosses the region once; depth = extent of the region along n.
@@ -23,8 +24,8 @@ namespace vcontact::volume {
 ContactPatches cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::Isometry3d& X_WA,
                                    const geometry::TriangleMesh& b, const Eigen::Isometry3d& X_WB);
 
-/// The same for a mesh (B1) against a half-space (B2, pose X_WH), the half-space modelled as
-/// a box whose top face is the plane and which encloses the mesh's part below it; n = +z_H.
+/// The same for a mesh (body A) against a half-space (body B, pose X_WH), the half-space modelled
+/// as a box whose top face is the plane and which encloses the mesh's part below it; n = +z_H.
 ContactPatches cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
                                         const Eigen::Isometry3d& X_WM,
                                         const Eigen::Isometry3d& X_WH);

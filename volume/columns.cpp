@@ -368,13 +368,13 @@ WorldBox overlapBox(const ColumnBody& a, const ColumnBody& b) {
 
 /// Result of the three axis passes: the normal and a tighter box.
 struct AxisPasses {
-  Vector3d areaDifference = Vector3d::Zero();  ///< ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA
+  Vector3d areaDifference = Vector3d::Zero();  ///< ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA
   WorldBox region{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};
   bool found = false;
 };
 
-/// One pass along each world axis. A line along e_k crossing ∂B1 inside B2 with normal n_B1
-/// adds sign(n_B1·e_k) dS to (∫_{∂B1∩B2} n_B1 dA)_k, and likewise for ∂B2, so component k
+/// One pass along each world axis. A line along e_k crossing ∂A inside B with normal n_A
+/// adds sign(n_A·e_k) dS to (∫_{∂A∩B} n_A dA)_k, and likewise for ∂B2, so component k
 /// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by two cells
 /// all round, bound the region as sampled. The three passes' bounds are united, not
 /// intersected: a thin region that one pass resolves and another misses (two ribs pressed
@@ -407,7 +407,7 @@ constexpr int kNormalPassFactor = 4;
 
 /// The contact normal and the box to integrate over: axis passes on the overlap box, refined
 /// until they see the region, then repeated on the region's box so that a small region is
-/// resolved. For a half-space the normal is its own (out of B2 into B1).
+/// resolved. For a half-space the normal is its own (out of B into A).
 std::pair<Vector3d, WorldBox> normalAndBox(const ColumnBody& a, const ColumnBody& b, WorldBox box,
                                            const ColumnOptions& options) {
   for (int res = options.initialResolution; res <= options.maxResolution; res *= 2) {
@@ -582,7 +582,7 @@ std::vector<ContactVolume> columnPatches(const Grid& g, const std::vector<LineIn
 }
 
 /// ColumnOptions::fixed against a half-space: one grid (fixedHalfspaceGrid), the plane's normal
-/// (out of B2 into B1), no axis passes, no estimate.
+/// (out of B into A), no axis passes, no estimate.
 ContactVolume fixedHalfspaceContact(const ColumnBody& a, const ColumnBody& b, int resolution,
                                     DepthField* field, std::vector<ContactVolume>* patches) {
   const ColumnBody& mesh = a.bvh ? a : b;

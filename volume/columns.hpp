@@ -9,9 +9,9 @@
 // tolerance, and the larger of them is reported as the error estimate.
 //
 // The normal comes from three passes along the world axes: a line along e_k crossing
-// ∂B1 inside B2 at a face with normal n_B1 contributes sign(n_B1·e_k) dS to
-// (∫_{∂B1∩B2} n_B1 dA)_k (and likewise for ∂B2 inside B1), so
-// n ∝ ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA needs only crossing signs (MODEL.md §1).
+// ∂A inside B at a face with normal n_A contributes sign(n_A·e_k) dS to
+// (∫_{∂A∩B} n_A dA)_k (and likewise for ∂B inside A), so
+// n ∝ ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA needs only crossing signs (MODEL.md §1).
 
 #include <Eigen/Geometry>
 #include <vector>
@@ -44,8 +44,8 @@ struct ColumnOptions {
   bool isFixed() const { return initialResolution >= maxResolution; }
 };
 
-/// ContactVolume of body A (B1) and body B (B2); at least one of them must be a mesh. The
-/// result's relative_error is the difference of the last two grid levels in V.
+/// ContactVolume of body A (the payload) and body B (the plate or other body); at least one of them
+/// must be a mesh. The result's relative_error is the difference of the last two grid levels in V.
 /// @param[out] field  if not null, filled with the δ map of the finest grid: a sample at every
 ///                    line with δ > 0, cell_area the grid's cell (left as it was when apart)
 ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b,

@@ -23,8 +23,8 @@ ContactVolume assembleContactVolume(double V, const Eigen::Vector3d& p_c,
   const Eigen::Matrix3d S_s = P * S * P;
   ContactVolume cv;
   cv.volume = V;
-  cv.centroid = p_c;
-  cv.normal = n;
+  cv.p_WC = p_c;
+  cv.n_W = n;
   cv.J_v = S.trace() * I - S;
   cv.J_s = S_s.trace() * I - S_s;
   cv.area = area;
@@ -51,7 +51,7 @@ ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector
 }
 
 ContactVolume swapped(ContactVolume cv) {
-  cv.normal = -cv.normal;
+  cv.n_W = -cv.n_W;
   return cv;
 }
 
@@ -64,8 +64,7 @@ ContactPatches swapped(ContactPatches contact) {
 void sortPatches(std::vector<ContactVolume>& patches) {
   std::sort(patches.begin(), patches.end(), [](const ContactVolume& l, const ContactVolume& r) {
     if (l.volume != r.volume) return l.volume > r.volume;
-    return std::lexicographical_compare(l.centroid.begin(), l.centroid.end(), r.centroid.begin(),
-                                        r.centroid.end());
+    return std::lexicographical_compare(l.p_WC.begin(), l.p_WC.end(), r.p_WC.begin(), r.p_WC.end());
   });
 }
 

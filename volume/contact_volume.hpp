@@ -3,7 +3,7 @@
 // struct, every force model reads it. Definitions follow docs/MODEL.md §1.
 //
 // Frames: all quantities are in the world frame W. Body B1 ("a", the payload) and body B2
-// ("b", the plate); the normal n points out of B2 into B1.
+// ("b", the plate); the normal n points out of B into A.
 
 #include <Eigen/Core>
 #include <limits>
@@ -25,14 +25,14 @@ std::string methodName(Method method);
 Method parseMethod(const std::string& name);
 
 struct ContactVolume {
-  double volume = 0.0;                                 ///< V, m³ (0: no contact)
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< p_c, m
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   ///< n, unit, out of B2 into B1
-  Eigen::Matrix3d J_v = Eigen::Matrix3d::Zero();  ///< ∫((ρ·ρ)I − ρρᵀ)dV about p_c, m⁵
-  Eigen::Matrix3d J_s = Eigen::Matrix3d::Zero();  ///< surface inertia tensor, m⁵
-  double area = 0.0;                              ///< contact area A, m²
-  double r_gyr = 0.0;                             ///< radius of gyration about n, m
-  double depth = 0.0;                             ///< deepest penetration along n, m
+  double volume = 0.0;                             ///< V, m³ (0: no contact)
+  Eigen::Vector3d p_WC = Eigen::Vector3d::Zero();  ///< p_c, the centroid C in W, m
+  Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< n, unit, out of B into A
+  Eigen::Matrix3d J_v = Eigen::Matrix3d::Zero();   ///< ∫((ρ·ρ)I − ρρᵀ)dV about p_c, m⁵
+  Eigen::Matrix3d J_s = Eigen::Matrix3d::Zero();   ///< surface inertia tensor, m⁵
+  double area = 0.0;                               ///< contact area A, m²
+  double r_gyr = 0.0;                              ///< radius of gyration about n, m
+  double depth = 0.0;                              ///< deepest penetration along n, m
   Method method = Method::kAnalytic;
   /// Estimated relative error of V from the method itself (quadrature, grid); NaN where the
   /// method is exact for the shapes it was given (closed forms, polyhedral clips).

@@ -38,7 +38,7 @@ ClippedMoments clipMeshByHalfspace(const geometry::TriangleMesh& mesh,
 /// @param X_HM  pose of the mesh frame M in the half-space frame H
 ClippedMoments clipMeshByHalfspace(const geometry::MeshBvh& bvh, const Eigen::Isometry3d& X_HM);
 
-/// ContactVolume of a mesh body (pose X_WM) against a half-space (pose X_WH); the mesh is B1.
+/// ContactVolume of a mesh body (pose X_WM) against a half-space (pose X_WH); the mesh is body A.
 /// This overload runs the O(n) reference clip.
 ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
                                    const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH);
@@ -58,7 +58,7 @@ ContactPatches meshHalfspacePatches(const geometry::MeshBvh& bvh,
                                     const geometry::MeshTopology& topo,
                                     const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH);
 
-/// The method table's backend of `halfspace` (methods.hpp): a mesh (B1 or B2, its tree from
+/// The method table's backend of `halfspace` (methods.hpp): a mesh (A or B, its tree from
 /// bvh_cache.hpp, its topology from mesh_topology_cache.hpp) against a half-space, by
 /// meshHalfspacePatches, in either order; a convex mesh (mesh_convexity.hpp) is one patch,
 /// the accelerated clip alone.
@@ -66,7 +66,7 @@ ContactPatches meshHalfspacePatches(const geometry::MeshBvh& bvh,
 ContactPatches halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                                     const geometry::Shape& b, const Eigen::Isometry3d& X_WB);
 
-/// Turns moments about o in H into a ContactVolume in W with n = +z_H (half-space is B2).
+/// Turns moments about o in H into a ContactVolume in W with n = +z_H (the half-space is body B).
 ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,
                                         const Eigen::Isometry3d& X_WH, Method method);
 

@@ -253,7 +253,7 @@ ContactVolume Intersector::integrate() {
   for (const Piece& pc : scratch_.pieces) {
     const FaceFoot& F = body_[pc.side].foot(pc.face, o);
     const Vector3d& c = F.foot;
-    add(pc.side, pc.face, c, pc.p, pc.q, F.normal, 0.5 * F.normal.dot((pc.p - c).cross(pc.q - c)));
+    add(pc.side, pc.face, c, pc.p, pc.q, F.n_W, 0.5 * F.n_W.dot((pc.p - c).cross(pc.q - c)));
   }
   for (const WholeFace& wf : scratch_.wholes) {
     Body& m = body_[wf.side];
@@ -279,7 +279,7 @@ ContactVolume Intersector::contactOf(const RegionSum& sum, const std::vector<Pat
 
   double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
   for (const Patch& pt : parts) {
-    area2 += std::abs(n.dot(pt.normal)) * pt.area;
+    area2 += std::abs(n.dot(pt.n_W)) * pt.area;
     for (const Vector3d* p : {&pt.p, &pt.q}) {
       lo = std::min(lo, n.dot(*p - o));
       hi = std::max(hi, n.dot(*p - o));

@@ -74,11 +74,12 @@ struct MeshMeshCache {
               const Eigen::Isometry3d& X_BA_now) const;
 };
 
-/// The contact of mesh A (B1, pose X_WA) and mesh B (B2, pose X_WB), Method::kFast, as the
-/// whole region (the aggregate) and its connected components (the patches, each by the same
-/// formulas from its own boundary pieces, about its own apex, in sortPatches order):
+/// The contact of mesh A (the payload, pose X_WA) and mesh B (the plate or other body, pose X_WB),
+/// Method::kFast, as the whole region (the aggregate) and its connected components (the patches,
+/// each by the same formulas from its own boundary pieces, about its own apex, in sortPatches
+/// order):
 ///   V, p_c, J_v, J_s: the moments of A ∩ B (exact up to rounding; relative_error NaN);
-///   n ∝ ∫_{∂B2∩B1} n_B2 dA − ∫_{∂B1∩B2} n_B1 dA (MODEL.md §1);
+///   n ∝ ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1);
 ///   area = ½ Σ_faces |n_f·n| A_f over the region's boundary faces, the projection of the
 ///   region onto the plate, exact when every column along n crosses the region once (as in
 ///   cgal_reference.hpp, so the two methods report the same area);

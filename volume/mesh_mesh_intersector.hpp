@@ -32,8 +32,8 @@ using geometry::MeshTopology;
 
 /// A face's plane as the integration uses it.
 struct FaceFoot {
-  Vector3d normal;  ///< unit, outward, W
-  Vector3d foot;    ///< the fan apex o projected onto the plane, W
+  Vector3d n_W;   ///< unit, outward, W
+  Vector3d foot;  ///< the fan apex o projected onto the plane, W
 };
 
 /// Per-mesh memory reused by the queries of one thread, so a query costs what it touches.
@@ -81,9 +81,9 @@ struct Piece {
 
 /// A boundary patch as the area and depth passes see it.
 struct Patch {
-  Vector3d normal;  ///< unit normal of its face
-  double area;      ///< signed area (a piece's share of its face's region)
-  Vector3d p, q;    ///< points of the patch, for the extent along n
+  Vector3d n_W;   ///< unit normal of its face
+  double area;    ///< signed area (a piece's share of its face's region)
+  Vector3d p, q;  ///< points of the patch, for the extent along n
 };
 
 /// The integration's running sums over one region's boundary (step 4): its fan about the apex
@@ -161,8 +161,8 @@ struct Body {
     if (!fresh) return F;
     const Vector3d& a = corner(f, 0);
     const Vector3d N = (corner(f, 1) - a).cross(corner(f, 2) - a);
-    F.normal = N * (1.0 / N.norm());              // one division, not three
-    F.foot = o - F.normal * F.normal.dot(o - a);  // o projected onto the face's plane
+    F.n_W = N * (1.0 / N.norm());           // one division, not three
+    F.foot = o - F.n_W * F.n_W.dot(o - a);  // o projected onto the face's plane
     return F;
   }
   /// Places face f in W (face()'s first use).

@@ -110,7 +110,7 @@ int Intersector::joinHolesWithinFaces() {
   std::vector<FaceLoops> loops;
   for (std::size_t i = 0; i < byFace.size();) {
     const Piece& first = pieces[static_cast<std::size_t>(byFace[i])];
-    const Vector3d& n = body_[first.side].scratch.feet[first.face].normal;
+    const Vector3d& n = body_[first.side].scratch.feet[first.face].n_W;
     loops.clear();
     for (; i < byFace.size(); ++i) {
       const Piece& pc = pieces[static_cast<std::size_t>(byFace[i])];
@@ -161,8 +161,8 @@ std::vector<ContactVolume> Intersector::integratePatches() {
     const auto g = static_cast<std::size_t>(sumOf(pc.from, pc.p));
     const FaceFoot& F = body_[pc.side].scratch.feet[pc.face];
     // the group's apex dropped onto the face's plane (F.foot is a point of that plane)
-    const Vector3d c = sums[g].o - F.normal * F.normal.dot(sums[g].o - F.foot);
-    sums[g].add(pc.side, c, pc.p, pc.q, F.normal, 0.5 * F.normal.dot((pc.p - c).cross(pc.q - c)),
+    const Vector3d c = sums[g].o - F.n_W * F.n_W.dot(sums[g].o - F.foot);
+    sums[g].add(pc.side, c, pc.p, pc.q, F.n_W, 0.5 * F.n_W.dot((pc.p - c).cross(pc.q - c)),
                 inNormal(pc.side, pc.face), inArea(pc.side, pc.face), parts[g]);
   }
   for (const WholeFace& wf : scratch_.wholes) {

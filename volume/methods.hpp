@@ -14,7 +14,8 @@
 
 namespace vcontact::volume {
 
-/// Does a method take shape a (B1) against shape b (B2)? Either order is the method's concern.
+/// Does a method take shape a (body A) against shape b (body B)? Either order is the method's
+/// concern.
 using HandlesFn = bool (*)(const geometry::Shape& a, const geometry::Shape& b);
 
 /// The backend of a method, for a pair its HandlesFn accepts (@pre handles(a, b)): the

@@ -215,7 +215,7 @@ const PunchContact& punchContact() {
 /// plus a rolling rate and an approach speed that must not change the friction direction.
 RelativeMotion punchMotion(const PunchContact& c, double eps, double approach = 0.0) {
   const Vector3d t = c.X_WH.linear() * Vector3d(0.6, 0.8, 0.0);
-  const Vector3d n = c.cv.normal;
+  const Vector3d n = c.cv.n_W;
   const double w = std::isinf(eps) ? 0.0 : 3.0;
   const double v = std::isinf(eps) ? 0.05 : eps * w * equalAreaRadius();
   return {v * t - approach * n, w * n + 0.7 * c.X_WH.linear().col(0)};
@@ -246,7 +246,7 @@ TEST(DistributedFriction, PureSlidingGivesMuFnAndNoTorque) {
 TEST(DistributedFriction, ColumnsPunchMatchesTheClosedFormWithinTheGridError) {
   const PunchContact& c = punchContact();
   const double R = equalAreaRadius();
-  const Vector3d n = c.cv.normal, t = c.X_WH.linear() * Vector3d(0.6, 0.8, 0.0);
+  const Vector3d n = c.cv.n_W, t = c.X_WH.linear() * Vector3d(0.6, 0.8, 0.0);
   // The midpoint rule's error sits in the rim cells, as does the level-to-level change of V
   // that the backend reports; normalising by f_n of the same cells removes its first-order
   // part, so the reported error bounds what is left. The 512-gon adds < 1e-5 (see above).
@@ -305,9 +305,9 @@ Compared lumpedOverDistributed(double eps) {
   const RelativeMotion m = punchMotion(c, eps);
   const ContactResult r = lumped.evaluate(c.cv, m, PairState{});
   const DistributedFriction d = distributedFriction(c.cv, c.field, {kKv, 0.0}, m, kMu, kVEps);
-  const Vector3d friction = r.wrench.f_W - r.f_n * c.cv.normal;  // stiffness share is along n
+  const Vector3d friction = r.wrench.f_W - r.f_n * c.cv.n_W;  // stiffness share is along n
   return {friction.norm() / d.wrench.f_W.norm(),
-          r.wrench.tau_W.dot(c.cv.normal) / d.wrench.tau_W.dot(c.cv.normal)};
+          r.wrench.tau_W.dot(c.cv.n_W) / d.wrench.tau_W.dot(c.cv.n_W)};
 }
 
 TEST(LumpedVsDistributed, RatiosFollowTheClosedFormsOfBoth) {
@@ -399,14 +399,14 @@ TEST(ModelWithField, CoulombShareIsTheDistributedWrench) {
     EXPECT_EQ(contensou.f_W.norm() + contensou.tau_W.norm(), 0.0) << eps;
     // The normal force is the lumped one, kv V (1 + a δ̇), and equals ∫ p dS of the field.
     EXPECT_NEAR(r.f_n / d.f_n, 1.0, 1e-12) << eps;
-    const Vector3d friction = r.wrench.f_W - r.wrench.f_W.dot(c.cv.normal) * c.cv.normal;
+    const Vector3d friction = r.wrench.f_W - r.wrench.f_W.dot(c.cv.n_W) * c.cv.n_W;
     EXPECT_LT((friction - d.wrench.f_W).norm(), 1e-13 * scale) << eps;
   }
   // Without a field the same model is the lumped one: a different spin torque (ε = 5: ×2).
   const RelativeMotion motion = punchMotion(c, 5.0);
   const ContactResult lumped = model.evaluate(c.cv, motion, PairState{});
   const ContactResult distributed = model.evaluate(c.cv, motion, PairState{}, &c.field);
-  const Vector3d& n = c.cv.normal;
+  const Vector3d& n = c.cv.n_W;
   EXPECT_NEAR(lumped.wrench.tau_W.dot(n) / distributed.wrench.tau_W.dot(n), 2.0, 0.05);
 }
 
@@ -458,7 +458,7 @@ FixedGridErrors fixedGridErrors(int lines) {
       const DistributedFriction d =
           distributedFriction(cv, field, {kKv, 0.0}, punchMotion(placed, eps), kMu, kVEps);
       const PunchFriction e = flatPunchFriction(eps);
-      const double M = -d.wrench.tau_W.dot(cv.normal) / (kMu * d.f_n * R);
+      const double M = -d.wrench.tau_W.dot(cv.n_W) / (kMu * d.f_n * R);
       worst.torque = std::max(worst.torque, std::abs(M / e.torque - 1.0));
       if (eps < 1.0) continue;  // the small spin-dominated force is a difference: see (b)
       const double F = d.wrench.f_W.norm() / (kMu * d.f_n);
@@ -511,12 +511,12 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
     // The same motion in the punch's frame: sliding along its x at 0.05 m/s, spinning at
     // 3 rad/s about n, taken at the punch's origin.
     const Vector3d n = X_WH.linear().col(2), w = 3.0 * n;
-    const Vector3d v_c = X_WP.linear().col(0) * 0.05 + w.cross(p.cv.centroid - X_WP.translation());
+    const Vector3d v_c = X_WP.linear().col(0) * 0.05 + w.cross(p.cv.p_WC - X_WP.translation());
     p.friction = distributedFriction(p.cv, field, {kKv, 0.0}, {v_c, w}, kMu, kVEps);
     return p;
   };
   const Placed ref = place(Eigen::Isometry3d::Identity(), 0.0, Vector3d::Zero());
-  const Vector3d c_P = ref.X_WP.inverse() * ref.cv.centroid;
+  const Vector3d c_P = ref.X_WP.inverse() * ref.cv.p_WC;
   const Vector3d f_P = ref.X_WP.linear().transpose() * ref.friction.wrench.f_W;
   for (unsigned seed = 1; seed <= 6; ++seed) {
     const Eigen::Isometry3d X_WH =
@@ -524,7 +524,7 @@ TEST(FixedColumnGrid, MovesWithTheBody) {
     const Placed p = place(X_WH, 0.37 * seed, Vector3d(1.1e-3 * seed, -0.7e-3 * seed, 0.0));
     // Round-off of the placed vertices and lines (~1e-16 m on 1e-2 m), over δ ~ 1e-6 m.
     EXPECT_NEAR(p.cv.volume / ref.cv.volume, 1.0, 1e-9) << seed;
-    EXPECT_LT((p.X_WP.inverse() * p.cv.centroid - c_P).norm(), 1e-12) << seed;
+    EXPECT_LT((p.X_WP.inverse() * p.cv.p_WC - c_P).norm(), 1e-12) << seed;
     EXPECT_NEAR(p.cv.r_gyr / ref.cv.r_gyr, 1.0, 1e-9) << seed;
     const Vector3d f = p.X_WP.linear().transpose() * p.friction.wrench.f_W;
     EXPECT_LT((f - f_P).norm(), 1e-9 * f_P.norm()) << seed;
@@ -558,7 +558,7 @@ TEST(FixedColumnGrid, PlateAsEitherBody) {
       // along ∓n, so the two differ within their estimates.
       const double tolerance = o.isFixed() ? 1e-12 : ab.relative_error + ba.relative_error;
       EXPECT_NEAR(ba.volume / ab.volume, 1.0, tolerance) << seed << " fixed " << o.isFixed();
-      EXPECT_LT((ab.normal + ba.normal).norm(), 1e-15) << seed;  // the plane's, both ways
+      EXPECT_LT((ab.n_W + ba.n_W).norm(), 1e-15) << seed;  // the plane's, both ways
       EXPECT_NEAR(double(fieldBA.depth.size()) / fieldAB.depth.size(), 1.0,
                   o.isFixed() ? 0.0 : 0.05)
           << seed;
@@ -578,18 +578,18 @@ TEST(FixedColumnGrid, IsOneGridWithoutAnEstimate) {
       punch, X_WP, geometry::HalfSpace{}, ref.X_WH, &field, volume::ColumnOptions::fixed(64));
   EXPECT_TRUE(std::isinf(cv.relative_error));
   // The plane's own normal, not one from axis passes.
-  EXPECT_LT((cv.normal - ref.X_WH.linear().col(2)).norm(), 1e-15);
+  EXPECT_LT((cv.n_W - ref.X_WH.linear().col(2)).norm(), 1e-15);
   // At most 64 × 64 columns, the disc filling π/4 of its bounding square less the rim.
   EXPECT_LE(field.depth.size(), 64u * 64u);
   EXPECT_GT(field.depth.size(), 0.7 * 64 * 64);
-  // The plate as body A: the same columns, the normal out of B2 (the punch) into B1.
+  // The plate as body A: the same columns, the normal out of B (the punch) into A.
   volume::DepthField swappedField;
   const volume::ContactVolume swapped =
       volume::columnsContact(geometry::HalfSpace{}, ref.X_WH, punch, X_WP, &swappedField,
                              volume::ColumnOptions::fixed(64));
   EXPECT_NEAR(swapped.volume / cv.volume, 1.0, 1e-12);
-  EXPECT_LT((swapped.normal + cv.normal).norm(), 1e-15);
-  EXPECT_LT((swapped.centroid - cv.centroid).norm(), 1e-12 * kRadius);
+  EXPECT_LT((swapped.n_W + cv.n_W).norm(), 1e-15);
+  EXPECT_LT((swapped.p_WC - cv.p_WC).norm(), 1e-12 * kRadius);
   EXPECT_EQ(swappedField.depth.size(), field.depth.size());
 }
 

@@ -79,15 +79,15 @@ TEST(Model, StiffnessDampingAndClamp) {
   const volume::ContactVolume cv = sphereContact();
   const double kv = m.parameter("stiffness.kv");
   RelativeMotion approach;
-  approach.v_c_W = -0.1 * cv.normal;  // δ̇ = 0.1 m/s
+  approach.v_c_W = -0.1 * cv.n_W;  // δ̇ = 0.1 m/s
   const ContactResult r = m.evaluate(cv, approach, PairState{});
   // f_n = kv V (1 + a δ̇) n
-  const Eigen::Vector3d expected = kv * cv.volume * (1.0 + 3.0 * 0.1) * cv.normal;
+  const Eigen::Vector3d expected = kv * cv.volume * (1.0 + 3.0 * 0.1) * cv.n_W;
   EXPECT_LT((r.wrench.f_W - expected).norm(), kRoundOff * expected.norm());
   // shares add up: stiffness kv V n, damping the rest
-  EXPECT_LT((r.shares[0].f_W - kv * cv.volume * cv.normal).norm(), kRoundOff * expected.norm());
+  EXPECT_LT((r.shares[0].f_W - kv * cv.volume * cv.n_W).norm(), kRoundOff * expected.norm());
   RelativeMotion separate;
-  separate.v_c_W = 1.0 * cv.normal;  // 1 + a δ̇ = −2 < 0: clamped to zero
+  separate.v_c_W = 1.0 * cv.n_W;  // 1 + a δ̇ = −2 < 0: clamped to zero
   EXPECT_EQ(m.evaluate(cv, separate, PairState{}).wrench.f_W.norm(), 0.0);
 }
 
@@ -97,18 +97,18 @@ TEST(Model, CoulombSlidingAndStribeckAtRest) {
   m.setParameter("stribeck.mu_s", 0.35);
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume;
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   RelativeMotion fast;
   fast.v_c_W = 0.5 * t;  // v ≫ v_s: s = exp(−250000) = 0, μ_max = μ_C
   const ContactResult r = m.evaluate(cv, fast, PairState{});
-  EXPECT_LT((r.wrench.f_W - (N * cv.normal - 0.2 * N * t)).norm(), kRoundOff * N);
+  EXPECT_LT((r.wrench.f_W - (N * cv.n_W - 0.2 * N * t)).norm(), kRoundOff * N);
   RelativeMotion creep;
   creep.v_c_W = 1e-4 * t;  // v ≫ v_ε = 1e-5, s = exp(−0.01)
   const double s = std::exp(-0.01);
   const double mu_max = 0.2 + 0.15 * s;
   const ContactResult c = m.evaluate(cv, creep, PairState{});
   EXPECT_NEAR(c.mu_max, mu_max, kRoundOff);
-  EXPECT_LT((c.wrench.f_W - (N * cv.normal - mu_max * N * t)).norm(), kRoundOff * N);
+  EXPECT_LT((c.wrench.f_W - (N * cv.n_W - mu_max * N * t)).norm(), kRoundOff * N);
 }
 
 // MODEL.md §3: with contensou, F = μ N |v_t|/v_avg and M = μ N r_gyr (r_gyr |ω_n|)/v_avg,
@@ -119,17 +119,17 @@ TEST(Model, ContensouSharesOneFrictionBudget) {
   m.setParameter("coulomb.mu", 0.25);
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume, r = cv.r_gyr;
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   for (double ratio : {0.1, 0.7, 1.0, 3.0}) {  // r ω / v
     RelativeMotion mo;
     const double v = 0.02, w = ratio * v / r;
     mo.v_c_W = v * t;
-    mo.w_W = w * cv.normal;
+    mo.w_W = w * cv.n_W;
     const double v_avg = std::hypot(v, r * w);
     const ContactResult res = m.evaluate(cv, mo, PairState{});
-    const Eigen::Vector3d f_t = res.wrench.f_W - res.wrench.f_W.dot(cv.normal) * cv.normal;
+    const Eigen::Vector3d f_t = res.wrench.f_W - res.wrench.f_W.dot(cv.n_W) * cv.n_W;
     EXPECT_LT((f_t + 0.25 * N * (v / v_avg) * t).norm(), kRoundOff * N) << ratio;
-    EXPECT_NEAR(res.wrench.tau_W.dot(cv.normal), -0.25 * N * r * (r * w / v_avg), kRoundOff * N * r)
+    EXPECT_NEAR(res.wrench.tau_W.dot(cv.n_W), -0.25 * N * r * (r * w / v_avg), kRoundOff * N * r)
         << ratio;
     EXPECT_NEAR(std::pow(f_t.norm() / (0.25 * N), 2) +
                     std::pow(res.wrench.tau_W.norm() / (0.25 * N * r), 2),
@@ -144,8 +144,8 @@ TEST(Model, RollingResistancePower) {
   m.setParameter("damping.a", 4.0);
   const volume::ContactVolume cv = sphereContact();
   RelativeMotion roll;
-  roll.w_W = 7.0 * tangent(cv.normal) + 2.0 * cv.normal;  // spin part is no rolling
-  const Eigen::Vector3d w_t = roll.w_W - roll.w_W.dot(cv.normal) * cv.normal;
+  roll.w_W = 7.0 * tangent(cv.n_W) + 2.0 * cv.n_W;  // spin part is no rolling
+  const Eigen::Vector3d w_t = roll.w_W - roll.w_W.dot(cv.n_W) * cv.n_W;
   const ContactResult r = m.evaluate(cv, roll, PairState{});
   const double expected = -m.parameter("stiffness.kv") * 4.0 * w_t.dot(cv.J_s * w_t);
   ASSERT_LT(expected, 0.0);
@@ -159,16 +159,16 @@ TEST(Model, BristleStuckAndSaturated) {
   const volume::ContactVolume cv = sphereContact();
   const double N = m.parameter("stiffness.kv") * cv.volume;
   const double s0 = m.parameter("bristle.sigma0"), s1 = m.parameter("bristle.sigma1");
-  const Eigen::Vector3d t = tangent(cv.normal);
+  const Eigen::Vector3d t = tangent(cv.n_W);
   PairState state;
-  state.z_W = 1e-5 * t + 3e-6 * cv.normal;  // the normal part is projected away
+  state.z_W = 1e-5 * t + 3e-6 * cv.n_W;  // the normal part is projected away
   const ContactResult stuck = m.evaluate(cv, RelativeMotion{}, state);
-  EXPECT_LT((stuck.wrench.f_W - (N * cv.normal - N * s0 * 1e-5 * t)).norm(), kRoundOff * N);
+  EXPECT_LT((stuck.wrench.f_W - (N * cv.n_W - N * s0 * 1e-5 * t)).norm(), kRoundOff * N);
   EXPECT_EQ(stuck.rates.z_W, Eigen::Vector3d::Zero());
   RelativeMotion slide;
   slide.v_c_W = 0.3 * t;
   const ContactResult sliding = m.evaluate(cv, slide, state);
-  const Eigen::Vector3d f_t = sliding.wrench.f_W - N * cv.normal;
+  const Eigen::Vector3d f_t = sliding.wrench.f_W - N * cv.n_W;
   EXPECT_NEAR(f_t.norm(), 0.2 * N, kRoundOff * N);
   // s = 0: ż = (μ_C/σ1) dir(v) − (σ0/σ1) z
   EXPECT_LT((sliding.rates.z_W - ((0.2 / s1) * t - (s0 / s1) * 1e-5 * t)).norm(), kRoundOff);
@@ -190,12 +190,12 @@ TEST(Model, SettleProjectsAndResets) {
   const Model m = Model::withEffects({"stiffness", "coulomb", "stribeck", "bristle", "dwell"});
   const volume::ContactVolume cv = sphereContact();
   PairState state;
-  state.z_W = 1e-5 * tangent(cv.normal) + 2e-6 * cv.normal;
+  state.z_W = 1e-5 * tangent(cv.n_W) + 2e-6 * cv.n_W;
   state.s_dw = 0.9;
   RelativeMotion slide;
-  slide.v_c_W = 0.01 * tangent(cv.normal);  // s ≈ 0 < s_dw: bonds break at once
+  slide.v_c_W = 0.01 * tangent(cv.n_W);  // s ≈ 0 < s_dw: bonds break at once
   EXPECT_TRUE(m.settle(cv, slide, state));
-  EXPECT_NEAR(state.z_W.dot(cv.normal), 0.0, 1e-20);
+  EXPECT_NEAR(state.z_W.dot(cv.n_W), 0.0, 1e-20);
   EXPECT_LT(state.s_dw, 1e-30);
   EXPECT_TRUE(m.settle(volume::ContactVolume{}, slide, state));
   EXPECT_EQ(state.z_W, Eigen::Vector3d::Zero());

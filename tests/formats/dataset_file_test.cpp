@@ -13,7 +13,7 @@
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 namespace fs = std::filesystem;
@@ -178,4 +178,4 @@ TEST_F(DatasetFiles, EachSidecarDefectHasItsMessage) {
 }
 
 }  // namespace
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

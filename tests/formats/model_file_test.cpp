@@ -7,7 +7,7 @@
 
 #include "geometry/error.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 const char* kSource = "steel.model.json";
@@ -80,4 +80,4 @@ TEST(ModelFile, MissingRequiredEffectAndStribeckBelowCoulomb) {
 }
 
 }  // namespace
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

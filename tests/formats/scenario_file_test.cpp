@@ -12,7 +12,7 @@
 #include "dynamics/simulator.hpp"
 #include "geometry/error.hpp"
 
-namespace vcontact::io {
+namespace vcontact::formats {
 namespace {
 
 const std::string kScenarios = std::string(VCONTACT_ASSETS_DIR) + "/scenarios";
@@ -383,4 +383,4 @@ TEST(ScenarioFile, TippeTopInverts) {
 }
 
 }  // namespace
-}  // namespace vcontact::io
+}  // namespace vcontact::formats

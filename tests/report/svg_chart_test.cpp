@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 std::size_t count(const std::string& s, const std::string& what) {
@@ -52,4 +52,4 @@ TEST(SvgChart, BarChartHasOneBarPerValue) {
 }
 
 }  // namespace
-}  // namespace vcontact::io
+}  // namespace vcontact::report

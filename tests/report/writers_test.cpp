@@ -16,7 +16,7 @@
 #include "report/friction_map_csv.hpp"
 #include "report/report_html.hpp"
 
-namespace vcontact::io {
+namespace vcontact::report {
 namespace {
 
 namespace fs = std::filesystem;
@@ -82,4 +82,4 @@ TEST(ReportWriters, FrictionMapCsvLeavesTheExactColumnsEmptyWithoutAClosedForm) 
 }
 
 }  // namespace
-}  // namespace vcontact::io
+}  // namespace vcontact::report

@@ -43,8 +43,8 @@ class ValidationCli : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     const auto truth = test::trueModel({"stiffness", "coulomb", "viscous"});
-    io::writeDataset(test::syntheticDataset("drive", 200, truth, 3),
-                     (dir_ / "drive.json").string());
+    formats::writeDataset(test::syntheticDataset("drive", 200, truth, 3),
+                          (dir_ / "drive.json").string());
     writeText(dir_ / "model.json",
               R"({"format": "vcontact.model/1", "effects": {"stiffness": {}, "coulomb": {}},
                   "fixed": ["coulomb.v_s"]})");
@@ -111,7 +111,7 @@ TEST_F(ValidationCli, CompareFitAndDiagnoseWriteTheirFiles) {
   const auto fit = nlohmann::json::parse(readText(out() / "fit.json"));
   EXPECT_EQ(fit["loss"], "huber");
   EXPECT_EQ(fit["parameters"].size(), 3u);
-  const dynamics::Model fitted = io::readModelFile((out() / "model.json").string());
+  const dynamics::Model fitted = formats::readModelFile((out() / "model.json").string());
   EXPECT_NEAR(fitted.parameter("coulomb.mu"), 0.15, 0.02);  // viscous is missing: biased, close
 
   fs::remove_all(out());

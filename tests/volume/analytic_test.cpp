@@ -93,14 +93,14 @@ TEST(AnalyticSphere, ClosedFormsFromShallowToFullySunk) {
         sphereHalfspace(R, translation({0.125, -0.25, R - d}), Isometry3d::Identity());
     EXPECT_NEAR(cv.volume / e.V, 1.0, kPromised);
     AccuracyLog::record("sphere V", cv.volume / e.V - 1.0);
-    AccuracyLog::record("sphere centroid depth", cv.centroid.z() / -e.depthOfCentroid - 1.0);
+    AccuracyLog::record("sphere centroid depth", cv.p_WC.z() / -e.depthOfCentroid - 1.0);
     AccuracyLog::record(
         "sphere J_s",
         relativeDifference(cv.J_s,
                            Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal().toDenseMatrix()));
-    EXPECT_NEAR(cv.centroid.z(), -e.depthOfCentroid, kPromised * e.depthOfCentroid);
-    EXPECT_DOUBLE_EQ(cv.centroid.x(), 0.125);
-    EXPECT_DOUBLE_EQ(cv.centroid.y(), -0.25);
+    EXPECT_NEAR(cv.p_WC.z(), -e.depthOfCentroid, kPromised * e.depthOfCentroid);
+    EXPECT_DOUBLE_EQ(cv.p_WC.x(), 0.125);
+    EXPECT_DOUBLE_EQ(cv.p_WC.y(), -0.25);
     EXPECT_LT(relativeDifference(
                   cv.J_s, Vector3d(e.Jnn / 2, e.Jnn / 2, e.Jnn).asDiagonal().toDenseMatrix()),
               kPromised);
@@ -108,7 +108,7 @@ TEST(AnalyticSphere, ClosedFormsFromShallowToFullySunk) {
     EXPECT_LT(relativeDifference(cv.J_v, Jv), kPromised);
     EXPECT_NEAR(cv.r_gyr * cv.r_gyr / (e.Jnn / e.V), 1.0, kPromised);
     EXPECT_NEAR(cv.area / e.area, 1.0, kPromised);
-    EXPECT_EQ(cv.normal, Vector3d::UnitZ());
+    EXPECT_EQ(cv.n_W, Vector3d::UnitZ());
   }
 }
 
@@ -161,14 +161,14 @@ TEST(AnalyticCylinder, SideLyingClosedForms) {
     const ContactVolume cv = cylinderHalfspace(R, L, sideLying(R - d), Isometry3d::Identity());
     EXPECT_NEAR(double(cv.volume / (L * A)), 1.0, kPromised);
     AccuracyLog::record("side-lying cylinder V", double(cv.volume / (L * A)) - 1.0);
-    AccuracyLog::record("side-lying centroid depth", cv.centroid.z() / -double(depthC) - 1.0);
+    AccuracyLog::record("side-lying centroid depth", cv.p_WC.z() / -double(depthC) - 1.0);
     AccuracyLog::record(
         "side-lying J_s",
         relativeDifference(
             cv.J_s,
             Vector3d(double(Syy), double(Sxx), double(Sxx + Syy)).asDiagonal().toDenseMatrix()));
-    EXPECT_NEAR(cv.centroid.z(), -double(depthC), kPromised * double(depthC));
-    EXPECT_NEAR(cv.centroid.x(), 0.0, kPromised * L);
+    EXPECT_NEAR(cv.p_WC.z(), -double(depthC), kPromised * double(depthC));
+    EXPECT_NEAR(cv.p_WC.x(), 0.0, kPromised * L);
     const Matrix3d Js = Vector3d(double(Syy), double(Sxx), double(Sxx + Syy)).asDiagonal();
     EXPECT_LT(relativeDifference(cv.J_s, Js), kPromised);
     const double chord = d <= R ? 2 * std::sqrt(d * (2 * R - d)) : 2 * R;
@@ -192,7 +192,7 @@ TEST(AnalyticCylinder, AlignedPunch) {
     AccuracyLog::record("aligned punch J_s", cv.J_s(0, 0) / (M_PI * std::pow(R, 4) * d / 4) - 1.0);
     EXPECT_NEAR(cv.r_gyr * cv.r_gyr / (R * R / 2), 1.0, kPromised);
     EXPECT_NEAR(cv.J_s(0, 0) / (M_PI * std::pow(R, 4) * d / 4), 1.0, kPromised);
-    EXPECT_NEAR(cv.centroid.z(), -d / 2, kPromised * d);
+    EXPECT_NEAR(cv.p_WC.z(), -d / 2, kPromised * d);
     EXPECT_NEAR(cv.area / (M_PI * R * R), 1.0, kPromised);
   }
 }
@@ -324,18 +324,18 @@ TEST_P(AnalyticCylinderTilted, MatchesIndependentIntegrationUnderARigidMotion) {
   const double size = std::cbrt(ref.V);
   AccuracyLog::record("tilted cylinder V", cv.volume / ref.V - 1.0);
   AccuracyLog::record("tilted cylinder centroid/V^1/3",
-                      (cv.centroid - X_WC * ref.centroid_C).norm() / size);
+                      (cv.p_WC - X_WC * ref.centroid_C).norm() / size);
   AccuracyLog::record(
       "tilted cylinder J_v",
       relativeDifference(
           cv.J_v,
           R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() - ref.Sigma_C)) * R_WC.transpose()));
-  EXPECT_LT((cv.centroid - X_WC * ref.centroid_C).norm(), kPromised * size);
+  EXPECT_LT((cv.p_WC - X_WC * ref.centroid_C).norm(), kPromised * size);
   EXPECT_LT(relativeDifference(cv.J_v,
                                R_WC * ((ref.Sigma_C.trace() * Matrix3d::Identity() - ref.Sigma_C)) *
                                    R_WC.transpose()),
             kPromised);
-  EXPECT_NEAR(cv.normal.dot(X_WH.linear().col(2)), 1.0, 1e-15);  // n is z_H: a dot product's ulps
+  EXPECT_NEAR(cv.n_W.dot(X_WH.linear().col(2)), 1.0, 1e-15);  // n is z_H: a dot product's ulps
 }
 
 TEST(AnalyticCylinder, TiltedPunchMatchesMODELClosedForm) {
@@ -379,7 +379,7 @@ TEST(AnalyticBox, FaceDown) {
     EXPECT_NEAR(cv.volume / (0.03 * 0.05 * dUsed), 1.0, 1e-12);
     AccuracyLog::record("box face-down V", cv.volume / (0.03 * 0.05 * dUsed) - 1.0);
     EXPECT_NEAR(cv.r_gyr * cv.r_gyr / ((0.03 * 0.03 + 0.05 * 0.05) / 12), 1.0, 1e-12);
-    EXPECT_NEAR(cv.centroid.z(), -dUsed / 2, 1e-12 * dUsed);  // as V: an exact clip's rounding
+    EXPECT_NEAR(cv.p_WC.z(), -dUsed / 2, 1e-12 * dUsed);  // as V: an exact clip's rounding
   }
 }
 
@@ -397,7 +397,7 @@ TEST(AnalyticBox, CornerDown) {
     EXPECT_NEAR(cv.volume / (std::sqrt(3.0) / 2 * dUsed * dUsed * dUsed), 1.0, 1e-9);
     AccuracyLog::record("box corner-down V",
                         cv.volume / (std::sqrt(3.0) / 2 * dUsed * dUsed * dUsed) - 1.0);
-    EXPECT_NEAR(cv.centroid.z(), -dUsed / 4, 1e-9 * dUsed);  // as V above: the turned pose
+    EXPECT_NEAR(cv.p_WC.z(), -dUsed / 4, 1e-9 * dUsed);  // as V above: the turned pose
   }
 }
 
@@ -420,8 +420,8 @@ TEST(AnalyticContact, InvariantUnderRigidMotionOfBothBodies) {
       const Matrix3d R = X.linear();
       // Rounding of the composed poses: ~1e-16 × |t| / depth, far below 1e-9.
       EXPECT_NEAR(moved.volume / base.volume, 1.0, kPromised);
-      EXPECT_LT((moved.centroid - X * base.centroid).norm(), kPromised * 0.01);
-      EXPECT_LT((moved.normal - R * base.normal).norm(), 1e-14);
+      EXPECT_LT((moved.p_WC - X * base.p_WC).norm(), kPromised * 0.01);
+      EXPECT_LT((moved.n_W - R * base.n_W).norm(), 1e-14);
       EXPECT_LT(relativeDifference(moved.J_s, R * base.J_s * R.transpose()), kPromised);
       EXPECT_LT(relativeDifference(moved.J_v, R * base.J_v * R.transpose()), kPromised);
     }
@@ -436,7 +436,7 @@ TEST(AnalyticContact, SwappingTheBodiesFlipsOnlyTheNormal) {
   const ContactVolume ba =
       analyticContact(geometry::HalfSpace{}, Isometry3d::Identity(), ball, X_WS);
   EXPECT_EQ(ab.volume, ba.volume);
-  EXPECT_EQ(ab.normal, -ba.normal);
+  EXPECT_EQ(ab.n_W, -ba.n_W);
   EXPECT_EQ(ab.J_s, ba.J_s);
 }
 

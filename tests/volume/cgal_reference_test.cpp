@@ -34,10 +34,10 @@ void expectSameContact(const ContactVolume& a, const ContactVolume& b) {
   ASSERT_GT(b.volume, 0.0);
   EXPECT_NEAR(a.volume, b.volume, kVolumeTol * b.volume);
   const double width = std::cbrt(b.volume);  // the region's size, for the centroid
-  EXPECT_LE((a.centroid - b.centroid).norm(), kMomentTol * (b.centroid.norm() + width));
+  EXPECT_LE((a.p_WC - b.p_WC).norm(), kMomentTol * (b.p_WC.norm() + width));
   EXPECT_LE(relativeDifference(a.J_v, b.J_v), kMomentTol);
   EXPECT_LE(relativeDifference(a.J_s, b.J_s), kMomentTol);
-  EXPECT_LE((a.normal - b.normal).norm(), kMomentTol);
+  EXPECT_LE((a.n_W - b.n_W).norm(), kMomentTol);
 }
 
 TEST(CgalReference, AgreesWithHalfspaceClip) {
@@ -75,7 +75,7 @@ TEST(CgalReference, AgreesWithHalfspaceClip) {
 
 // Box A (a_x, a_y, a_z) resting with its bottom d into box B below, A's footprint inside B's:
 // the region is a box a_x × a_y × d; V = a_x a_y d, centroid at the middle of it,
-// Σ = V diag(a_x², a_y², d²)/12, n = +z (MODEL.md §1: out of B2 into B1). Re-run under a
+// Σ = V diag(a_x², a_y², d²)/12, n = +z (MODEL.md §1: out of B into A). Re-run under a
 // pose that moves both, with dimensions not representable in binary.
 TEST(CgalReference, OverlappingBoxesClosedForm) {
   const Vector3d a(0.0113, 0.0071, 0.0093), b(0.031, 0.027, 0.0117);
@@ -135,9 +135,9 @@ TEST(CgalReference, PatchesAgreeWithHalfspaceClip) {
       const ContactVolume& a = cgal->patches[k];
       const ContactVolume& b = clip.patches[k];
       EXPECT_NEAR(a.volume, b.volume, kVolumeTol * b.volume);
-      EXPECT_LE((a.centroid - b.centroid).norm(), kMomentTol * 0.0161);
+      EXPECT_LE((a.p_WC - b.p_WC).norm(), kMomentTol * 0.0161);
       EXPECT_LE(relativeDifference(a.J_v, b.J_v), kMomentTol);
-      EXPECT_LE((a.normal - b.normal).norm(), kMomentTol);
+      EXPECT_LE((a.n_W - b.n_W).norm(), kMomentTol);
     }
     EXPECT_NEAR(cgal->patches[0].volume + cgal->patches[1].volume, cgal->aggregate.volume,
                 1e-12 * cgal->aggregate.volume);  // two sums of the same faces in two orders
@@ -152,7 +152,7 @@ TEST(CgalReference, NoContactGivesZeroWithoutNaN) {
                                                  box, Isometry3d::Identity())
                                  .aggregate;
     EXPECT_EQ(cv.volume, 0.0);
-    EXPECT_TRUE(cv.centroid.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
+    EXPECT_TRUE(cv.p_WC.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
   }
 }
 

@@ -45,10 +45,10 @@ void expectNearExact(const ContactVolume& col, const ContactVolume& exact) {
   // Centroid and tensors carry the same quadrature error, amplified where the region is
   // thin (second moments across the plate weight the rim): 10× the volume tolerance.
   const double width = std::sqrt(exact.area);
-  EXPECT_LE((col.centroid - exact.centroid).norm(), 10.0 * volumeTolerance(col) * width);
+  EXPECT_LE((col.p_WC - exact.p_WC).norm(), 10.0 * volumeTolerance(col) * width);
   EXPECT_LE(relativeDifference(col.J_v, exact.J_v), 10.0 * volumeTolerance(col));
   // The normal from coarse axis passes: sums of ±dS over crossings, error ~ the rim cells.
-  EXPECT_LE((col.normal - exact.normal).norm(), 2e-2);
+  EXPECT_LE((col.n_W - exact.n_W).norm(), 2e-2);
 }
 
 struct PairCase {
@@ -113,7 +113,7 @@ TEST(Columns, KeepsAThinSecondRegion) {
   const ContactVolume col = columnsContact({&a, Isometry3d::Identity()}, {&b, X_WB});
   EXPECT_NEAR(col.volume, s * s * (d1 + d2), volumeTolerance(col) * s * s * (d1 + d2));
   EXPECT_GT(col.volume, s * s * d1 * (1 + 0.5 * d2 / d1));  // the thin foot is counted
-  EXPECT_LE((col.normal - Vector3d::UnitZ()).norm(), 2e-2);
+  EXPECT_LE((col.n_W - Vector3d::UnitZ()).norm(), 2e-2);
 }
 
 // A "U" on its legs on a half-space and on a plate mesh: the wet lines under the two feet are
@@ -144,7 +144,7 @@ TEST(Columns, PatchesOfTwoFeet) {
       const ContactVolume& c = col->patches[k];
       const ContactVolume& e = exact.patches[k];
       EXPECT_NEAR(c.volume, e.volume, volumeTolerance(c) * e.volume) << k;
-      EXPECT_LE((c.centroid - e.centroid).norm(), 10.0 * volumeTolerance(c) * std::sqrt(e.area));
+      EXPECT_LE((c.p_WC - e.p_WC).norm(), 10.0 * volumeTolerance(c) * std::sqrt(e.area));
     }
   }
 }
@@ -164,7 +164,7 @@ TEST(Columns, FindsAThinAxisAlignedLayer) {
     // Every wet line has the same δ, so the midpoint rule is exact and only the rounding of
     // δ = 1e-5 from coordinates of 1e-2 remains (ε·1e-2/1e-5 ≈ 2e-13 relative).
     EXPECT_NEAR(col.volume, s * s * d, std::max(volumeTolerance(col), 1e-12) * s * s * d);
-    EXPECT_LE((col.normal - Vector3d::UnitZ()).norm(), 1e-9);
+    EXPECT_LE((col.n_W - Vector3d::UnitZ()).norm(), 1e-9);
   }
 }
 
@@ -187,7 +187,7 @@ TEST(Columns, SwappingBodiesFlipsTheNormal) {
   const ContactVolume ab = columnsContact({&a, c.X_BA}, {&b, Isometry3d::Identity()});
   const ContactVolume ba = columnsContact({&b, Isometry3d::Identity()}, {&a, c.X_BA});
   EXPECT_NEAR(ab.volume, ba.volume, (ab.relative_error + ba.relative_error) * ab.volume);
-  EXPECT_LE((ab.normal + ba.normal).norm(), 2e-2);  // each from axis passes, as expectNearExact
+  EXPECT_LE((ab.n_W + ba.n_W).norm(), 2e-2);  // each from axis passes, as expectNearExact
 }
 
 // Moving both bodies by one rigid motion moves the result with them (within the estimates;
@@ -201,7 +201,7 @@ TEST(Columns, InvariantUnderCommonMotion) {
   EXPECT_NEAR(moved.volume, base.volume,
               (moved.relative_error + base.relative_error) * base.volume);
   // The axis passes turn with W, not with the bodies: each normal as in expectNearExact.
-  EXPECT_LE((moved.normal - X.linear() * base.normal).norm(), 2e-2);
+  EXPECT_LE((moved.n_W - X.linear() * base.n_W).norm(), 2e-2);
 }
 
 // The δ field integrates to V: V = Σ δ dS on the finest grid (MODEL.md §1), exactly the sum
@@ -228,7 +228,7 @@ TEST(Columns, NoContactGivesZeroWithoutNaN) {
     const ContactVolume cv =
         columnsContact({&box, test::translation({0.002, 0.001, 0.01 + gap})}, {&box, {}});
     EXPECT_EQ(cv.volume, 0.0);
-    EXPECT_TRUE(cv.centroid.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
+    EXPECT_TRUE(cv.p_WC.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
   }
 }
 

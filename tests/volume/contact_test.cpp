@@ -46,8 +46,8 @@ TEST(ComputeContact, HalfspaceInEitherOrder) {
   EXPECT_NEAR(ab.volume, ref.volume, 1e-12 * ref.volume);
   EXPECT_NEAR(ba.volume, ref.volume, 1e-12 * ref.volume);
   // The normal is z_H itself (MODEL.md §1: the half-space's): copied, or negated, exactly.
-  EXPECT_LE((ab.normal - X_WH.linear().col(2)).norm(), 1e-15);
-  EXPECT_LE((ba.normal + X_WH.linear().col(2)).norm(), 1e-15);
+  EXPECT_LE((ab.n_W - X_WH.linear().col(2)).norm(), 1e-15);
+  EXPECT_LE((ba.n_W + X_WH.linear().col(2)).norm(), 1e-15);
 }
 
 // Two meshes default to fast (exact, mesh_mesh_test checks it against cgal); cgal and
@@ -226,7 +226,7 @@ TEST(ComputeContact, AnalyticIsOnePatch) {
   ASSERT_EQ(touching.patches.size(), 1u);
   EXPECT_TRUE(touching.inContact());
   EXPECT_EQ(touching.patches[0].volume, touching.aggregate.volume);
-  EXPECT_EQ(touching.patches[0].centroid, touching.aggregate.centroid);
+  EXPECT_EQ(touching.patches[0].p_WC, touching.aggregate.p_WC);
   EXPECT_EQ(touching.patches[0].J_s, touching.aggregate.J_s);
   const ContactPatches apart = computeContact(
       geometry::Sphere{R}, X_WH * test::translation({0, 0, 2 * R}), geometry::HalfSpace{}, X_WH);
@@ -273,14 +273,14 @@ TEST(ComputeContact, EveryMethodFindsTheSamePatches) {
 TEST(ContactPatches, SortOrder) {
   std::vector<ContactVolume> patches(3);
   patches[0].volume = 1.0;
-  patches[0].centroid = Vector3d(0.0, 1.0, 0.0);
+  patches[0].p_WC = Vector3d(0.0, 1.0, 0.0);
   patches[1].volume = 2.0;
   patches[2].volume = 1.0;
-  patches[2].centroid = Vector3d(0.0, -1.0, 5.0);
+  patches[2].p_WC = Vector3d(0.0, -1.0, 5.0);
   sortPatches(patches);
   EXPECT_EQ(patches[0].volume, 2.0);
-  EXPECT_EQ(patches[1].centroid.y(), -1.0);
-  EXPECT_EQ(patches[2].centroid.y(), 1.0);
+  EXPECT_EQ(patches[1].p_WC.y(), -1.0);
+  EXPECT_EQ(patches[2].p_WC.y(), 1.0);
 }
 
 // The tree is built once per mesh and shared.

@@ -183,7 +183,7 @@ TEST(BvhClip, BoxCornerClosedFormAtShallowDepth) {
     const ContactVolume cv = meshHalfspaceContact(bvh, X_WM, Isometry3d::Identity());
     const double tol = 1e-12 + 64.0 * kEps * s / d;
     EXPECT_NEAR(cv.volume, std::sqrt(3.0) / 2.0 * d * d * d, tol * cv.volume);
-    EXPECT_NEAR(cv.centroid.z(), -d / 4.0, tol * d);
+    EXPECT_NEAR(cv.p_WC.z(), -d / 4.0, tol * d);
     EXPECT_NEAR(cv.depth, d, tol * d);
   }
 }
@@ -233,10 +233,10 @@ TEST(BvhClip, InvariantUnderCommonMotion) {
   const Isometry3d X_WH = test::randomPose(11);
   const ContactVolume moved = meshHalfspaceContact(bvh, X_WH * X_HM, X_WH);
   EXPECT_NEAR(moved.volume, base.volume, 1e-9 * base.volume);
-  EXPECT_LE((moved.centroid - X_WH * base.centroid).norm(), 1e-9 * 0.03);
+  EXPECT_LE((moved.p_WC - X_WH * base.p_WC).norm(), 1e-9 * 0.03);
   EXPECT_LE(relativeDifference(moved.J_v, X_WH.linear() * base.J_v * X_WH.linear().transpose()),
             1e-9);
-  EXPECT_LE((moved.normal - X_WH.linear().col(2)).norm(), 1e-15);  // n is z_H, copied
+  EXPECT_LE((moved.n_W - X_WH.linear().col(2)).norm(), 1e-15);  // n is z_H, copied
 }
 
 // Queries on one thread share a cache of vertices placed in H, indexed by vertex. Alternating
@@ -276,7 +276,7 @@ TEST(BvhClip, NoContactCasesGiveZeroWithoutNaN) {
     const ContactVolume cv = meshHalfspaceContact(box, test::translation({0, 0, z}), H);
     EXPECT_EQ(cv.volume, 0.0);
     EXPECT_FALSE(cv.inContact());
-    EXPECT_TRUE(cv.centroid.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
+    EXPECT_TRUE(cv.p_WC.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
   }
   Isometry3d corner = Isometry3d::Identity();
   corner.linear() = test::rotationZTo(Vector3d(1, 1, 1).normalized());

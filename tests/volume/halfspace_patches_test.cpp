@@ -72,10 +72,10 @@ TEST(HalfspacePatches, ULegsAreTwoBoxPatches) {
       const ContactVolume& p = c.patches[static_cast<std::size_t>(k)];
       const Vector3d p_Hc(legX[k], -0.5 * t, -0.5 * d);
       EXPECT_NEAR(p.volume, legW[k] * t * d, kClosedFormTol * legW[k] * t * d);
-      EXPECT_LE((p.centroid - X_WH * p_Hc).norm(), kClosedFormTol * u.height);
+      EXPECT_LE((p.p_WC - X_WH * p_Hc).norm(), kClosedFormTol * u.height);
       EXPECT_NEAR(p.depth, d, kClosedFormTol * u.height);
       EXPECT_NEAR(p.area, legW[k] * t, kClosedFormTol * legW[k] * t);
-      EXPECT_LE((p.normal - X_WH.linear().col(2)).norm(), kClosedFormTol);
+      EXPECT_LE((p.n_W - X_WH.linear().col(2)).norm(), kClosedFormTol);
     }
     expectSumIsAggregate(c);
   }
@@ -90,7 +90,7 @@ TEST(HalfspacePatches, AggregateIsTheClip) {
     const ContactPatches c = meshHalfspacePatches(body.bvh, body.topo, X_WM, X_WH);
     const ContactVolume clip = meshHalfspaceContact(body.bvh, X_WM, X_WH);
     EXPECT_EQ(c.aggregate.volume, clip.volume);
-    EXPECT_EQ(c.aggregate.centroid, clip.centroid);
+    EXPECT_EQ(c.aggregate.p_WC, clip.p_WC);
     EXPECT_EQ(c.aggregate.J_s, clip.J_s);
     EXPECT_EQ(c.patches.size(), d < 0.0093 ? 2u : 1u);
     expectSumIsAggregate(c);
@@ -154,7 +154,7 @@ TEST(HalfspacePatches, RingCutAboveItsCentreIsOnePatch) {
   const ContactPatches c = meshHalfspacePatches(body.bvh, body.topo, X_WM, X_WH);
   ASSERT_EQ(c.patches.size(), 1u);
   expectSumIsAggregate(c);
-  EXPECT_LE((c.patches[0].centroid - c.aggregate.centroid).norm(), kClosedFormTol * R);
+  EXPECT_LE((c.patches[0].p_WC - c.aggregate.p_WC).norm(), kClosedFormTol * R);
 }
 
 // Two boxes in one mesh, one crossing the plane and one wholly below it: two patches, the
@@ -171,7 +171,7 @@ TEST(HalfspacePatches, ShellWhollyBelowIsItsOwnPatch) {
   ASSERT_EQ(c.patches.size(), 2u);
   EXPECT_NEAR(c.patches[0].volume, s * s * s, kClosedFormTol * s * s * s);
   EXPECT_NEAR(c.patches[1].volume, s * s * d, kClosedFormTol * s * s * d);
-  EXPECT_LE((c.patches[0].centroid - X_WH * Vector3d(3 * s, 0, -s)).norm(), kClosedFormTol * s);
+  EXPECT_LE((c.patches[0].p_WC - X_WH * Vector3d(3 * s, 0, -s)).norm(), kClosedFormTol * s);
   EXPECT_NEAR(c.patches[1].depth, d, kClosedFormTol * s);
   expectSumIsAggregate(c);
 }
@@ -190,7 +190,7 @@ TEST(HalfspacePatches, EitherOrderThroughTheBackend) {
   ASSERT_EQ(ba.patches.size(), 2u);
   for (std::size_t k = 0; k < 2; ++k) {
     EXPECT_EQ(ab.patches[k].volume, ba.patches[k].volume);
-    EXPECT_EQ(ab.patches[k].normal, -ba.patches[k].normal);
+    EXPECT_EQ(ab.patches[k].n_W, -ba.patches[k].n_W);
   }
 }
 

@@ -53,7 +53,7 @@ Isometry3d profileUp() {
 /// across methods by place: equal volumes may sort either way by rounding).
 const ContactVolume& nearest(const std::vector<ContactVolume>& list, const ContactVolume& p) {
   return *std::min_element(list.begin(), list.end(), [&p](const auto& x, const auto& y) {
-    return (x.centroid - p.centroid).norm() < (y.centroid - p.centroid).norm();
+    return (x.p_WC - p.p_WC).norm() < (y.p_WC - p.p_WC).norm();
   });
 }
 
@@ -63,9 +63,9 @@ void expectSamePatches(const ContactPatches& fast, const ContactPatches& clip, d
     const ContactVolume& b = clip.patches[k];
     const ContactVolume& a = nearest(fast.patches, b);
     EXPECT_NEAR(a.volume, b.volume, kVolumeTol * b.volume) << k;
-    EXPECT_LE((a.centroid - b.centroid).norm(), kMomentTol * size) << k;
+    EXPECT_LE((a.p_WC - b.p_WC).norm(), kMomentTol * size) << k;
     EXPECT_LE(test::relativeDifference(a.J_v, b.J_v), kMomentTol) << k;
-    EXPECT_LE((a.normal - b.normal).norm(), kMomentTol) << k;
+    EXPECT_LE((a.n_W - b.n_W).norm(), kMomentTol) << k;
     EXPECT_NEAR(a.area, b.area, kMomentTol * b.area) << k;
   }
 }
@@ -115,13 +115,13 @@ TEST(FastMeshMeshPatches, TiltedPegBearsOnOppositeWalls) {
   ASSERT_EQ(fast.patches.size(), 2u);
   expectSamePatches(fast, cgal, 0.0203);
   const Vector3d axis_W = X_WP.linear().col(2);
-  const Vector3d& n0 = fast.patches[0].normal;
-  const Vector3d& n1 = fast.patches[1].normal;
+  const Vector3d& n0 = fast.patches[0].n_W;
+  const Vector3d& n1 = fast.patches[1].n_W;
   EXPECT_LT(n0.dot(n1), -0.99);  // opposite, up to the facets and the 0.03 rad tilt
   EXPECT_LT(std::abs(n0.dot(axis_W)), 0.05);
   // the two centroids lie on either side of the hole's centre along the axis
-  EXPECT_LT((fast.patches[0].centroid - X_WH.translation()).dot(X_WH.linear().col(2)) *
-                (fast.patches[1].centroid - X_WH.translation()).dot(X_WH.linear().col(2)),
+  EXPECT_LT((fast.patches[0].p_WC - X_WH.translation()).dot(X_WH.linear().col(2)) *
+                (fast.patches[1].p_WC - X_WH.translation()).dot(X_WH.linear().col(2)),
             0.0);
 }
 
@@ -172,11 +172,11 @@ TEST(FastMeshMeshPatches, KeyedShaftTurnedInItsHub) {
   for (const ContactVolume& p : fast.patches) {
     // the key's own direction (of the four quarter turns of the shaft's x axis, the one
     // nearest the patch): the flank's normal is across it
-    const Vector3d p_S = X_WS.inverse() * p.centroid;
+    const Vector3d p_S = X_WS.inverse() * p.p_WC;
     const Vector3d key_S =
         std::abs(p_S.x()) > std::abs(p_S.y()) ? Vector3d::UnitX() : Vector3d::UnitY();
-    EXPECT_LT(std::abs(p.normal.dot(X_WS.linear() * key_S)), 0.05);  // the hub is 0.03 rad off
-    EXPECT_LT(std::abs(p.normal.dot(axis_W)), 1e-9);                 // flanks parallel to the axis
+    EXPECT_LT(std::abs(p.n_W.dot(X_WS.linear() * key_S)), 0.05);     // the hub is 0.03 rad off
+    EXPECT_LT(std::abs(p.n_W.dot(axis_W)), 1e-9);                    // flanks parallel to the axis
     EXPECT_NEAR(p.volume, fast.patches[0].volume, 1e-9 * p.volume);  // four-fold symmetry
     // Deepest penetration: the key's flank point (x, a) turned by φ reaches y = x sin φ +
     // a cos φ, the block's face is at a + gap, deepest at the block's far end x = 0.01365:

@@ -49,10 +49,10 @@ struct Errors {
 Errors compare(const ContactVolume& f, const ContactVolume& c) {
   Errors e;
   e.V = std::abs(f.volume - c.volume) / c.volume;
-  e.centroid = (f.centroid - c.centroid).norm() / std::cbrt(c.volume);
+  e.p_WC = (f.p_WC - c.p_WC).norm() / std::cbrt(c.volume);
   e.J_v = test::relativeDifference(f.J_v, c.J_v);
   e.J_s = test::relativeDifference(f.J_s, c.J_s);
-  e.normal = (f.normal - c.normal).norm();
+  e.n_W = (f.n_W - c.n_W).norm();
   return e;
 }
 
@@ -75,14 +75,14 @@ void expectAgree(const Body& a, const Isometry3d& X_WA, const Body& b, const Iso
   EXPECT_TRUE(std::isnan(f.relative_error));
   const Errors e = compare(f, c);
   EXPECT_LE(e.V, kVolumeTol) << f.volume << " vs " << c.volume;
-  EXPECT_LE(e.centroid, kMomentTol);
+  EXPECT_LE(e.p_WC, kMomentTol);
   EXPECT_LE(e.J_v, kMomentTol);
   EXPECT_LE(e.J_s, kMomentTol);
-  EXPECT_LE(e.normal, kMomentTol);
+  EXPECT_LE(e.n_W, kMomentTol);
   EXPECT_NEAR(f.area, c.area, kMomentTol * c.area);
   EXPECT_NEAR(f.depth, c.depth, kMomentTol * c.depth);
   std::printf("%-28s V %.3e  rel errors V %.1e  centroid %.1e  J_v %.1e  J_s %.1e  n %.1e\n",
-              what.c_str(), c.volume, e.V, e.centroid, e.J_v, e.J_s, e.normal);
+              what.c_str(), c.volume, e.V, e.p_WC, e.J_v, e.J_s, e.n_W);
 }
 
 TEST(FastMeshMesh, TwoSpheres) {
@@ -195,10 +195,10 @@ TEST(FastMeshMesh, CachedLeafPairsGiveTheFreshResultAlongAPath) {
       ++inContact;
       const Errors e = compare(cached, fresh);
       EXPECT_LE(e.V, kVolumeTol) << "step " << k;
-      EXPECT_LE(e.centroid, kMomentTol) << "step " << k;
+      EXPECT_LE(e.p_WC, kMomentTol) << "step " << k;
       EXPECT_LE(e.J_v, kMomentTol) << "step " << k;
       EXPECT_LE(e.J_s, kMomentTol) << "step " << k;
-      EXPECT_LE(e.normal, kMomentTol) << "step " << k;
+      EXPECT_LE(e.n_W, kMomentTol) << "step " << k;
     }
     EXPECT_GT(inContact, 30);
     // Recorded at the first query and after every jump (each moves A by more than the reach).
@@ -235,9 +235,9 @@ TEST(FastMeshMesh, InvariantUnderMovingBothBodies) {
     SCOPED_TRACE(c.name);
     ASSERT_GT(ref.volume, 0.0);
     EXPECT_NEAR(moved.volume, ref.volume, kTol * ref.volume);
-    EXPECT_LE((moved.centroid - P * ref.centroid).norm(),
+    EXPECT_LE((moved.p_WC - P * ref.p_WC).norm(),
               kTol * std::cbrt(ref.volume) + 1e-15 * 0.37);  // + a few ulps of |P|'s 0.37 m
-    EXPECT_LE((moved.normal - P.linear() * ref.normal).norm(), kTol);
+    EXPECT_LE((moved.n_W - P.linear() * ref.n_W).norm(), kTol);
     const Eigen::Matrix3d R = P.linear();
     EXPECT_LE(test::relativeDifference(moved.J_v, R * ref.J_v * R.transpose()), kTol);
     expectAgree(*c.a, P * c.X_WA, *c.b, P * c.X_WB, c.name + " (moved)");
@@ -256,8 +256,8 @@ TEST(FastMeshMesh, SymmetricInTheBodies) {
     const ContactVolume ba = fast(*c.b, c.X_WB, *c.a, c.X_WA);
     ASSERT_GT(ab.volume, 0.0);
     EXPECT_NEAR(ba.volume, ab.volume, kTol * ab.volume);
-    EXPECT_LE((ba.centroid - ab.centroid).norm(), kTol * std::cbrt(ab.volume));
-    EXPECT_LE((ba.normal + ab.normal).norm(), kTol);
+    EXPECT_LE((ba.p_WC - ab.p_WC).norm(), kTol * std::cbrt(ab.volume));
+    EXPECT_LE((ba.n_W + ab.n_W).norm(), kTol);
     EXPECT_LE(test::relativeDifference(ba.J_v, ab.J_v), kTol);
     EXPECT_NEAR(ba.area, ab.area, kTol * ab.area);
   }
@@ -293,19 +293,19 @@ TEST(FastMeshMesh, BodyWhollyInside) {
   const ContactVolume out = fast(big, I, small, X_WS);
   for (const ContactVolume* f : {&in, &out}) {
     EXPECT_NEAR(f->volume, c.volume, kVolumeTol * c.volume);
-    EXPECT_LE((f->centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+    EXPECT_LE((f->p_WC - c.p_WC).norm(), kMomentTol * std::cbrt(c.volume));
     EXPECT_LE(test::relativeDifference(f->J_v, c.J_v), kMomentTol);
-    EXPECT_NEAR(f->normal.norm(), 1.0, 1e-15);  // normalised: an ulp or two
+    EXPECT_NEAR(f->n_W.norm(), 1.0, 1e-15);  // normalised: an ulp or two
   }
-  EXPECT_LE((in.normal - in.centroid.normalized()).norm(), 1e-12);  // big is centred at 0
-  EXPECT_LE((out.normal - (out.centroid - X_WS.translation()).normalized()).norm(), 1e-12);
+  EXPECT_LE((in.n_W - in.p_WC.normalized()).norm(), 1e-12);  // big is centred at 0
+  EXPECT_LE((out.n_W - (out.p_WC - X_WS.translation()).normalized()).norm(), 1e-12);
 }
 
 /// Every output finite (no NaN from a degenerate contact).
 void expectFinite(const ContactVolume& cv) {
   EXPECT_TRUE(std::isfinite(cv.volume));
-  EXPECT_TRUE(cv.centroid.allFinite());
-  EXPECT_TRUE(cv.normal.allFinite());
+  EXPECT_TRUE(cv.p_WC.allFinite());
+  EXPECT_TRUE(cv.n_W.allFinite());
   EXPECT_TRUE(cv.J_v.allFinite());
   EXPECT_TRUE(cv.J_s.allFinite());
   EXPECT_TRUE(std::isfinite(cv.area) && std::isfinite(cv.depth) && std::isfinite(cv.r_gyr));
@@ -346,9 +346,9 @@ TEST(FastMeshMesh, CoplanarFacesMatchCgal) {
     // Axis-aligned boxes: the exact slab up to the fan sums' rounding.
     EXPECT_NEAR(f.volume, 0.02 * 0.02 * 0.003, 1e-12 * f.volume);
     EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
-    EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+    EXPECT_LE((f.p_WC - c.p_WC).norm(), kMomentTol * std::cbrt(c.volume));
     EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
-    EXPECT_LE((f.normal - c.normal).norm(), kMomentTol);
+    EXPECT_LE((f.n_W - c.n_W).norm(), kMomentTol);
     EXPECT_NEAR(f.area, c.area, kMomentTol * c.area);
   }
 }
@@ -368,7 +368,7 @@ TEST(FastMeshMesh, IdenticalMeshesAtIdenticalPoses) {
   EXPECT_NEAR(f.volume, M.m0, 1e-12 * M.m0);  // the same fan, summed in another order
   const ContactVolume c = cgalMeshMeshContact(torus.mesh(), X, torus.mesh(), X).aggregate;
   EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
-  EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+  EXPECT_LE((f.p_WC - c.p_WC).norm(), kMomentTol * std::cbrt(c.volume));
   EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
 }
 
@@ -410,10 +410,10 @@ TEST(FastMeshMesh, VertexExactlyOnAFace) {
     expectFinite(f);
     EXPECT_NEAR(f.volume, 2.0 / 3.0 * a * a * a, 1e-12 * f.volume);  // polyhedral: rounding
     EXPECT_NEAR(f.volume, c.volume, kVolumeTol * c.volume);
-    EXPECT_LE((f.centroid - c.centroid).norm(), kMomentTol * std::cbrt(c.volume));
+    EXPECT_LE((f.p_WC - c.p_WC).norm(), kMomentTol * std::cbrt(c.volume));
     EXPECT_LE(test::relativeDifference(f.J_v, c.J_v), kMomentTol);
     // n from area vectors of faces in axis planes: exact up to their sums' rounding.
-    EXPECT_LE((f.normal - (swap ? -1.0 : 1.0) * Vector3d::UnitZ()).norm(), 1e-12);
+    EXPECT_LE((f.n_W - (swap ? -1.0 : 1.0) * Vector3d::UnitZ()).norm(), 1e-12);
   }
   const Body apex(test::octahedron(Vector3d(0.0031, -0.0027, 0.01 + a), a));
   for (bool swap : {false, true}) {

@@ -21,6 +21,6 @@ int main() {
           .aggregate;
   const double cap = std::numbers::pi * d * d * (3.0 * R - d) / 3.0;
   std::printf("V = %.17g m^3, cap = %.17g m^3\n%s", cv.volume, cap,
-              vcontact::io::toTable(cv).c_str());
+              vcontact::report::toTable(cv).c_str());
   return std::abs(cv.volume - cap) <= 1e-14 * cap ? 0 : 1;
 }
