@@ -54,9 +54,9 @@ std::optional<volume::Method> chosenMethod(const VolumeOptions& o, const io::Par
 
 /// The contact by the chosen method; with --field, by a method that samples the δ map (by
 /// default the first the pair allows) and the map.
-volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
-                              const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
-                              const Eigen::Isometry3d& X_WB) {
+volume::ContactPatches compute(const VolumeOptions& o, const io::ParsedShape& a,
+                               const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
+                               const Eigen::Isometry3d& X_WB) {
   const volume::QueryOptions query{chosenMethod(o, a, b)};
   if (o.field.empty()) return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query);
   if (query.method && !volume::fillsDepthField(*query.method)) {
@@ -65,10 +65,10 @@ volume::ContactVolume compute(const VolumeOptions& o, const io::ParsedShape& a,
                          methodNames([](const auto& row) { return row.fills_depth_field; }));
   }
   volume::DepthField field;
-  const volume::ContactVolume cv =
+  volume::ContactPatches contact =
       volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
   report::writeDepthMapCsv(field, o.field);
-  return cv;
+  return contact;
 }
 
 /// --method's help, from the method table.
@@ -93,9 +93,9 @@ void runVolume(const VolumeOptions& o) {
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
-  const volume::ContactVolume cv = compute(o, a, X_WA, b, X_WB);
+  const volume::ContactPatches contact = compute(o, a, X_WA, b, X_WB);
 
-  nlohmann::json j = report::toJson(cv);
+  nlohmann::json j = report::toJson(contact);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
   if (!o.out.empty()) io::writeJson(j, o.out);
@@ -104,7 +104,7 @@ void runVolume(const VolumeOptions& o) {
   } else {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
-              << report::toTable(cv);
+              << report::toTable(contact);
   }
 }
 

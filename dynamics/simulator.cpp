@@ -239,7 +239,8 @@ volume::ContactVolume Simulator::pairContact(std::size_t k) {
   const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
   volume::ContactVolume cv =
       volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                             distributed ? &fields_[k] : nullptr, &caches_[k]);
+                             distributed ? &fields_[k] : nullptr, &caches_[k])
+          .aggregate;
   ++contact_count_;
   return cv;
 }

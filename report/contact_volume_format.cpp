@@ -34,12 +34,13 @@ nlohmann::json toJson(const volume::ContactVolume& cv) {
   return j;
 }
 
-std::string toTable(const volume::ContactVolume& cv) {
-  std::ostringstream os;
-  os << std::setprecision(10);
+namespace {
+
+/// The rows of one region's table (V to rel. error), each indented by `indent`.
+void writeRows(std::ostream& os, const volume::ContactVolume& cv, const std::string& indent) {
   auto row = [&](const char* name, const std::string& value, const char* unit) {
-    os << "  " << std::left << std::setw(16) << name << value << (unit[0] ? "  " : "") << unit
-       << '\n';
+    os << indent << "  " << std::left << std::setw(16) << name << value << (unit[0] ? "  " : "")
+       << unit << '\n';
   };
   auto num = [](double v) {
     std::ostringstream s;
@@ -51,11 +52,6 @@ std::string toTable(const volume::ContactVolume& cv) {
     s << std::setprecision(10) << '(' << v.x() << ", " << v.y() << ", " << v.z() << ')';
     return s.str();
   };
-  os << "contact volume (method " << volume::methodName(cv.method) << ")\n";
-  if (!cv.inContact()) {
-    os << "  no contact\n";
-    return os.str();
-  }
   row("V", num(cv.volume), "m^3");
   row("centroid p_c", v3(cv.p_WC), "m");
   row("normal n", v3(cv.n_W), "");
@@ -70,6 +66,44 @@ std::string toTable(const volume::ContactVolume& cv) {
   }
   row("rel. error",
       std::isnan(cv.relative_error) ? "exact for the given shapes" : num(cv.relative_error), "");
+}
+
+}  // namespace
+
+std::string toTable(const volume::ContactVolume& cv) {
+  std::ostringstream os;
+  os << "contact volume (method " << volume::methodName(cv.method) << ")\n";
+  if (!cv.inContact()) {
+    os << "  no contact\n";
+    return os.str();
+  }
+  writeRows(os, cv, "");
+  return os.str();
+}
+
+nlohmann::json toJson(const volume::ContactPatches& contact) {
+  nlohmann::json j = toJson(contact.aggregate);
+  j["in_contact"] = contact.inContact();
+  j["patches"] = nlohmann::json::array();
+  for (const volume::ContactVolume& patch : contact.patches) {
+    nlohmann::json p = toJson(patch);
+    p.erase("units");  // as the aggregate's
+    j["patches"].push_back(std::move(p));
+  }
+  return j;
+}
+
+std::string toTable(const volume::ContactPatches& contact) {
+  std::ostringstream os;
+  os << toTable(contact.aggregate);
+  if (!contact.inContact()) return os.str();
+  os << "  patches         " << contact.patches.size()
+     << (contact.patches.size() == 1 ? " (the whole region)" : "") << '\n';
+  if (contact.patches.size() == 1) return os.str();
+  for (std::size_t k = 0; k < contact.patches.size(); ++k) {
+    os << "  patch " << k + 1 << " of " << contact.patches.size() << '\n';
+    writeRows(os, contact.patches[k], "  ");
+  }
   return os.str();
 }
 

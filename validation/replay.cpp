@@ -63,7 +63,8 @@ class HalfspaceVolumes {
       const geometry::Shape halfspace = geometry::HalfSpace{};
       it = cache_
                .emplace(key, volume::computeContact(payload, X_c, halfspace,
-                                                    Eigen::Isometry3d::Identity()))
+                                                    Eigen::Isometry3d::Identity())
+                                 .aggregate)
                .first;
     }
     return moved(it->second, X * X_c.inverse());
@@ -118,7 +119,7 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
   SampleGeometry g;
   g.cv = std::holds_alternative<geometry::HalfSpace>(d.plate)
              ? halfspace.at(d.payload, X_BA)
-             : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
+             : volume::computeContact(d.payload, X_BA, d.plate, X_BB).aggregate;
   if (!g.cv.inContact()) return g;
   g.p_AoC_B = g.cv.p_WC - X_BA.translation();
   g.motion = dynamics::relativeMotion(payloadKinematics(s, X_BA), dynamics::BodyKinematics{},

@@ -1,6 +1,7 @@
 #include "volume/cgal_reference.hpp"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -41,14 +42,22 @@ Vector3d toEigen(const Point& p) {
   return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
 }
 
-/// One face of the intersection polyhedron, in double, and whether it lies on ∂A.
+/// One face of the intersection polyhedron, in double, whether it lies on ∂A, and which
+/// connected component of the polyhedron it bounds.
 struct RegionFace {
   Vector3d p[3];
   bool onA;
+  std::size_t component;
 };
 
-std::vector<RegionFace> regionFaces(const Mesh& region, const Mesh& a) {
+/// The faces of `region` (A ∩ B), labelled by PMP::connected_components (faces joined through
+/// shared edges; with no cavities in A or B, A ∩ B has none, so each component of its surface
+/// bounds one component of the solid).
+/// @param[out] components  how many components the region has
+std::vector<RegionFace> regionFaces(Mesh& region, const Mesh& a, std::size_t& components) {
   const CGAL::Side_of_triangle_mesh<Mesh, Kernel> sideOfA(a);
+  auto label = region.add_property_map<Mesh::Face_index, std::size_t>("f:component", 0).first;
+  components = CGAL::Polygon_mesh_processing::connected_components(region, label);
   std::vector<RegionFace> faces;
   faces.reserve(region.number_of_faces());
   for (const auto f : region.faces()) {
@@ -59,7 +68,7 @@ std::vector<RegionFace> regionFaces(const Mesh& region, const Mesh& a) {
     // The exact centroid is on ∂A iff the face came from A (faces of B inside A are strictly
     // inside, or on ∂A only where the two surfaces coincide, where either label is right).
     const bool onA = sideOfA(CGAL::centroid(q[0], q[1], q[2])) == CGAL::ON_BOUNDARY;
-    faces.push_back({{toEigen(q[0]), toEigen(q[1]), toEigen(q[2])}, onA});
+    faces.push_back({{toEigen(q[0]), toEigen(q[1]), toEigen(q[2])}, onA, label[f]});
   }
   return faces;
 }
@@ -88,26 +97,53 @@ ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
   return contactFromMoments(M, o, n, 0.25 * area2, hi - lo, Method::kCgal);
 }
 
-ContactVolume intersect(Mesh a, Mesh b) {
+/// The whole region as the aggregate and each connected component as a patch, each with the
+/// normal of its own ∂B1 faces (MODEL.md §1).
+ContactPatches patchesFromFaces(const std::vector<RegionFace>& faces, std::size_t components) {
+  ContactPatches out = singlePatch(contactFromFaces(faces));
+  if (!out.inContact() || components == 1) return out;
+  std::vector<std::vector<RegionFace>> byComponent(components);
+  for (const RegionFace& f : faces) byComponent[f.component].push_back(f);
+  out.patches.clear();
+  for (const std::vector<RegionFace>& component : byComponent) {
+    const ContactVolume cv = contactFromFaces(component);
+    if (cv.inContact()) out.patches.push_back(cv);
+  }
+  sortPatches(out.patches);
+  return out;
+}
+
+ContactPatches intersect(Mesh a, Mesh b) {
   const Mesh aOriginal = a;
   Mesh region;
   namespace PMP = CGAL::Polygon_mesh_processing;
   if (!PMP::corefine_and_compute_intersection(a, b, region)) {
     throw std::runtime_error("cgal reference: corefinement failed (self-intersecting input?)");
   }
-  return contactFromFaces(regionFaces(region, aOriginal));
+  std::size_t components = 0;
+  const std::vector<RegionFace> faces = regionFaces(region, aOriginal, components);
+  return patchesFromFaces(faces, components);
+}
+
+/// A contact computed in the half-space frame H, in W; the normal is the half-space's by
+/// definition (MODEL.md §1).
+ContactVolume halfspaceToWorld(const ContactVolume& cv, const Eigen::Isometry3d& X_WH) {
+  const Eigen::Matrix3d R = X_WH.linear();
+  const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
+  return assembleContactVolume(cv.volume, X_WH * cv.p_WC, R * Sigma_H * R.transpose(), R.col(2),
+                               cv.area, cv.depth, Method::kCgal);
 }
 
 }  // namespace
 
-ContactVolume cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::Isometry3d& X_WA,
-                                  const geometry::TriangleMesh& b, const Eigen::Isometry3d& X_WB) {
+ContactPatches cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::Isometry3d& X_WA,
+                                   const geometry::TriangleMesh& b, const Eigen::Isometry3d& X_WB) {
   return intersect(toCgal(a, X_WA), toCgal(b, X_WB));
 }
 
-ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
-                                       const Eigen::Isometry3d& X_WM,
-                                       const Eigen::Isometry3d& X_WH) {
+ContactPatches cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
+                                        const Eigen::Isometry3d& X_WM,
+                                        const Eigen::Isometry3d& X_WH) {
   // Work in H: the box spans the mesh's footprint with a margin and reaches below its lowest
   // point; its top face is z_H = 0 exactly.
   const Eigen::Isometry3d X_HM = X_WH.inverse() * X_WM;
@@ -116,24 +152,24 @@ ContactVolume cgalMeshHalfspaceContact(const geometry::TriangleMesh& mesh,
     m_H.vertices.row(i) = (X_HM * mesh.vertex(i)).transpose();
   }
   const geometry::Aabb box = geometry::bounds(m_H);
-  if (!(box.min.z() < 0.0)) return ContactVolume{.method = Method::kCgal};
+  if (!(box.min.z() < 0.0)) return singlePatch(ContactVolume{.method = Method::kCgal});
   const Vector3d size = box.size() + Vector3d::Constant(box.size().maxCoeff());
   const Vector3d center(0.5 * (box.min.x() + box.max.x()), 0.5 * (box.min.y() + box.max.y()),
                         -0.5 * size.z());
   Eigen::Isometry3d X_HBox = Eigen::Isometry3d::Identity();
   X_HBox.translation() = center;
-  ContactVolume cv = intersect(toCgal(m_H, Eigen::Isometry3d::Identity()),
-                               toCgal(geometry::tessellateBox(size), X_HBox));
-  if (!cv.inContact()) return cv;
-  // Back to W; the normal is the half-space's by definition (MODEL.md §1).
-  const Eigen::Matrix3d R = X_WH.linear();
-  const Eigen::Matrix3d Sigma_H = cv.J_v.trace() / 2.0 * Eigen::Matrix3d::Identity() - cv.J_v;
-  return assembleContactVolume(cv.volume, X_WH * cv.p_WC, R * Sigma_H * R.transpose(), R.col(2),
-                               cv.area, cv.depth, Method::kCgal);
+  ContactPatches inH = intersect(toCgal(m_H, Eigen::Isometry3d::Identity()),
+                                 toCgal(geometry::tessellateBox(size), X_HBox));
+  if (!inH.inContact()) return inH;
+  ContactPatches inW;
+  inW.aggregate = halfspaceToWorld(inH.aggregate, X_WH);
+  for (const ContactVolume& patch : inH.patches)
+    inW.patches.push_back(halfspaceToWorld(patch, X_WH));
+  return inW;
 }
 
-ContactVolume cgalContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                          const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
+ContactPatches cgalContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                           const geometry::Shape& b, const Eigen::Isometry3d& X_WB) {
   const auto* meshA = std::get_if<geometry::Mesh>(&a);
   const auto* meshB = std::get_if<geometry::Mesh>(&b);
   if (meshA && meshB) return cgalMeshMeshContact(*meshA->mesh, X_WA, *meshB->mesh, X_WB);

@@ -296,9 +296,11 @@ struct GridSums {
   }
 };
 
+/// The grid's sums; with `depth` (`lines`), also δ (the line integrals) of every line.
 GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
-                   std::vector<double>* depth) {
+                   std::vector<double>* depth, std::vector<LineIntegrals>* lines = nullptr) {
   if (depth) depth->assign(static_cast<std::size_t>(g.n) * g.n, 0.0);
+  if (lines) lines->assign(static_cast<std::size_t>(g.n) * g.n, LineIntegrals{});
   const GridCrossings crossA(g, a, b), crossB(g, b, a);
   return tbb::parallel_reduce(
       tbb::blocked_range<int>(0, g.n), GridSums{},
@@ -308,6 +310,7 @@ GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
             const LineIntegrals li = overlap(crossA.at(i, j), crossB.at(i, j));
             sums.add(li, g.offset(i, j), g.u, g.cellArea());
             if (depth) (*depth)[static_cast<std::size_t>(i) * g.n + j] = li.L;
+            if (lines) (*lines)[static_cast<std::size_t>(i) * g.n + j] = li;
           }
         }
         return sums;
@@ -371,7 +374,7 @@ struct AxisPasses {
 };
 
 /// One pass along each world axis. A line along e_k crossing ∂A inside B with normal n_A
-/// adds sign(n_A·e_k) dS to (∫_{∂A∩B} n_A dA)_k, and likewise for ∂B, so component k
+/// adds sign(n_A·e_k) dS to (∫_{∂A∩B} n_A dA)_k, and likewise for ∂B2, so component k
 /// of the MODEL.md §1 normal needs only crossing signs. The wet segments, widened by two cells
 /// all round, bound the region as sampled. The three passes' bounds are united, not
 /// intersected: a thin region that one pass resolves and another misses (two ribs pressed
@@ -422,24 +425,26 @@ std::pair<Vector3d, WorldBox> normalAndBox(const ColumnBody& a, const ColumnBody
 }
 
 struct Refined {
-  GridSums sums;              ///< of the finest level
-  int resolution = 0;         ///< its lines per side
-  double error = kInf;        ///< the reported estimate
-  std::vector<double> depth;  ///< δ per line of the finest level, when asked for
+  GridSums sums;                     ///< of the finest level
+  int resolution = 0;                ///< its lines per side
+  double error = kInf;               ///< the reported estimate
+  std::vector<double> depth;         ///< δ per line of the finest level, when asked for
+  std::vector<LineIntegrals> lines;  ///< line integrals of the finest level, when asked for
 };
 
 /// Refines the grid ×2 per level until two successive level-to-level changes of V are within
 /// the tolerance; the larger of them is the estimate (one change alone can vanish by chance).
 Refined refine(const ColumnBody& a, const ColumnBody& b, const WorldBox& box, const Vector3d& n,
-               const ColumnOptions& options, bool wantDepth) {
+               const ColumnOptions& options, bool wantDepth, bool wantLines) {
   Refined r;
   r.resolution = options.initialResolution;
-  r.sums = integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr);
+  r.sums = integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr,
+                     wantLines ? &r.lines : nullptr);
   double previousChange = kInf;
   while (r.resolution < options.maxResolution) {
     r.resolution *= 2;
-    const GridSums next =
-        integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr);
+    const GridSums next = integrate(a, b, Grid(box, n, r.resolution),
+                                    wantDepth ? &r.depth : nullptr, wantLines ? &r.lines : nullptr);
     const double change = std::abs(next.M.m0 - r.sums.M.m0) / next.M.m0;
     r.error = std::max(change, previousChange);
     previousChange = change;
@@ -524,47 +529,100 @@ ContactVolume assemble(const Grid& g, const GridSums& s, const Vector3d& n) {
   return contactFromMoments(s.M, g.o, n, s.wetLines * g.cellArea(), s.maxDepth, Method::kColumns);
 }
 
+/// Do the wet parts of two neighbouring lines touch? Their spans [tFirst, tLast] along n
+/// overlap (one region crossing both).
+bool spansTouch(const LineIntegrals& x, const LineIntegrals& y) {
+  return y.L > 0.0 && x.tFirst <= y.tLast && y.tFirst <= x.tLast;
+}
+
+/// The wet lines of grid g grouped into patches: lines joined to their four neighbours whose
+/// spans along n overlap (spansTouch), each group summed alone (row by row) with the pair's
+/// normal n and estimate `error`. Two regions stacked on one line are one patch.
+std::vector<ContactVolume> columnPatches(const Grid& g, const std::vector<LineIntegrals>& lines,
+                                         const Vector3d& n, double error) {
+  const auto at = [&g](int i, int j) { return static_cast<std::size_t>(i) * g.n + j; };
+  std::vector<int> label(lines.size(), -1);
+  std::vector<std::pair<int, int>> stack;
+  int groups = 0;
+  for (int i = 0; i < g.n; ++i) {
+    for (int j = 0; j < g.n; ++j) {
+      if (lines[at(i, j)].L <= 0.0 || label[at(i, j)] >= 0) continue;
+      label[at(i, j)] = groups;
+      stack.assign(1, {i, j});
+      while (!stack.empty()) {
+        const auto [k, l] = stack.back();
+        stack.pop_back();
+        for (const auto [dk, dl] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const int k2 = k + dk, l2 = l + dl;
+          if (k2 < 0 || l2 < 0 || k2 >= g.n || l2 >= g.n || label[at(k2, l2)] >= 0 ||
+              !spansTouch(lines[at(k, l)], lines[at(k2, l2)])) {
+            continue;
+          }
+          label[at(k2, l2)] = groups;
+          stack.push_back({k2, l2});
+        }
+      }
+      ++groups;
+    }
+  }
+  std::vector<GridSums> sums(static_cast<std::size_t>(groups));
+  for (int i = 0; i < g.n; ++i) {
+    for (int j = 0; j < g.n; ++j) {
+      if (label[at(i, j)] < 0) continue;
+      sums[static_cast<std::size_t>(label[at(i, j)])].add(lines[at(i, j)], g.offset(i, j), g.u,
+                                                          g.cellArea());
+    }
+  }
+  std::vector<ContactVolume> patches;
+  for (const GridSums& s : sums) {
+    patches.push_back(assemble(g, s, n));
+    patches.back().relative_error = error;
+  }
+  return patches;
+}
+
 /// ColumnOptions::fixed against a half-space: one grid (fixedHalfspaceGrid), the plane's normal
 /// (out of B into A), no axis passes, no estimate.
 ContactVolume fixedHalfspaceContact(const ColumnBody& a, const ColumnBody& b, int resolution,
-                                    DepthField* field) {
+                                    DepthField* field, std::vector<ContactVolume>* patches) {
   const ColumnBody& mesh = a.bvh ? a : b;
   const ColumnBody& plane = a.bvh ? b : a;
   const Vector3d n = a.bvh ? Vector3d(b.X_WB.linear().col(2)) : Vector3d(-a.X_WB.linear().col(2));
   const Grid g = fixedHalfspaceGrid(*mesh.bvh, mesh.X_WB, plane.X_WB, n, resolution);
   if (g.n == 0) return {.method = Method::kColumns};
   std::vector<double> depth;
-  const GridSums sums = integrate(a, b, g, field ? &depth : nullptr);
+  std::vector<LineIntegrals> lines;
+  const GridSums sums = integrate(a, b, g, field ? &depth : nullptr, patches ? &lines : nullptr);
   if (!(sums.M.m0 > 0.0)) return {.method = Method::kColumns};
   if (field) *field = fieldOf(g, depth);
+  if (patches) *patches = columnPatches(g, lines, n, kInf);
   ContactVolume cv = assemble(g, sums, n);
   cv.relative_error = kInf;
   return cv;
 }
 
-}  // namespace
-
-ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const ColumnOptions& options,
-                             DepthField* field) {
+/// columnsContact, and with `patches`, the finest grid's columnPatches.
+ContactVolume columnsWithPatches(const ColumnBody& a, const ColumnBody& b,
+                                 const ColumnOptions& options, DepthField* field,
+                                 std::vector<ContactVolume>* patches) {
   if (!a.bvh && !b.bvh) throw std::invalid_argument("columnsContact: two half-spaces");
   if (options.isFixed() && (!a.bvh || !b.bvh)) {
-    return fixedHalfspaceContact(a, b, options.initialResolution, field);
+    return fixedHalfspaceContact(a, b, options.initialResolution, field, patches);
   }
   const ContactVolume none{.method = Method::kColumns};
   const WorldBox overlap = overlapBox(a, b);
   if (overlap.empty()) return none;
   const auto [n, box] = normalAndBox(a, b, overlap, options);
   if (n.isZero()) return none;
-  const Refined r = refine(a, b, box, n, options, field != nullptr);
+  const Refined r = refine(a, b, box, n, options, field != nullptr, patches != nullptr);
   if (!(r.sums.M.m0 > 0.0)) return none;
   const Grid g(box, n, r.resolution);
   if (field) *field = fieldOf(g, r.depth);
+  if (patches) *patches = columnPatches(g, r.lines, n, r.error);
   ContactVolume cv = assemble(g, r.sums, n);
   cv.relative_error = r.error;
   return cv;
 }
-
-namespace {
 
 /// A mesh (with its cached tree) or a half-space as a column-method body; null otherwise.
 std::optional<ColumnBody> columnBody(const geometry::Shape& s, const Isometry3d& X_WS,
@@ -576,17 +634,49 @@ std::optional<ColumnBody> columnBody(const geometry::Shape& s, const Isometry3d&
   return ColumnBody{keepAlive.get(), X_WS};
 }
 
+/// Two shapes as column-method bodies, with the trees they use.
+struct ColumnPair {
+  std::shared_ptr<const MeshBvh> bvhA, bvhB;
+  ColumnBody a, b;
+};
+
+/// @throws InputError when the pair is not handled, naming both shapes
+ColumnPair columnPair(const geometry::Shape& a, const Isometry3d& X_WA, const geometry::Shape& b,
+                      const Isometry3d& X_WB) {
+  requireHandles(Method::kColumns, a, b);
+  ColumnPair pair;
+  const std::optional<ColumnBody> bodyA = columnBody(a, X_WA, pair.bvhA);
+  const std::optional<ColumnBody> bodyB = columnBody(b, X_WB, pair.bvhB);
+  assert(bodyA && bodyB);
+  pair.a = *bodyA;
+  pair.b = *bodyB;
+  return pair;
+}
+
 }  // namespace
 
 ContactVolume columnsContact(const geometry::Shape& a, const Isometry3d& X_WA,
                              const geometry::Shape& b, const Isometry3d& X_WB, DepthField* field,
                              const ColumnOptions& options) {
-  requireHandles(Method::kColumns, a, b);
-  std::shared_ptr<const MeshBvh> bvhA, bvhB;
-  const std::optional<ColumnBody> bodyA = columnBody(a, X_WA, bvhA);
-  const std::optional<ColumnBody> bodyB = columnBody(b, X_WB, bvhB);
-  assert(bodyA && bodyB);
-  return columnsContact(*bodyA, *bodyB, options, field);
+  const ColumnPair pair = columnPair(a, X_WA, b, X_WB);
+  return columnsContact(pair.a, pair.b, options, field);
+}
+
+ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b, const ColumnOptions& options,
+                             DepthField* field) {
+  return columnsWithPatches(a, b, options, field, nullptr);
+}
+
+ContactPatches columnsPatches(const geometry::Shape& a, const Isometry3d& X_WA,
+                              const geometry::Shape& b, const Isometry3d& X_WB, DepthField* field,
+                              const ColumnOptions& options) {
+  const ColumnPair pair = columnPair(a, X_WA, b, X_WB);
+  std::vector<ContactVolume> patches;
+  ContactPatches out = singlePatch(columnsWithPatches(pair.a, pair.b, options, field, &patches));
+  if (!out.inContact() || patches.size() == 1) return out;
+  sortPatches(patches);
+  out.patches = std::move(patches);
+  return out;
 }
 
 }  // namespace vcontact::volume

@@ -51,13 +51,25 @@ struct ColumnOptions {
 ContactVolume columnsContact(const ColumnBody& a, const ColumnBody& b,
                              const ColumnOptions& options = {}, DepthField* field = nullptr);
 
-/// The same for shapes, and the method table's backend of `columns` (methods.hpp): A and B
-/// each a mesh (its tree from bvh_cache.hpp) or a half-space, at least one a mesh.
+/// The same for shapes: A and B each a mesh (its tree from bvh_cache.hpp) or a half-space, at least
+/// one a mesh.
 /// @param[out] field  the δ map of the finest grid, if not null
 /// @param options      grid and tolerance (default: refined to 1e-3)
 /// @throws InputError when the pair is not handled, naming both shapes
 ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
                              DepthField* field, const ColumnOptions& options = {});
+
+/// The patches of A and B by columns, and the method table's backend of `columns`
+/// (methods.hpp): columnsContact as the aggregate, and the wet lines of its finest grid grouped
+/// into patches (lines joined to the four neighbours whose wet spans along n overlap), each
+/// summed alone with the pair's normal n (not its own boundary's), area = its lines × dS,
+/// depth = its largest δ, and the pair's error estimate. Two regions crossed by the same
+/// lines are one patch.
+/// @param[out] field  the δ map of the finest grid, if not null
+/// @throws InputError when the pair is not handled, naming both shapes
+ContactPatches columnsPatches(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                              DepthField* field, const ColumnOptions& options = {});
 
 }  // namespace vcontact::volume

@@ -50,9 +50,9 @@ void requireHandles(Method method, const geometry::Shape& a, const geometry::Sha
 
 bool fillsDepthField(Method method) { return methodRow(method).fills_depth_field; }
 
-ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             const QueryOptions& options, DepthField* field, ContactCache* cache) {
+ContactPatches computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                              const QueryOptions& options, DepthField* field, ContactCache* cache) {
   // value_or would evaluate the default eagerly
   const Method method = options.method ? *options.method
                         : field        ? defaultDepthFieldMethod(a, b)

@@ -53,17 +53,17 @@ struct ContactCache {
   MeshMeshCache meshMesh;
 };
 
-/// ContactVolume of A (the payload) and B (the plate or other body) by options.method. `fast` takes
-/// two meshes only: a mesh against a half-space is refused (the halfspace clip is the exact method
-/// for it).
+/// The contact patches of A (the payload) and B (the plate or other body) and their aggregate
+/// (ContactPatches) by options.method. `fast` takes two meshes only: a mesh against a half-space is
+/// refused (the halfspace clip is the exact method for it).
 /// @param field  if not null, filled with the δ samples of the contact (left as it was when
 ///               the bodies are apart); the method must fill depth fields (fillsDepthField)
 /// @param cache  if not null, the pair's memory between queries (ContactCache)
 /// @throws InputError when the method does not handle the pair, naming both shapes, or
 ///         cannot fill the depth field asked for
-ContactVolume computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                             const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                             const QueryOptions& options = {}, DepthField* field = nullptr,
-                             ContactCache* cache = nullptr);
+ContactPatches computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                              const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                              const QueryOptions& options = {}, DepthField* field = nullptr,
+                              ContactCache* cache = nullptr);
 
 }  // namespace vcontact::volume

@@ -1,5 +1,6 @@
 #include "volume/contact_volume.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -52,6 +53,26 @@ ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector
 ContactVolume swapped(ContactVolume cv) {
   cv.n_W = -cv.n_W;
   return cv;
+}
+
+ContactPatches swapped(ContactPatches contact) {
+  for (ContactVolume& patch : contact.patches) patch = swapped(patch);
+  contact.aggregate = swapped(contact.aggregate);
+  return contact;
+}
+
+void sortPatches(std::vector<ContactVolume>& patches) {
+  std::sort(patches.begin(), patches.end(), [](const ContactVolume& l, const ContactVolume& r) {
+    if (l.volume != r.volume) return l.volume > r.volume;
+    return std::lexicographical_compare(l.p_WC.begin(), l.p_WC.end(), r.p_WC.begin(), r.p_WC.end());
+  });
+}
+
+ContactPatches singlePatch(const ContactVolume& cv) {
+  ContactPatches contact;
+  contact.aggregate = cv;
+  if (cv.inContact()) contact.patches.push_back(cv);
+  return contact;
 }
 
 }  // namespace vcontact::volume

@@ -2,8 +2,8 @@
 // The seam between geometry and forces (ARCHITECTURE.md): every volume backend fills this
 // struct, every force model reads it. Definitions follow docs/MODEL.md §1.
 //
-// Frames: all quantities are in the world frame W. Body A ("a", the payload; B1 in the papers)
-// and body B ("b", the plate or other body; B2); the normal n points out of B into A.
+// Frames: all quantities are in the world frame W. Body B1 ("a", the payload) and body B2
+// ("b", the plate); the normal n points out of B into A.
 
 #include <Eigen/Core>
 #include <limits>
@@ -27,7 +27,7 @@ Method parseMethod(const std::string& name);
 struct ContactVolume {
   double volume = 0.0;                             ///< V, m³ (0: no contact)
   Eigen::Vector3d p_WC = Eigen::Vector3d::Zero();  ///< p_c, the centroid C in W, m
-  Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< n, unit, out of body B into body A
+  Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< n, unit, out of B into A
   Eigen::Matrix3d J_v = Eigen::Matrix3d::Zero();   ///< ∫((ρ·ρ)I − ρρᵀ)dV about p_c, m⁵
   Eigen::Matrix3d J_s = Eigen::Matrix3d::Zero();   ///< surface inertia tensor, m⁵
   double area = 0.0;                               ///< contact area A, m²
@@ -40,6 +40,28 @@ struct ContactVolume {
 
   bool inContact() const { return volume > 0.0; }
 };
+
+/// The interference of a pair split into its contact regions: the volumetric model is defined
+/// per connected region of A ∩ B, each with its own V, p_c, n, J_s and friction state
+/// (MODEL.md §1). The pair's total V is the sum of the patches' V.
+struct ContactPatches {
+  /// The connected components of A ∩ B, each a full ContactVolume of its own region, ordered
+  /// by sortPatches.
+  std::vector<ContactVolume> patches;
+  /// The whole A ∩ B as one region (one centroid, one normal): the single-region figures.
+  ContactVolume aggregate;
+
+  bool inContact() const { return !patches.empty(); }
+};
+
+/// The deterministic order of patches: decreasing V, ties by the lexicographic order of the
+/// centroid's (x, y, z) in W. The order depends on no face index, so every method lists the
+/// patches of one pose alike up to its own accuracy.
+void sortPatches(std::vector<ContactVolume>& patches);
+
+/// A pair whose interference is one region: that region is the aggregate and the only patch
+/// (none when `cv` is not in contact).
+ContactPatches singlePatch(const ContactVolume& cv);
 
 /// The penetration depth δ(s) sampled on the contact plate S (MODEL.md §1, V = ∫_S δ dS),
 /// for a force law integrated pointwise over the plate; filled by the methods that sample it
@@ -83,5 +105,7 @@ ContactVolume contactFromMoments(const geometry::Moments& M, const Eigen::Vector
 
 /// The same contact seen with the bodies swapped: the normal flips, nothing else changes.
 ContactVolume swapped(ContactVolume cv);
+/// The same for every patch and the aggregate.
+ContactPatches swapped(ContactPatches contact);
 
 }  // namespace vcontact::volume

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "geometry/bvh.hpp"
+#include "geometry/mesh_topology.hpp"
 #include "geometry/moments.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/triangle_mesh.hpp"
@@ -46,11 +47,24 @@ ContactVolume meshHalfspaceContact(const geometry::TriangleMesh& mesh,
 ContactVolume meshHalfspaceContact(const geometry::MeshBvh& bvh, const Eigen::Isometry3d& X_WM,
                                    const Eigen::Isometry3d& X_WH);
 
+/// The patches of a mesh body against a half-space: the connected components of the clipped
+/// solid, each clipped about its own deepest vertex, beside the accelerated clip's aggregate
+/// (bit-identical to meshHalfspaceContact). A query whose straddling faces close into one
+/// cap loop on a one-shell mesh is one patch, the aggregate, at the cost of following that
+/// loop; any other pays O(faces below the plane) to label the components (a cup cut through
+/// its walls is one component joined through its annular cap).
+/// @pre the mesh's shells are not nested (no cavities)
+ContactPatches meshHalfspacePatches(const geometry::MeshBvh& bvh,
+                                    const geometry::MeshTopology& topo,
+                                    const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH);
+
 /// The method table's backend of `halfspace` (methods.hpp): a mesh (A or B, its tree from
-/// bvh_cache.hpp) against a half-space, by the accelerated clip, in either order.
+/// bvh_cache.hpp, its topology from mesh_topology_cache.hpp) against a half-space, by
+/// meshHalfspacePatches, in either order; a convex mesh (mesh_convexity.hpp) is one patch,
+/// the accelerated clip alone.
 /// @pre one of a, b a mesh and the other a half-space
-ContactVolume halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                                   const geometry::Shape& b, const Eigen::Isometry3d& X_WB);
+ContactPatches halfspaceClipContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                                    const geometry::Shape& b, const Eigen::Isometry3d& X_WB);
 
 /// Turns moments about o in H into a ContactVolume in W with n = +z_H (the half-space is body B).
 ContactVolume contactFromClippedMoments(const ClippedMoments& clipped,

@@ -21,9 +21,14 @@ std::shared_ptr<const Derived> derivedOf(
   static std::mutex mutex;
   static std::map<const geometry::TriangleMesh*, Entry> cache;
   const std::lock_guard lock(mutex);
+  // A live entry at this address is this mesh's (two live meshes cannot share an address);
+  // the map is swept of dead meshes only when an entry is added, so a query's look-up costs
+  // one find (the per-pair entry point asks for a tree and a topology at every query).
+  const auto it = cache.find(mesh.get());
+  if (it != cache.end() && !it->second.mesh.expired()) return it->second.derived;
   std::erase_if(cache, [](const auto& kv) { return kv.second.mesh.expired(); });
   Entry& e = cache[mesh.get()];
-  if (!e.derived) e = {mesh, std::make_shared<const Derived>(*mesh)};
+  e = {mesh, std::make_shared<const Derived>(*mesh)};
   return e.derived;
 }
 

@@ -47,6 +47,7 @@ Intersector::Intersector(Body a, Body b, Scratch& scratch) : body_{a, b}, scratc
     m.scratch.feet.reset(nf);
     m.scratch.inside.reset(nv);
     m.scratch.insideList.clear();
+    m.scratch.vertexNode.reset(nv);
     m.scratch.cut.reset(nf);
     m.scratch.cutList.clear();
     m.scratch.crossingEdge.reset(m.topo.edges().size());
@@ -65,7 +66,7 @@ Intersector::Intersector(Body a, Body b, Scratch& scratch) : body_{a, b}, scratc
   margin_ = kBoxMargin * (extent(body_[0]) + extent(body_[1]));
 }
 
-ContactVolume Intersector::run(MeshMeshCache* cache) {
+ContactPatches Intersector::run(MeshMeshCache* cache) {
   findCrossings(cache);
   walkEdges();
   buildSegments();
@@ -75,7 +76,13 @@ ContactVolume Intersector::run(MeshMeshCache* cache) {
     addWholeEdgesOfCutFaces(side);
     collectWholeFaces(side);
   }
-  return integrate();
+  ContactPatches out = singlePatch(integrate());
+  if (!out.inContact() || (groupPieces() <= 1 && !wholeShellInside_)) return out;
+  joinWholeFaces();
+  if (joinHolesWithinFaces() == 1) return out;
+  out.patches = integratePatches();
+  sortPatches(out.patches);
+  return out;
 }
 
 std::string Intersector::describeFailure(const std::string& what) const {
@@ -221,31 +228,22 @@ bool Intersector::inArea(int side, int face) const {
 }
 
 ContactVolume Intersector::integrate() {
-  const ContactVolume none{.method = Method::kFast};
   Vector3d o;
   if (!scratch_.crossings.empty()) {
     o = scratch_.crossings.front().x;
   } else if (!scratch_.wholes.empty()) {
     o = body_[scratch_.wholes.front().side].corner(scratch_.wholes.front().face, 0);
   } else {
-    return none;
+    return ContactVolume{.method = Method::kFast};
   }
   // Every piece and whole face as a directed boundary patch: its face's unit normal and
   // its signed area (area and depth are evaluated once n is known).
   auto& patches = scratch_.patches;
   patches.clear();
-  geometry::TetrahedronSum fan;
-  double termSum6 = 0.0;             // 6 Σ |fan term volumes|
-  double areaSum = 0.0;              // Σ |patch areas|
-  Vector3d scale3 = o.cwiseAbs();    // largest |coordinate| of the patches' points, per axis
-  Vector3d nSum = Vector3d::Zero();  // ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1)
+  RegionSum sum(o);
   const auto add = [&](int side, int face, const Vector3d& c, const Vector3d& p, const Vector3d& q,
                        const Vector3d& nrm, double area) {
-    termSum6 += std::abs(fan.add(c - o, p - o, q - o));
-    areaSum += std::abs(area);
-    scale3 = scale3.cwiseMax(p.cwiseAbs()).cwiseMax(q.cwiseAbs());
-    if (inNormal(side, face)) nSum += (side == 1 ? area : -area) * nrm;
-    if (inArea(side, face)) patches.push_back({nrm, area, p, q});
+    sum.add(side, c, p, q, nrm, area, inNormal(side, face), inArea(side, face), patches);
   };
   // Every piece lies on a cut face: their feet first, in one loop whose square roots and
   // divisions do not wait on each other.
@@ -266,14 +264,21 @@ ContactVolume Intersector::integrate() {
     add(wf.side, wf.face, a, b, c, nrm, 0.5 * twiceArea);
     if (inArea(wf.side, wf.face)) patches.push_back({nrm, 0.0, a, a});  // for depth
   }
-  const geometry::Moments M = fan.moments();
-  const double scale = scale3.maxCoeff(), termSum = termSum6 / 6.0;
-  if (!(M.m0 > kVolumeNoise * kEps * (scale * areaSum + termSum))) return none;
+  return contactOf(sum, patches);
+}
+
+ContactVolume Intersector::contactOf(const RegionSum& sum, const std::vector<Patch>& parts) const {
+  const geometry::Moments M = sum.fan.moments();
+  const double scale = sum.scale3.maxCoeff(), termSum = sum.termSum6 / 6.0;
+  if (!(M.m0 > kVolumeNoise * kEps * (scale * sum.areaSum + termSum))) {
+    return ContactVolume{.method = Method::kFast};
+  }
+  const Vector3d& o = sum.o;
   const Vector3d c_o = M.m1 / M.m0;
-  const Vector3d n = contactNormal(nSum, areaSum, o + c_o);
+  const Vector3d n = contactNormal(sum.nSum, sum.areaSum, o + c_o);
 
   double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
-  for (const Patch& pt : patches) {
+  for (const Patch& pt : parts) {
     area2 += std::abs(n.dot(pt.n_W)) * pt.area;
     for (const Vector3d* p : {&pt.p, &pt.q}) {
       lo = std::min(lo, n.dot(*p - o));
@@ -300,9 +305,9 @@ using internal::Isometry3d;
 using internal::MeshBvh;
 using internal::MeshTopology;
 
-ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
-                              const MeshBvh& b, const MeshTopology& topoB, const Isometry3d& X_WB,
-                              MeshMeshCache* cache) {
+ContactPatches meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
+                               const MeshBvh& b, const MeshTopology& topoB, const Isometry3d& X_WB,
+                               MeshMeshCache* cache) {
   // A closed mesh has every edge in two faces: 2 E = 3 F (an open one has more edges).
   assert(2 * topoA.edges().size() == 3 * std::size_t(a.mesh().triangleCount()));
   assert(2 * topoB.edges().size() == 3 * std::size_t(b.mesh().triangleCount()));
@@ -312,8 +317,8 @@ ContactVolume meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const
   return query.run(cache);
 }
 
-ContactVolume fastContact(const geometry::Shape& a, const Isometry3d& X_WA,
-                          const geometry::Shape& b, const Isometry3d& X_WB, MeshMeshCache* cache) {
+ContactPatches fastContact(const geometry::Shape& a, const Isometry3d& X_WA,
+                           const geometry::Shape& b, const Isometry3d& X_WB, MeshMeshCache* cache) {
   assert(std::holds_alternative<geometry::Mesh>(a) && std::holds_alternative<geometry::Mesh>(b));
   const auto& meshA = std::get<geometry::Mesh>(a).mesh;
   const auto& meshB = std::get<geometry::Mesh>(b).mesh;

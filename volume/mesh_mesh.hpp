@@ -74,8 +74,10 @@ struct MeshMeshCache {
               const Eigen::Isometry3d& X_BA_now) const;
 };
 
-/// ContactVolume of mesh A (the payload, pose X_WA) and mesh B (the plate or other body, pose
-/// X_WB), Method::kFast:
+/// The contact of mesh A (the payload, pose X_WA) and mesh B (the plate or other body, pose X_WB),
+/// Method::kFast, as the whole region (the aggregate) and its connected components (the patches,
+/// each by the same formulas from its own boundary pieces, about its own apex, in sortPatches
+/// order):
 ///   V, p_c, J_v, J_s: the moments of A ∩ B (exact up to rounding; relative_error NaN);
 ///   n ∝ ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1);
 ///   area = ½ Σ_faces |n_f·n| A_f over the region's boundary faces, the projection of the
@@ -83,24 +85,31 @@ struct MeshMeshCache {
 ///   cgal_reference.hpp, so the two methods report the same area);
 ///   depth = extent of the region along n.
 /// Apart, or touching without overlap: V = 0 (inContact() false).
+/// Patches (step 5, mesh_mesh_patches.cpp): the pieces of ∂(A ∩ B) join through their end
+/// nodes (crossings, inside vertices; whole faces through their corners); a face whose region
+/// is bounded by several such groups joins each hole loop to the smallest outer loop around
+/// it on that face. With no cavities in A or B, each component of A ∩ B has one connected
+/// boundary, so the groups are exactly its components. A query whose pieces form one group
+/// (and with no shell wholly inside the other body) pays one union-find pass over its pieces;
+/// only multi-group queries join whole faces and integrate again.
 /// All outputs in W.
 /// @param a, b        the trees of the two meshes (body frames A and B)
 /// @param topoA, topoB the topology of the same meshes
 /// @param cache        if not null, the pair's leaf pairs kept between queries (MeshMeshCache)
 /// @pre both meshes closed, outward-oriented, without degenerate faces or self-intersections
-///   (geometry/mesh_check.hpp); thread-safe (per-thread scratch memory).
+///   (geometry/mesh_check.hpp), without cavities; thread-safe (per-thread scratch memory).
 /// @throws std::logic_error, with both poses to 17 digits, if the crossings do not close
 ///   up into segments (an internal invariant; it would mean a predicate bug)
-ContactVolume meshMeshContact(const geometry::MeshBvh& a, const geometry::MeshTopology& topoA,
-                              const Eigen::Isometry3d& X_WA, const geometry::MeshBvh& b,
-                              const geometry::MeshTopology& topoB, const Eigen::Isometry3d& X_WB,
-                              MeshMeshCache* cache = nullptr);
+ContactPatches meshMeshContact(const geometry::MeshBvh& a, const geometry::MeshTopology& topoA,
+                               const Eigen::Isometry3d& X_WA, const geometry::MeshBvh& b,
+                               const geometry::MeshTopology& topoB, const Eigen::Isometry3d& X_WB,
+                               MeshMeshCache* cache = nullptr);
 
 /// The method table's backend of `fast` (methods.hpp): meshMeshContact of two mesh shapes,
 /// their trees and topologies from bvh_cache.hpp and mesh_topology_cache.hpp.
 /// @pre a and b both meshes
-ContactVolume fastContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                          const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                          MeshMeshCache* cache);
+ContactPatches fastContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                           const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                           MeshMeshCache* cache);
 
 }  // namespace vcontact::volume

@@ -25,9 +25,19 @@ constexpr double kLambdaTie = 1e-9;
 }  // namespace
 
 void Intersector::emitAlongEdge(int side, const MeshEdge& E, const Vector3d& from,
-                                const Vector3d& to) {
-  scratch_.pieces.push_back({side, E.tri[0], from, to});  // the owner runs v0 → v1
-  scratch_.pieces.push_back({side, E.tri[1], to, from});
+                                const Vector3d& to, int fromNode, int toNode) {
+  scratch_.pieces.push_back({side, E.tri[0], from, to, fromNode, toNode});  // owner: v0 → v1
+  scratch_.pieces.push_back({side, E.tri[1], to, from, toNode, fromNode});
+}
+
+int Intersector::vertexNode(int side, int v) {
+  bool fresh;
+  int& node = body_[side].scratch.vertexNode.slot(v, fresh);
+  if (fresh) {
+    node = static_cast<int>(scratch_.nodeParent.size());
+    scratch_.nodeParent.push_back(node);
+  }
+  return node;
 }
 
 void Intersector::markInside(int side, int v) {
@@ -39,6 +49,8 @@ void Intersector::walkEdges() {
   auto& order = scratch_.order;
   order.resize(scratch_.crossings.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  scratch_.nodeParent.resize(order.size());  // crossing i is node i
+  for (std::size_t i = 0; i < order.size(); ++i) scratch_.nodeParent[i] = static_cast<int>(i);
   const auto& X = scratch_.crossings;
   std::sort(order.begin(), order.end(), [&X](int i, int j) {
     const Crossing& a = X[static_cast<std::size_t>(i)];
@@ -60,14 +72,17 @@ void Intersector::walkEdges() {
     m.scratch.seeded[static_cast<std::size_t>(m.topo.component(E.v0))] = 1;
     if (inside) markInside(first.side, E.v0);
     Vector3d from = m.placedVertex(E.v0);
+    int fromNode = inside ? vertexNode(first.side, E.v0) : -1;
     for (; i < end; ++i) {
       const Crossing& c = X[static_cast<std::size_t>(order[i])];
-      if (inside) emitAlongEdge(first.side, E, from, c.x);
+      if (inside) emitAlongEdge(first.side, E, from, c.x, fromNode, order[i]);
       from = c.x;
+      fromNode = order[i];
       inside = c.sigma > 0;
     }
     if (inside) {
-      emitAlongEdge(first.side, E, from, m.placedVertex(E.v1));
+      emitAlongEdge(first.side, E, from, m.placedVertex(E.v1), fromNode,
+                    vertexNode(first.side, E.v1));
       markInside(first.side, E.v1);
     }
   }
@@ -136,14 +151,14 @@ void Intersector::buildSegments() {
       throw std::logic_error(describeFailure("a face pair's crossings do not form one segment"));
     }
     const Endpoint& e1 = scratch_.endpoints[i + 1];
-    const Vector3d& xs =
-        scratch_.crossings[static_cast<std::size_t>(e0.start ? e0.crossing : e1.crossing)].x;
-    const Vector3d& xe =
-        scratch_.crossings[static_cast<std::size_t>(e0.start ? e1.crossing : e0.crossing)].x;
+    const int s = e0.start ? e0.crossing : e1.crossing;
+    const int e = e0.start ? e1.crossing : e0.crossing;
+    const Vector3d& xs = scratch_.crossings[static_cast<std::size_t>(s)].x;
+    const Vector3d& xe = scratch_.crossings[static_cast<std::size_t>(e)].x;
     const int tA = static_cast<int>(e0.key >> 32);
     const int tB = static_cast<int>(e0.key & 0xffffffffu);
-    scratch_.pieces.push_back({0, tA, xs, xe});
-    scratch_.pieces.push_back({1, tB, xe, xs});
+    scratch_.pieces.push_back({0, tA, xs, xe, s, e});
+    scratch_.pieces.push_back({1, tB, xe, xs, e, s});
     if (body_[0].scratch.cut.insert(tA)) body_[0].scratch.cutList.push_back(tA);
     if (body_[1].scratch.cut.insert(tB)) body_[1].scratch.cutList.push_back(tB);
   }
@@ -185,6 +200,7 @@ void Intersector::classifyUnseededComponents(int side) {
     }
     if (!contains(1 - side, m.placedVertex(comps[c].vertices.front()), perturbationSign(side)))
       continue;
+    wholeShellInside_ = true;
     for (const int v : comps[c].vertices) markInside(side, v);
   }
 }
@@ -238,7 +254,9 @@ void Intersector::addWholeEdgesOfCutFaces(int side) {
           !m.scratch.inside.contains(m.mesh().triangles(t, k))) {
         continue;
       }
-      scratch_.pieces.push_back({side, t, m.corner(t, k), m.corner(t, (k + 1) % 3)});
+      const int v = m.mesh().triangles(t, k), w = m.mesh().triangles(t, (k + 1) % 3);
+      scratch_.pieces.push_back({side, t, m.corner(t, k), m.corner(t, (k + 1) % 3),
+                                 vertexNode(side, v), vertexNode(side, w)});
     }
   }
 }

@@ -5,6 +5,7 @@
 // Internal to those files.
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -12,6 +13,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/mesh_topology.hpp"
+#include "geometry/moments.hpp"
 #include "volume/contact_volume.hpp"
 #include "volume/mesh_mesh.hpp"
 #include "volume/stamp_set.hpp"
@@ -43,10 +45,11 @@ struct SideScratch {
   std::vector<int> insideList;
   StampSet cut;  ///< faces with at least one intersection segment
   std::vector<int> cutList;
-  StampSet crossingEdge;      ///< edges that cross the other surface
-  StampSet coplanarSame;      ///< faces in the plane of a face of the other mesh, same way
-  StampSet coplanarOpposite;  ///< ... facing it
-  std::vector<char> seeded;   ///< per component: has a crossing edge
+  StampSet crossingEdge;          ///< edges that cross the other surface
+  StampSet coplanarSame;          ///< faces in the plane of a face of the other mesh, same way
+  StampSet coplanarOpposite;      ///< ... facing it
+  std::vector<char> seeded;       ///< per component: has a crossing edge
+  StampedValues<int> vertexNode;  ///< boundary node of an inside vertex (Intersector::vertexNode)
 };
 
 /// One edge of one mesh through one face of the other.
@@ -66,11 +69,14 @@ struct Endpoint {
   bool start;
 };
 
-/// A directed boundary edge (p → q) of the region t ∩ (other body), t a face of mesh `side`.
+/// A directed boundary edge (p → q) of the region t ∩ (other body), t a face of mesh `side`,
+/// and the boundary nodes at its ends (Intersector::vertexNode; a crossing's node is its
+/// index), through which the pieces of one patch connect.
 struct Piece {
   int side;
   int face;
   Vector3d p, q;
+  int from, to;
 };
 
 /// A boundary patch as the area and depth passes see it.
@@ -78,6 +84,30 @@ struct Patch {
   Vector3d n_W;   ///< unit normal of its face
   double area;    ///< signed area (a piece's share of its face's region)
   Vector3d p, q;  ///< points of the patch, for the extent along n
+};
+
+/// The integration's running sums over one region's boundary (step 4): its fan about the apex
+/// o, the sizes its noise test needs, n's area vector and the patches for area and depth.
+struct RegionSum {
+  explicit RegionSum(const Vector3d& apex) : o(apex), scale3(apex.cwiseAbs()) {}
+
+  /// Adds the boundary triangle (c, p, q) of a face with unit normal nrm and signed area
+  /// `area`, of mesh `side`; `normal`, `area`: whether it counts in n, in area and depth.
+  void add(int side, const Vector3d& c, const Vector3d& p, const Vector3d& q, const Vector3d& nrm,
+           double area, bool inNormal, bool inArea, std::vector<Patch>& parts) {
+    termSum6 += std::abs(fan.add(c - o, p - o, q - o));
+    areaSum += std::abs(area);
+    scale3 = scale3.cwiseMax(p.cwiseAbs()).cwiseMax(q.cwiseAbs());
+    if (inNormal) nSum += (side == 1 ? area : -area) * nrm;
+    if (inArea) parts.push_back({nrm, area, p, q});
+  }
+
+  Vector3d o;
+  geometry::TetrahedronSum fan;
+  double termSum6 = 0.0;             ///< 6 Σ |fan term volumes|
+  double areaSum = 0.0;              ///< Σ |patch areas|
+  Vector3d scale3;                   ///< largest |coordinate| of the points, per axis
+  Vector3d nSum = Vector3d::Zero();  ///< ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA (MODEL.md §1)
 };
 
 struct WholeFace {
@@ -97,6 +127,8 @@ struct Scratch {
   /// Faces of B's leaf that meet A's leaf slab (testLeaves), with their placement.
   std::vector<std::pair<int, const PlacedFace*>> columns;
   std::vector<Patch> patches;
+  /// Union-find parents of the boundary nodes: crossings first, then inside vertices.
+  std::vector<int> nodeParent;
 };
 
 /// A mesh placed in W for one query.
@@ -146,12 +178,15 @@ struct Body {
 /// A is the body moved by +τ (exact_predicates.hpp).
 inline int perturbationSign(int side) { return side == 0 ? 1 : -1; }
 
+struct FaceLoops;
+struct PlaneAxes;
+
 /// One query of meshMeshContact over two placed bodies (the steps of mesh_mesh.hpp).
 class Intersector {
  public:
   Intersector(Body a, Body b, Scratch& scratch);
 
-  ContactVolume run(MeshMeshCache* cache);
+  ContactPatches run(MeshMeshCache* cache);
 
   /// `what` went wrong, with both poses to 17 digits (a reproducible test case).
   std::string describeFailure(const std::string& what) const;
@@ -174,7 +209,10 @@ class Intersector {
   inline void testEdge(int side, int e, int face, int s0, int s1);
 
   // --- 3: boundary pieces (mesh_mesh_boundary.cpp) ------------------------------------------
-  void emitAlongEdge(int side, const MeshEdge& E, const Vector3d& from, const Vector3d& to);
+  void emitAlongEdge(int side, const MeshEdge& E, const Vector3d& from, const Vector3d& to,
+                     int fromNode, int toNode);
+  /// The boundary node of inside vertex v of mesh `side`, made on first use.
+  int vertexNode(int side, int v);
   void markInside(int side, int v);
   void walkEdges();
   bool orderAlongEdge(std::vector<int>::iterator first, std::vector<int>::iterator last);
@@ -189,12 +227,24 @@ class Intersector {
   bool inNormal(int side, int face) const;
   bool inArea(int side, int face) const;
   ContactVolume integrate();
+  /// The ContactVolume of a region from its sums and its area/depth patches `parts`.
+  ContactVolume contactOf(const RegionSum& sum, const std::vector<Patch>& parts) const;
   Vector3d contactNormal(const Vector3d& nSum, double areaSum, const Vector3d& p_c) const;
+  // --- 5: patches (mesh_mesh_patches.cpp) ----------------------------------------------------
+  int findNode(int node);
+  void joinNodes(int a, int b);
+  int groupPieces();
+  void joinWholeFaces();
+  int countGroups() const;
+  int joinHolesWithinFaces();
+  void joinHoles(const std::vector<FaceLoops>& loops, const PlaneAxes& axes);
+  std::vector<ContactVolume> integratePatches();
 
   Body body_[2];
   Scratch& scratch_;
   double margin_ = 0.0;
-  bool anyCoplanar_ = false;  ///< flagIfCoplanar has flagged a face pair in this query
+  bool anyCoplanar_ = false;       ///< flagIfCoplanar has flagged a face pair in this query
+  bool wholeShellInside_ = false;  ///< classifyUnseededComponents found a shell inside
 };
 
 }  // namespace vcontact::volume::internal

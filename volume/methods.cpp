@@ -30,33 +30,33 @@ bool meshAndMeshOrHalfspace(const Shape& a, const Shape& b) {
 
 // The backends as ComputeFn: each takes what it uses of the query.
 
-ContactVolume analytic(const Shape& a, const Isometry3d& X_WA, const Shape& b,
-                       const Isometry3d& X_WB, const QueryOptions&, DepthField*, ContactCache*) {
-  return analyticContact(a, X_WA, b, X_WB);
+ContactPatches analytic(const Shape& a, const Isometry3d& X_WA, const Shape& b,
+                        const Isometry3d& X_WB, const QueryOptions&, DepthField*, ContactCache*) {
+  return singlePatch(analyticContact(a, X_WA, b, X_WB));
 }
 
-ContactVolume halfspace(const Shape& a, const Isometry3d& X_WA, const Shape& b,
-                        const Isometry3d& X_WB, const QueryOptions&, DepthField*, ContactCache*) {
+ContactPatches halfspace(const Shape& a, const Isometry3d& X_WA, const Shape& b,
+                         const Isometry3d& X_WB, const QueryOptions&, DepthField*, ContactCache*) {
   return halfspaceClipContact(a, X_WA, b, X_WB);
 }
 
-ContactVolume cgal(const Shape& a, const Isometry3d& X_WA, const Shape& b, const Isometry3d& X_WB,
-                   const QueryOptions&, DepthField*, ContactCache*) {
+ContactPatches cgal(const Shape& a, const Isometry3d& X_WA, const Shape& b, const Isometry3d& X_WB,
+                    const QueryOptions&, DepthField*, ContactCache*) {
   return cgalContact(a, X_WA, b, X_WB);
 }
 
-ContactVolume fast(const Shape& a, const Isometry3d& X_WA, const Shape& b, const Isometry3d& X_WB,
-                   const QueryOptions&, DepthField*, ContactCache* cache) {
+ContactPatches fast(const Shape& a, const Isometry3d& X_WA, const Shape& b, const Isometry3d& X_WB,
+                    const QueryOptions&, DepthField*, ContactCache* cache) {
   return fastContact(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr);
 }
 
-ContactVolume columns(const Shape& a, const Isometry3d& X_WA, const Shape& b,
-                      const Isometry3d& X_WB, const QueryOptions& options, DepthField* field,
-                      ContactCache*) {
+ContactPatches columns(const Shape& a, const Isometry3d& X_WA, const Shape& b,
+                       const Isometry3d& X_WB, const QueryOptions& options, DepthField* field,
+                       ContactCache*) {
   const ColumnOptions grid = options.fixed_resolution > 0
                                  ? ColumnOptions::fixed(options.fixed_resolution)
                                  : ColumnOptions{};
-  return columnsContact(a, X_WA, b, X_WB, field, grid);
+  return columnsPatches(a, X_WA, b, X_WB, field, grid);
 }
 
 constexpr std::array kTable{

@@ -18,13 +18,14 @@ namespace vcontact::volume {
 /// concern.
 using HandlesFn = bool (*)(const geometry::Shape& a, const geometry::Shape& b);
 
-/// The backend of a method, for a pair its HandlesFn accepts (@pre handles(a, b)).
+/// The backend of a method, for a pair its HandlesFn accepts (@pre handles(a, b)): the
+/// patches of the pair and their aggregate (ContactPatches).
 /// @param field  if not null (only for a row that fills depth fields), the δ samples
 /// @param cache  if not null, the pair's memory between queries
-using ComputeFn = ContactVolume (*)(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
-                                    const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                                    const QueryOptions& options, DepthField* field,
-                                    ContactCache* cache);
+using ComputeFn = ContactPatches (*)(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
+                                     const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
+                                     const QueryOptions& options, DepthField* field,
+                                     ContactCache* cache);
 
 struct MethodRow {
   Method id;                        ///< the key ContactVolume::method carries

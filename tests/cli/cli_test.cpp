@@ -60,6 +60,38 @@ TEST(Cli, MeshAgainstHalfspaceUsesTheClip) {
   fs::remove(file);
 }
 
+// Two boxes of one file on a half-space: two patches in the JSON beside the aggregate, each
+// listed in the table; lifted clear: in_contact false and no patch.
+TEST(Cli, VolumeListsEachPatch) {
+  const fs::path file = fs::temp_directory_path() / "vcontact_cli_two_boxes.obj";
+  geometry::TriangleMesh boxes = geometry::tessellateBox({0.02, 0.02, 0.02});
+  const geometry::TriangleMesh second = boxes;
+  boxes.vertices.conservativeResize(16, 3);
+  boxes.vertices.bottomRows(8) = second.vertices;
+  boxes.vertices.bottomRows(8).col(0).array() += 0.05;
+  boxes.triangles.conservativeResize(24, 3);
+  boxes.triangles.bottomRows(12) = second.triangles.array() + 8;
+  io::writeObj(boxes, file.string());
+  const CommandResult r = run("volume " + file.string() + " halfspace --pose-a 0,0,0.009 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["in_contact"], true);
+  ASSERT_EQ(j["patches"].size(), 2u);
+  const double V = j["volume"].get<double>();
+  // two sums of the same faces about two apexes; OBJ keeps the coordinates' digits
+  EXPECT_NEAR(j["patches"][0]["volume"].get<double>() + j["patches"][1]["volume"].get<double>(), V,
+              1e-12 * V);
+  EXPECT_EQ(j["patches"][0]["normal"][2], 1.0);
+  const CommandResult table = run("volume " + file.string() + " halfspace --pose-a 0,0,0.009");
+  EXPECT_NE(table.out.find("patch 2 of 2"), std::string::npos) << table.out;
+  const CommandResult apart =
+      run("volume " + file.string() + " halfspace --pose-a 0,0,0.02 --json");
+  const auto none = nlohmann::json::parse(apart.out);
+  EXPECT_EQ(none["in_contact"], false);
+  EXPECT_TRUE(none["patches"].empty());
+  fs::remove(file);
+}
+
 TEST(Cli, BadMeshGivesOneMessageNonZeroExitAndNoOutputFile) {
   const fs::path file = fs::temp_directory_path() / "vcontact_cli_open.obj";
   const fs::path out = fs::temp_directory_path() / "vcontact_cli_should_not_exist.json";

@@ -450,8 +450,10 @@ FixedGridErrors fixedGridErrors(int lines) {
     volume::DepthField field;
     const volume::ContactVolume cv = volume::columnsContact(
         punch, X_WP, geometry::HalfSpace{}, ref.X_WH, &field, volume::ColumnOptions::fixed(lines));
-    const volume::ContactVolume exact = volume::computeContact(
-        punch, X_WP, geometry::HalfSpace{}, ref.X_WH, {volume::Method::kHalfspace});
+    const volume::ContactVolume exact =
+        volume::computeContact(punch, X_WP, geometry::HalfSpace{}, ref.X_WH,
+                               {volume::Method::kHalfspace})
+            .aggregate;
     worst.volume = std::max(worst.volume, std::abs(cv.volume / exact.volume - 1.0));
     for (double eps : {0.1, 5.0}) {
       PunchContact placed{cv, field, ref.X_WH};

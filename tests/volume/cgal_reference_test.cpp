@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "geometry/bvh.hpp"
+#include "geometry/mesh_topology.hpp"
 #include "support/test_support.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume_fixtures.hpp"
@@ -63,7 +65,7 @@ TEST(CgalReference, AgreesWithHalfspaceClip) {
         X_HM.translation().z() -= zmin + relDepth * c.size;
         const Isometry3d X_WM = X_WH * X_HM;
         const ContactVolume clip = meshHalfspaceContact(bvh, X_WM, X_WH);
-        const ContactVolume cgal = cgalMeshHalfspaceContact(c.mesh, X_WM, X_WH);
+        const ContactVolume cgal = cgalMeshHalfspaceContact(c.mesh, X_WM, X_WH).aggregate;
         expectSameContact(cgal, clip);
         EXPECT_EQ(cgal.method, Method::kCgal);
       }
@@ -83,7 +85,8 @@ TEST(CgalReference, OverlappingBoxesClosedForm) {
   const Isometry3d X_WA =
       X_WB * test::translation(offset + Vector3d(0, 0, 0.5 * b.z() + 0.5 * a.z() - d));
   const ContactVolume cv =
-      cgalMeshMeshContact(geometry::tessellateBox(a), X_WA, geometry::tessellateBox(b), X_WB);
+      cgalMeshMeshContact(geometry::tessellateBox(a), X_WA, geometry::tessellateBox(b), X_WB)
+          .aggregate;
   const double V = a.x() * a.y() * d;
   const Matrix3d R = X_WB.linear();
   const Matrix3d Sigma_B = V / 12.0 * Vector3d(a.x() * a.x(), a.y() * a.y(), d * d).asDiagonal();
@@ -105,9 +108,40 @@ TEST(CgalReference, SwappingBodiesFlipsOnlyTheNormal) {
   Isometry3d X_RP = test::translation(Vector3d(0.0004, 0.0, 0.003));
   X_RP.linear() = Eigen::AngleAxisd(0.2, Vector3d::UnitX()).toRotationMatrix();
   const Isometry3d X_WP = X_WR * X_RP;
-  const ContactVolume ab = cgalMeshMeshContact(peg, X_WP, ring, X_WR);
-  const ContactVolume ba = cgalMeshMeshContact(ring, X_WR, peg, X_WP);
+  const ContactVolume ab = cgalMeshMeshContact(peg, X_WP, ring, X_WR).aggregate;
+  const ContactVolume ba = cgalMeshMeshContact(ring, X_WR, peg, X_WP).aggregate;
   expectSameContact(ab, swapped(ba));
+}
+
+// A "U" on its legs in a half-space, and in a box whose top face is the same plane: the
+// corefined region has two components, each matching the exact clip's patch (same order,
+// sortPatches) to the exact-method tolerances, with the plate's normal.
+TEST(CgalReference, PatchesAgreeWithHalfspaceClip) {
+  const TriangleMesh u = test::uPrism({0.0107, 0.0213, 0.0071, 0.0093, 0.0161}, 0.0123);
+  const geometry::MeshBvh bvh(u);
+  const geometry::MeshTopology topo(u);
+  const Isometry3d X_WH = test::randomPose(11);
+  const Isometry3d X_WM = X_WH * test::translation({0, 0, -0.0031}) *
+                          Isometry3d(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d::UnitX()));
+  const ContactPatches clip = meshHalfspacePatches(bvh, topo, X_WM, X_WH);
+  const Vector3d plate(0.1, 0.1, 0.05);  // encloses the feet; top face z_H = 0
+  const ContactPatches inHalfspace = cgalMeshHalfspaceContact(u, X_WM, X_WH);
+  const ContactPatches inBox = cgalMeshMeshContact(u, X_WM, geometry::tessellateBox(plate),
+                                                   X_WH * test::translation({0, 0, -0.025}));
+  ASSERT_EQ(clip.patches.size(), 2u);
+  for (const ContactPatches* cgal : {&inHalfspace, &inBox}) {
+    ASSERT_EQ(cgal->patches.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const ContactVolume& a = cgal->patches[k];
+      const ContactVolume& b = clip.patches[k];
+      EXPECT_NEAR(a.volume, b.volume, kVolumeTol * b.volume);
+      EXPECT_LE((a.p_WC - b.p_WC).norm(), kMomentTol * 0.0161);
+      EXPECT_LE(relativeDifference(a.J_v, b.J_v), kMomentTol);
+      EXPECT_LE((a.n_W - b.n_W).norm(), kMomentTol);
+    }
+    EXPECT_NEAR(cgal->patches[0].volume + cgal->patches[1].volume, cgal->aggregate.volume,
+                1e-12 * cgal->aggregate.volume);  // two sums of the same faces in two orders
+  }
 }
 
 // Apart, and a face resting exactly on a face (zero-volume contact): no contact, no NaN.
@@ -115,7 +149,8 @@ TEST(CgalReference, NoContactGivesZeroWithoutNaN) {
   const TriangleMesh box = geometry::tessellateBox(Vector3d(0.01, 0.01, 0.01));
   for (double gap : {0.001, 0.0}) {
     const ContactVolume cv = cgalMeshMeshContact(box, test::translation({0.002, 0.001, 0.01 + gap}),
-                                                 box, Isometry3d::Identity());
+                                                 box, Isometry3d::Identity())
+                                 .aggregate;
     EXPECT_EQ(cv.volume, 0.0);
     EXPECT_TRUE(cv.p_WC.allFinite() && cv.J_v.allFinite() && std::isfinite(cv.r_gyr));
   }

@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "geometry/bvh.hpp"
+#include "geometry/mesh_topology.hpp"
 #include "support/test_support.hpp"
 #include "volume/cgal_reference.hpp"
 #include "volume/halfspace_clip.hpp"
@@ -84,7 +87,7 @@ TEST(Columns, AgreesWithCgalOnNamedPairs) {
     const MeshBvh a(c.a), b(c.b);
     const Isometry3d X_WA = X_WB * c.X_BA;
     const ContactVolume col = columnsContact({&a, X_WA}, {&b, X_WB});
-    const ContactVolume ref = cgalMeshMeshContact(c.a, X_WA, c.b, X_WB);
+    const ContactVolume ref = cgalMeshMeshContact(c.a, X_WA, c.b, X_WB).aggregate;
     expectNearExact(col, ref);
   }
 }
@@ -111,6 +114,39 @@ TEST(Columns, KeepsAThinSecondRegion) {
   EXPECT_NEAR(col.volume, s * s * (d1 + d2), volumeTolerance(col) * s * s * (d1 + d2));
   EXPECT_GT(col.volume, s * s * d1 * (1 + 0.5 * d2 / d1));  // the thin foot is counted
   EXPECT_LE((col.n_W - Vector3d::UnitZ()).norm(), 2e-2);
+}
+
+// A "U" on its legs on a half-space and on a plate mesh: the wet lines under the two feet are
+// apart, so two patches, each within the method's tolerance of the exact clip's patch (same
+// order, sortPatches), in the same order.
+TEST(Columns, PatchesOfTwoFeet) {
+  const auto u = std::make_shared<const TriangleMesh>(
+      test::uPrism({0.0107, 0.0213, 0.0071, 0.0093, 0.0161}, 0.0123));
+  const geometry::Shape shape = geometry::Mesh{u, "U"};
+  const MeshBvh bvh(*u);
+  const geometry::MeshTopology topo(*u);
+  const Isometry3d X_WH = test::randomPose(14);
+  const Isometry3d X_WM = X_WH * test::translation({0, 0, -0.0031}) *
+                          Isometry3d(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d::UnitX()));
+  const ContactPatches exact = meshHalfspacePatches(bvh, topo, X_WM, X_WH);
+  ASSERT_EQ(exact.patches.size(), 2u);
+  const auto plate = std::make_shared<const TriangleMesh>([] {
+    TriangleMesh m = geometry::tessellateBox(Vector3d(0.2, 0.2, 0.05));
+    m.vertices.col(2).array() -= 0.025;  // top face z_H = 0
+    return m;
+  }());
+  const ContactPatches onPlane = columnsPatches(shape, X_WM, geometry::HalfSpace{}, X_WH, nullptr);
+  const ContactPatches onPlate =
+      columnsPatches(shape, X_WM, geometry::Mesh{plate, "plate"}, X_WH, nullptr);
+  for (const ContactPatches* col : {&onPlane, &onPlate}) {
+    ASSERT_EQ(col->patches.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const ContactVolume& c = col->patches[k];
+      const ContactVolume& e = exact.patches[k];
+      EXPECT_NEAR(c.volume, e.volume, volumeTolerance(c) * e.volume) << k;
+      EXPECT_LE((c.p_WC - e.p_WC).norm(), 10.0 * volumeTolerance(c) * std::sqrt(e.area));
+    }
+  }
 }
 
 // Regression: a layer a few µm thick lying in a coordinate plane (a cube face down on a plate,

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,8 @@ TEST(ComputeContact, HalfspaceInEitherOrder) {
   const Isometry3d X_WM = X_WH * test::translation({0.001, 0.0, 0.0071 - 0.002});
   const auto& mesh = *std::get<geometry::Mesh>(torus).mesh;
   const ContactVolume ref = meshHalfspaceContact(mesh, X_WM, X_WH);
-  const ContactVolume ab = computeContact(torus, X_WM, geometry::HalfSpace{}, X_WH);
-  const ContactVolume ba = computeContact(geometry::HalfSpace{}, X_WH, torus, X_WM);
+  const ContactVolume ab = computeContact(torus, X_WM, geometry::HalfSpace{}, X_WH).aggregate;
+  const ContactVolume ba = computeContact(geometry::HalfSpace{}, X_WH, torus, X_WM).aggregate;
   ASSERT_GT(ref.volume, 0.0);
   EXPECT_EQ(ab.method, Method::kHalfspace);
   EXPECT_NEAR(ab.volume, ref.volume, 1e-12 * ref.volume);
@@ -62,9 +63,9 @@ TEST(ComputeContact, MeshPairMethods) {
   const Isometry3d X_WP = test::translation({0.0004, 0.0, 0.003});
   EXPECT_EQ(defaultMethod(peg, ring), Method::kFast);
   const ContactVolume col =
-      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kColumns});
+      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kColumns}).aggregate;
   const ContactVolume cgal =
-      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kCgal});
+      computeContact(peg, X_WP, ring, Isometry3d::Identity(), {Method::kCgal}).aggregate;
   ASSERT_GT(cgal.volume, 0.0);
   EXPECT_EQ(col.method, Method::kColumns);
   EXPECT_EQ(cgal.method, Method::kCgal);
@@ -182,7 +183,7 @@ TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
   const Isometry3d X_WM = X_WH * test::translation({0.001, 0.0, 0.0071 - 0.002});
   const geometry::Shape plane = geometry::HalfSpace{};
   DepthField field;
-  const ContactVolume cv = computeContact(torus, X_WM, plane, X_WH, {}, &field);
+  const ContactVolume cv = computeContact(torus, X_WM, plane, X_WH, {}, &field).aggregate;
   DepthField direct;
   const ContactVolume ref = columnsContact(torus, X_WM, plane, X_WH, &direct);
   ASSERT_GT(ref.volume, 0.0);
@@ -198,8 +199,10 @@ TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
 
   DepthField fixed;
   const int lines = 32;
-  const ContactVolume coarse = computeContact(
-      torus, X_WM, plane, X_WH, {.method = cv.method, .fixed_resolution = lines}, &fixed);
+  const ContactVolume coarse =
+      computeContact(torus, X_WM, plane, X_WH, {.method = cv.method, .fixed_resolution = lines},
+                     &fixed)
+          .aggregate;
   EXPECT_TRUE(std::isinf(coarse.relative_error));
   EXPECT_LE(fixed.depth.size(), std::size_t(lines * lines));
   EXPECT_GT(fixed.depth.size(), 0u);
@@ -210,6 +213,74 @@ TEST(ComputeContact, DepthFieldThroughTheEntryPoint) {
     EXPECT_THROW(computeContact(torus, X_WM, plane, X_WH, {row.id}, &none), InputError) << row.name;
     EXPECT_TRUE(none.depth.empty()) << row.name;
   }
+}
+
+// A primitive on a half-space is one convex region: the aggregate is the only patch, equal to
+// it to the bit; apart, there is no patch and the aggregate is empty.
+TEST(ComputeContact, AnalyticIsOnePatch) {
+  const Isometry3d X_WH = test::randomPose(7);
+  const double R = 0.0103, d = 0.0007;
+  const Isometry3d X_WS = X_WH * test::translation({0.0, 0.0, R - d});
+  const ContactPatches touching =
+      computeContact(geometry::Sphere{R}, X_WS, geometry::HalfSpace{}, X_WH);
+  ASSERT_EQ(touching.patches.size(), 1u);
+  EXPECT_TRUE(touching.inContact());
+  EXPECT_EQ(touching.patches[0].volume, touching.aggregate.volume);
+  EXPECT_EQ(touching.patches[0].p_WC, touching.aggregate.p_WC);
+  EXPECT_EQ(touching.patches[0].J_s, touching.aggregate.J_s);
+  const ContactPatches apart = computeContact(
+      geometry::Sphere{R}, X_WH * test::translation({0, 0, 2 * R}), geometry::HalfSpace{}, X_WH);
+  EXPECT_FALSE(apart.inContact());
+  EXPECT_EQ(apart.aggregate.volume, 0.0);
+}
+
+// Every method that takes the pair finds the U's two feet, on a half-space and on a plate
+// mesh whose top face is the same plane, each foot's V equal to the exact clip's: to 1e-9 for
+// the exact methods (two exact methods, cgal_reference_test), to twice the reported estimate
+// for columns (columns_test).
+TEST(ComputeContact, EveryMethodFindsTheSamePatches) {
+  const auto u = std::make_shared<const geometry::TriangleMesh>(
+      test::uPrism({0.0107, 0.0213, 0.0071, 0.0093, 0.0161}, 0.0123));
+  const geometry::Shape shape = geometry::Mesh{u, "U"};
+  const geometry::Shape plane = geometry::HalfSpace{};
+  geometry::TriangleMesh slab = geometry::tessellateBox(Vector3d(0.2, 0.2, 0.05));
+  slab.vertices.col(2).array() -= 0.025;  // top face z_H = 0
+  const geometry::Shape plate =
+      geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(slab), "plate"};
+  const Isometry3d X_WH = test::randomPose(18);
+  const Isometry3d X_WM = X_WH * test::translation({0, 0, -0.0031}) *
+                          Isometry3d(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3d::UnitX()));
+  const ContactPatches exact = computeContact(shape, X_WM, plane, X_WH, {Method::kHalfspace});
+  ASSERT_EQ(exact.patches.size(), 2u);
+  int checked = 0;
+  for (const MethodRow& row : methodTable()) {
+    for (const geometry::Shape* other : {&plane, &plate}) {
+      if (!row.handles(shape, *other)) continue;
+      SCOPED_TRACE(std::string(row.name) + " on " + geometry::describe(*other));
+      const ContactPatches c = computeContact(shape, X_WM, *other, X_WH, {row.id});
+      ASSERT_EQ(c.patches.size(), 2u);
+      for (std::size_t k = 0; k < 2; ++k) {
+        const double tol = row.exact ? 1e-9 : 2.0 * c.patches[k].relative_error;
+        EXPECT_NEAR(c.patches[k].volume, exact.patches[k].volume, tol * exact.patches[k].volume);
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 6);  // halfspace; fast on the plate; cgal and columns on both
+}
+
+// Decreasing volume, then the lexicographic centroid.
+TEST(ContactPatches, SortOrder) {
+  std::vector<ContactVolume> patches(3);
+  patches[0].volume = 1.0;
+  patches[0].p_WC = Vector3d(0.0, 1.0, 0.0);
+  patches[1].volume = 2.0;
+  patches[2].volume = 1.0;
+  patches[2].p_WC = Vector3d(0.0, -1.0, 5.0);
+  sortPatches(patches);
+  EXPECT_EQ(patches[0].volume, 2.0);
+  EXPECT_EQ(patches[1].p_WC.y(), -1.0);
+  EXPECT_EQ(patches[2].p_WC.y(), 1.0);
 }
 
 // The tree is built once per mesh and shared.

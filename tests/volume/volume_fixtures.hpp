@@ -13,10 +13,11 @@
 
 namespace vcontact::test {
 
-/// Prism of height h (z ∈ [0, h]) over a counter-clockwise polygon that is star-shaped about
-/// its vertex `apex` (caps are fans from it).
-inline geometry::TriangleMesh extrudePolygon(const std::vector<Eigen::Vector2d>& poly, double h,
-                                             int apex) {
+/// Prism of height h (z ∈ [0, h]) over a counter-clockwise polygon whose area is covered by
+/// the counter-clockwise triangles `cap` (vertex indices into poly).
+inline geometry::TriangleMesh extrudeTriangulated(const std::vector<Eigen::Vector2d>& poly,
+                                                  double h,
+                                                  const std::vector<Eigen::Vector3i>& cap) {
   const int n = static_cast<int>(poly.size());
   geometry::TriangleMesh m;
   m.vertices.resize(2 * n, 3);
@@ -30,13 +31,131 @@ inline geometry::TriangleMesh extrudePolygon(const std::vector<Eigen::Vector2d>&
     f.emplace_back(i, j, n + j);
     f.emplace_back(i, n + j, n + i);
   }
-  for (int k = 1; k + 1 < n; ++k) {
-    const int a = (apex + k) % n, b = (apex + k + 1) % n;
-    f.emplace_back(apex, b, a);              // bottom, facing −z
-    f.emplace_back(n + apex, n + a, n + b);  // top, facing +z
+  for (const Eigen::Vector3i& t : cap) {
+    f.emplace_back(t[0], t[2], t[1]);              // bottom, facing −z
+    f.emplace_back(n + t[0], n + t[1], n + t[2]);  // top, facing +z
   }
   m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
   for (std::size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<Eigen::Index>(i)) = f[i];
+  return m;
+}
+
+/// Prism of height h (z ∈ [0, h]) over a counter-clockwise polygon that is star-shaped about
+/// its vertex `apex` (caps are fans from it).
+inline geometry::TriangleMesh extrudePolygon(const std::vector<Eigen::Vector2d>& poly, double h,
+                                             int apex) {
+  const int n = static_cast<int>(poly.size());
+  std::vector<Eigen::Vector3i> fan;
+  for (int k = 1; k + 1 < n; ++k) fan.emplace_back(apex, (apex + k) % n, (apex + k + 1) % n);
+  return extrudeTriangulated(poly, h, fan);
+}
+
+/// The legs and bridge of a "U" standing on its legs (profile in x, y; legs along −y).
+struct UProfile {
+  double leftLeg, gap, rightLeg;  ///< widths along x, m
+  double legHeight, height;       ///< y of the bridge's underside, overall height, m
+};
+
+/// The U prism of width w along z: legs x ∈ [0, leftLeg] and [leftLeg + gap, total], feet at
+/// y = 0, bridge y ∈ [legHeight, height]. One shell, eight profile corners.
+inline geometry::TriangleMesh uPrism(const UProfile& u, double w) {
+  const double a = u.leftLeg, b = a + u.gap, c = b + u.rightLeg;
+  const std::vector<Eigen::Vector2d> poly = {{0, 0}, {a, 0}, {a, u.legHeight}, {b, u.legHeight},
+                                             {b, 0}, {c, 0}, {c, u.height},    {0, u.height}};
+  return extrudeTriangulated(poly, w,
+                             {{0, 1, 2}, {0, 2, 7}, {2, 3, 7}, {3, 6, 7}, {3, 4, 5}, {3, 5, 6}});
+}
+
+/// A square cup standing on z = 0: outer half-width a, height h, a pocket of half-width b < a
+/// open at the top down to its floor at z = floor. Its outer surface and its pocket meet only
+/// at the rim. 16 vertices, 28 faces.
+inline geometry::TriangleMesh squareCup(double a, double b, double h, double floor) {
+  const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};  // corners, CCW seen from +z
+  geometry::TriangleMesh m;
+  m.vertices.resize(16, 3);
+  for (int j = 0; j < 4; ++j) {
+    m.vertices.row(j) << a * sx[j], a * sy[j], 0.0;         // outer bottom ob
+    m.vertices.row(4 + j) << a * sx[j], a * sy[j], h;       // outer top ot
+    m.vertices.row(8 + j) << b * sx[j], b * sy[j], h;       // pocket top it
+    m.vertices.row(12 + j) << b * sx[j], b * sy[j], floor;  // pocket floor ib
+  }
+  std::vector<Eigen::Vector3i> f = {{0, 2, 1}, {0, 3, 2}, {12, 13, 14}, {12, 14, 15}};
+  for (int j = 0; j < 4; ++j) {
+    const int k = (j + 1) % 4;
+    f.emplace_back(j, k, 4 + k);  // outer wall, facing out
+    f.emplace_back(j, 4 + k, 4 + j);
+    f.emplace_back(4 + j, 4 + k, 8 + k);  // rim, facing up
+    f.emplace_back(4 + j, 8 + k, 8 + j);
+    f.emplace_back(12 + j, 8 + k, 12 + k);  // pocket wall, facing the axis
+    f.emplace_back(12 + j, 8 + j, 8 + k);
+  }
+  m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<Eigen::Index>(i)) = f[i];
+  return m;
+}
+
+/// A tube of axis z centred at the origin: outer radius ro, a round hole of radius ri, length
+/// h, `segments` around (both circles inscribed). 4·segments vertices, 8·segments faces.
+inline geometry::TriangleMesh tube(double ro, double ri, double h, int segments) {
+  geometry::TriangleMesh m;
+  m.vertices.resize(4 * segments, 3);
+  const auto olo = [](int j) { return 4 * j; };
+  const auto ohi = [](int j) { return 4 * j + 1; };
+  const auto ilo = [](int j) { return 4 * j + 2; };
+  const auto ihi = [](int j) { return 4 * j + 3; };
+  for (int j = 0; j < segments; ++j) {
+    const double az = 2.0 * M_PI * j / segments, c = std::cos(az), s = std::sin(az);
+    m.vertices.row(olo(j)) << ro * c, ro * s, -0.5 * h;
+    m.vertices.row(ohi(j)) << ro * c, ro * s, 0.5 * h;
+    m.vertices.row(ilo(j)) << ri * c, ri * s, -0.5 * h;
+    m.vertices.row(ihi(j)) << ri * c, ri * s, 0.5 * h;
+  }
+  std::vector<Eigen::Vector3i> f;
+  for (int j = 0; j < segments; ++j) {
+    const int k = (j + 1) % segments;
+    f.emplace_back(olo(j), olo(k), ohi(k));  // outer wall, facing out
+    f.emplace_back(olo(j), ohi(k), ohi(j));
+    f.emplace_back(ilo(j), ihi(j), ihi(k));  // hole wall, facing the axis
+    f.emplace_back(ilo(j), ihi(k), ilo(k));
+    f.emplace_back(ohi(j), ohi(k), ihi(k));  // top, facing +z
+    f.emplace_back(ohi(j), ihi(k), ihi(j));
+    f.emplace_back(olo(j), ilo(k), olo(k));  // bottom, facing −z
+    f.emplace_back(olo(j), ilo(j), ilo(k));
+  }
+  m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<Eigen::Index>(i)) = f[i];
+  return m;
+}
+
+/// A shaft with four keys, a "+" of arms of half-width a reaching to radius L, length h along
+/// z, centred at the origin. One shell, 12 profile corners.
+inline geometry::TriangleMesh keyedShaft(double a, double L, double h) {
+  const std::vector<Eigen::Vector2d> poly = {{a, -a},  {L, -a},  {L, a},   {a, a},
+                                             {a, L},   {-a, L},  {-a, a},  {-L, a},
+                                             {-L, -a}, {-a, -a}, {-a, -L}, {a, -L}};
+  geometry::TriangleMesh m = extrudeTriangulated(poly, h,
+                                                 {{9, 0, 3},
+                                                  {9, 3, 6},
+                                                  {0, 1, 2},
+                                                  {0, 2, 3},
+                                                  {3, 4, 5},
+                                                  {3, 5, 6},
+                                                  {6, 7, 8},
+                                                  {6, 8, 9},
+                                                  {9, 10, 11},
+                                                  {9, 11, 0}});
+  m.vertices.col(2).array() -= 0.5 * h;
+  return m;
+}
+
+/// Meshes a and b as one mesh of two shells.
+inline geometry::TriangleMesh twoShells(const geometry::TriangleMesh& a,
+                                        const geometry::TriangleMesh& b) {
+  geometry::TriangleMesh m;
+  m.vertices.resize(a.vertices.rows() + b.vertices.rows(), 3);
+  m.vertices << a.vertices, b.vertices;
+  m.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
+  m.triangles << a.triangles, (b.triangles.array() + static_cast<int>(a.vertices.rows())).matrix();
   return m;
 }
 

@@ -14,9 +14,11 @@ int main() {
   const double R = 0.01, d = 0.001;
   Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
   X_WA.translation().z() = R - d;
-  const vcontact::volume::ContactVolume cv = vcontact::volume::computeContact(
-      vcontact::geometry::Sphere{R}, X_WA, vcontact::geometry::HalfSpace{},
-      Eigen::Isometry3d::Identity());
+  const vcontact::volume::ContactVolume cv =
+      vcontact::volume::computeContact(vcontact::geometry::Sphere{R}, X_WA,
+                                       vcontact::geometry::HalfSpace{},
+                                       Eigen::Isometry3d::Identity())
+          .aggregate;
   const double cap = std::numbers::pi * d * d * (3.0 * R - d) / 3.0;
   std::printf("V = %.17g m^3, cap = %.17g m^3\n%s", cv.volume, cap,
               vcontact::report::toTable(cv).c_str());
