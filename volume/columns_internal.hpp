@@ -1,0 +1,110 @@
+#pragma once
+// Internal to the column method (columns.cpp, columns_raster.cpp); not part of the public API.
+// The grid of lines, the world boxes, the per-line integrals and the grid sums shared by the
+// driver in columns.cpp and the rasteriser and grid integration in columns_raster.cpp.
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "geometry/bvh.hpp"
+#include "geometry/moments.hpp"
+#include "volume/columns.hpp"
+
+namespace vcontact::volume::internal {
+
+using Eigen::Isometry3d;
+using Eigen::Vector3d;
+using geometry::BvhNode;
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct WorldBox {
+  Vector3d lo = Vector3d::Constant(-kInf), hi = Vector3d::Constant(kInf);
+  bool empty() const { return (lo.array() > hi.array()).any(); }
+  WorldBox intersected(const WorldBox& o) const { return {lo.cwiseMax(o.lo), hi.cwiseMin(o.hi)}; }
+};
+
+inline WorldBox worldBox(const BvhNode& node, const Isometry3d& X_WB) {
+  const Vector3d c = X_WB * node.center;
+  const Vector3d h = X_WB.linear().cwiseAbs() * node.halfExtent;
+  return {c - h, c + h};
+}
+
+/// A square-celled N × N grid of lines along u over the projection of `box` onto the plane
+/// ⟂ u through the box centre o.
+struct Grid {
+  Vector3d o, u, e1, e2;
+  double r1, r2;  ///< half-widths along e1, e2
+  int n;
+
+  Grid(const WorldBox& box, const Vector3d& dir, int resolution) : u(dir), n(resolution) {
+    o = 0.5 * (box.lo + box.hi);
+    const Vector3d h = 0.5 * (box.hi - box.lo);
+    e1 = u.unitOrthogonal();
+    e2 = u.cross(e1);
+    r1 = e1.cwiseAbs().dot(h);
+    r2 = e2.cwiseAbs().dot(h);
+  }
+  /// Lines along `dir` through the rectangle o ± r1 e1 ± r2 e2 (e1 ⟂ dir, unit).
+  Grid(const Vector3d& origin, const Vector3d& dir, const Vector3d& axis1, double half1,
+       double half2, int resolution)
+      : o(origin), u(dir), e1(axis1), e2(dir.cross(axis1)), r1(half1), r2(half2), n(resolution) {}
+  double cellArea() const { return 4.0 * r1 * r2 / (double(n) * n); }
+  /// In-plate offset from o of line (i, j), at the cell centre.
+  Vector3d offset(int i, int j) const {
+    return (-r1 + (i + 0.5) * 2.0 * r1 / n) * e1 + (-r2 + (j + 0.5) * 2.0 * r2 / n) * e2;
+  }
+};
+
+/// What one line contributes, in the line's own parameter t.
+struct LineIntegrals {
+  double L = 0.0, T1 = 0.0, T2 = 0.0;   ///< ∫dt, ∫t dt, ∫t² dt over A ∩ B
+  double tFirst = kInf, tLast = -kInf;  ///< where the line enters and finally leaves A ∩ B
+  double surfaceA = 0.0;                ///< Σ sign(n_A·u) over crossings of ∂A inside B
+  double surfaceB = 0.0;                ///< the same for ∂B inside A
+};
+
+/// Sums over a grid: moments about o (W axes), the surface sums, and δ per line.
+struct GridSums {
+  geometry::Moments M;
+  double surfaceA = 0.0, surfaceB = 0.0;
+  double maxDepth = 0.0;
+  int wetLines = 0;
+  WorldBox wet{Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};  ///< of the wet segments
+
+  void add(const LineIntegrals& li, const Vector3d& x, const Vector3d& u, double dS) {
+    surfaceA += li.surfaceA * dS;
+    surfaceB += li.surfaceB * dS;
+    if (li.L <= 0.0) return;
+    // p − o = x + t u: ∫1 = L, ∫(x + t u) = L x + T1 u, ∫(x + t u)(x + t u)ᵀ = L x xᵀ +
+    // T1 (x uᵀ + u xᵀ) + T2 u uᵀ (exact along the line; midpoint rule across, MODEL.md §1).
+    M.m0 += li.L * dS;
+    M.m1 += (li.L * x + li.T1 * u) * dS;
+    M.m2 += (li.L * x * x.transpose() + li.T1 * (x * u.transpose() + u * x.transpose()) +
+             li.T2 * u * u.transpose()) *
+            dS;
+    maxDepth = std::max(maxDepth, li.L);
+    ++wetLines;
+    for (double t : {li.tFirst, li.tLast}) {
+      wet.lo = wet.lo.cwiseMin(x + t * u);
+      wet.hi = wet.hi.cwiseMax(x + t * u);
+    }
+  }
+  GridSums& operator+=(const GridSums& o) {
+    M += o.M;
+    surfaceA += o.surfaceA;
+    surfaceB += o.surfaceB;
+    maxDepth = std::max(maxDepth, o.maxDepth);
+    wetLines += o.wetLines;
+    wet = {wet.lo.cwiseMin(o.wet.lo), wet.hi.cwiseMax(o.wet.hi)};
+    return *this;
+  }
+};
+
+/// The grid's sums; with `depth` (`lines`), also δ (the line integrals) of every line.
+GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
+                   std::vector<double>* depth, std::vector<LineIntegrals>* lines = nullptr);
+
+}  // namespace vcontact::volume::internal
