@@ -256,7 +256,7 @@ std::vector<ContactVolume> columnPatches(const Grid& g, const std::vector<LineIn
       while (!stack.empty()) {
         const auto [k, l] = stack.back();
         stack.pop_back();
-        for (const auto [dk, dl] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        for (const auto& [dk, dl] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
           const int k2 = k + dk, l2 = l + dl;
           if (k2 < 0 || l2 < 0 || k2 >= g.n || l2 >= g.n || label[at(k2, l2)] >= 0 ||
               !spansTouch(lines[at(k, l)], lines[at(k2, l2)])) {
