@@ -3,14 +3,27 @@
 // closed, outward tessellation whose solid is known, so that a repair can be checked against
 // the solid that was meant.
 
+#include <string>
 #include <vector>
 
+#include "geometry/error.hpp"
+#include "geometry/mesh_check.hpp"
 #include "geometry/tessellate.hpp"
 #include "geometry/triangle_mesh.hpp"
 
 namespace vcontact::test {
 
 using geometry::TriangleMesh;
+
+/// The message checkAndRepair refuses `mesh` with, or "" when it accepts it.
+inline std::string rejection(TriangleMesh mesh) {
+  try {
+    geometry::checkAndRepair(mesh);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 /// A part of CAD size (30 x 50 x 70 mm) in metres; its sides are not binary fractions.
 inline TriangleMesh cadBox() { return geometry::tessellateBox({0.03, 0.05, 0.07}); }

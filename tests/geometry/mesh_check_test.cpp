@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "geometry/defect_meshes.hpp"
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/tessellate.hpp"
@@ -12,14 +13,7 @@
 namespace vcontact::geometry {
 namespace {
 
-std::string rejection(TriangleMesh mesh) {
-  try {
-    checkAndRepair(mesh);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::rejection;
 
 TriangleMesh withoutFace(const TriangleMesh& m, Eigen::Index drop) {
   TriangleMesh out = m;

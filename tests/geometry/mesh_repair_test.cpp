@@ -21,14 +21,7 @@ using namespace vcontact::test;
 // largest term, under 1e-14 relative.
 constexpr double kRepairedVolumeTolerance = 1e-13;
 
-std::string rejection(TriangleMesh mesh) {
-  try {
-    checkAndRepair(mesh);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::rejection;
 
 struct Repaired {
   TriangleMesh mesh;
