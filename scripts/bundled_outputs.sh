@@ -13,11 +13,12 @@
 # Files that carry wall-clock times (summary.json, report.html, the printed logs) are left in
 # OUT_DIR/logs and are not meant to compare equal.
 #
-# Every run is pinned to one CPU (taskset, where installed): the columns method sums its grid
-# rows in a TBB reduction whose order follows the thread scheduling, so with several threads
-# the last digits of friction_map.csv change from run to run even with the same binary.
+# Every run is pinned to one CPU (taskset, where installed). Builds before 7977cbf summed the
+# columns grid in a TBB reduction whose order followed the thread scheduling, so their
+# friction_map.csv and distributed-friction runs changed in the last digits from run to run on
+# several threads; pinned, they compare with builds since, whose reduction is deterministic.
 #
-# Environment: VCONTACT_SKIP_SLOW=1 leaves out punch_lumped_vs_distributed (about 8 minutes).
+# Environment: VCONTACT_SKIP_SLOW=1 leaves out punch_lumped_vs_distributed (about 12 s alone).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 out="${1:?usage: bundled_outputs.sh OUT_DIR [VCONTACT_BINARY]}"
