@@ -7,9 +7,12 @@
 
 namespace vcontact::io {
 
-/// Parses the file at `path`.
+/// Parses the file at `path`, strictly: a key repeated in one object and a number beyond the
+/// range of a double are refused (RFC 8259 leaves both to the reader; nlohmann keeps the last
+/// key and reads 1e400 as infinity).
 /// @throws InputError naming `path`: "no such file", "cannot be read", or
-///         "not valid JSON (byte N): …"
+///         "is a folder", "not valid JSON (byte N): …", or "KEY.PATH: …" for a repeated key
+///         or an out-of-range number
 nlohmann::json readJsonFile(const std::string& path);
 
 /// Writes `j` with two-space indentation and a final newline.
