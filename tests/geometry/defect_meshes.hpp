@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/error.hpp"
 #include "geometry/mesh_check.hpp"
 #include "geometry/tessellate.hpp"
 #include "geometry/triangle_mesh.hpp"
+#include "support/test_support.hpp"
 
 namespace vcontact::test {
 
@@ -17,12 +17,7 @@ using geometry::TriangleMesh;
 
 /// The message checkAndRepair refuses `mesh` with, or "" when it accepts it.
 inline std::string rejection(TriangleMesh mesh) {
-  try {
-    geometry::checkAndRepair(mesh);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return inputErrorMessage([&] { geometry::checkAndRepair(mesh); });
 }
 
 /// A part of CAD size (30 x 50 x 70 mm) in metres; its sides are not binary fractions.

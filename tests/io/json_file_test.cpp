@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "geometry/error.hpp"
+#include "support/test_support.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -22,12 +22,7 @@ std::string written(const std::string& name, const std::string& text) {
 }
 
 std::string errorOf(const std::string& path) {
-  try {
-    readJsonFile(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::inputErrorMessage([&] { readJsonFile(path); });
 }
 
 TEST(JsonFile, ARepeatedKeyIsRefusedWithItsPath) {
