@@ -27,6 +27,13 @@ constexpr int kDefaultColumnResolution = 64;
 constexpr int kMinColumnResolution = 8;
 constexpr int kMaxColumnResolution = 512;
 
+/// State slots of a pair whose bodies can touch in several regions (dynamics/SCENARIO.md,
+/// "Contact patches"): one per patch followed (patch_tracker.hpp), up to this many.
+constexpr int kDefaultMaxPatches = 4;
+/// Bounds of that count: each slot carries the model's states in the integrator.
+constexpr int kMinMaxPatches = 1;
+constexpr int kMaxMaxPatches = 16;
+
 struct ContactPair {
   std::string name;   ///< for output ("ball-plate")
   std::size_t a = 0;  ///< index of body A (the payload) in Scenario::bodies
@@ -40,6 +47,11 @@ struct ContactPair {
   /// evaluation costs the same at every right-hand side; in [kMinColumnResolution,
   /// kMaxColumnResolution].
   int column_resolution = kDefaultColumnResolution;
+  /// State slots for the pair's contact patches, in [kMinMaxPatches, kMaxMaxPatches]. A pair
+  /// that can touch in one region only (an analytic primitive, two convex shapes, distributed
+  /// friction) uses one slot and the single-region contact whatever this says; with one slot
+  /// the patches are lumped into that region (the aggregate).
+  int max_patches = kDefaultMaxPatches;
 };
 
 /// The time integrator (dynamics/SCENARIO.md "Integrators").

@@ -122,7 +122,10 @@ int Simulator::layoutStates() {
     }
     checkDistributedPair(p);
     pair_offset_.push_back(n);
-    n += p.model.stateLayout().size();
+    slots_.push_back(patchSlots(scenario_, p));
+    trackers_.emplace_back(slots_.back());
+    matches_.emplace_back();
+    n += slots_.back() * p.model.stateLayout().size();
   }
   return n;
 }
@@ -167,14 +170,14 @@ void Simulator::preparePairs() {
     screen_key_.push_back(screened ? ids : std::make_pair(-1, -1));
     const geometry::Shape& a = scenario_.bodies[p.a].shape;
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
-    apart_.push_back(volume::ContactVolume{});
+    apart_.emplace_back();
     try {
       const volume::Method m = p.method ? *p.method
                                : p.friction == FrictionMode::kDistributed
                                    ? volume::defaultDepthFieldMethod(a, b)
                                    : volume::defaultMethod(a, b);
       volume::requireHandles(m, a, b);
-      apart_.back().method = m;
+      apart_.back().aggregate.method = m;
     } catch (const InputError& e) {
       throw InputError("pair '" + p.name + "'", e.message());
     }
@@ -224,47 +227,6 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     if (offset_[i] >= 0) bodyRates(i, x, dxdt);
   }
   last_x_ = x;
-}
-
-// Pair k's contact at kin_: queried, or its contact when apart when the broad phase
-// screened it out.
-volume::ContactVolume Simulator::pairContact(std::size_t k) {
-  const ContactPair& pair = scenario_.pairs[k];
-  if (!queried_[k]) return apart_[k];
-  // the constructor checked that the method takes the pair's shapes
-  const bool distributed = pair.friction == FrictionMode::kDistributed;
-  const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
-  const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
-  const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
-  volume::ContactVolume cv =
-      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                             distributed ? &fields_[k] : nullptr, &caches_[k])
-          .aggregate;
-  ++contact_count_;
-  return cv;
-}
-
-// Pair k's contact and model: its wrench into force_ and torque_, its state rates into dxdt.
-void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
-  const ContactPair& pair = scenario_.pairs[k];
-  const BodyKinematics& A = kin_[pair.a];
-  const BodyKinematics& B = kin_[pair.b];
-  PairOutput& out = last_pairs_[k];
-  const bool distributed = pair.friction == FrictionMode::kDistributed;
-  out.cv = pairContact(k);
-  const int state_size = pair.model.stateLayout().size();
-  out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
-  const Eigen::Vector3d& p_c = out.cv.p_WC;
-  const RelativeMotion motion = relativeMotion(A, B, p_c);
-  pair.model.evaluate(out.cv, motion, out.state, out.result,
-                      distributed && out.cv.inContact() ? &fields_[k] : nullptr);
-  const Wrench& w = out.result.wrench;  // on A at p_c; B gets the opposite
-  force_[pair.a] += w.f_W;
-  torque_[pair.a] += w.tau_W + (p_c - A.p_WBcm).cross(w.f_W);
-  force_[pair.b] -= w.f_W;
-  torque_[pair.b] -= w.tau_W + (p_c - B.p_WBcm).cross(w.f_W);
-  out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
 }
 
 // Free body i's 13 rates into dxdt, from force_[i] and torque_[i] (about its Bcm).
@@ -329,24 +291,6 @@ bool Simulator::settle(State& x, double t) {
   return settlePairs(x, t);
 }
 
-// The pair states' discrete updates (Model::settle) at the contacts of the latest evaluation.
-bool Simulator::settlePairs(State& x, double t) {
-  bool changed = false;
-  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
-    const ContactPair& pair = scenario_.pairs[k];
-    const BodyKinematics A = kinematics(x, pair.a, t);
-    const BodyKinematics B = kinematics(x, pair.b, t);
-    const volume::ContactVolume& cv = last_pairs_[k].cv;
-    const RelativeMotion motion = relativeMotion(A, B, cv.p_WC);
-    const int state_size = pair.model.stateLayout().size();
-    double* s = &x[static_cast<std::size_t>(pair_offset_[k])];
-    PairState state = PairState::unpack(s, state_size);
-    changed = pair.model.settle(cv, motion, state) || changed;
-    state.pack(s, state_size);
-  }
-  return changed;
-}
-
 // Failures that stop the run: non-finite state, too deep a penetration.
 void Simulator::check(const State& x, double t) const {
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
@@ -361,7 +305,10 @@ void Simulator::check(const State& x, double t) const {
     const ContactPair& pair = scenario_.pairs[k];
     const double size = std::min(size_[pair.a], size_[pair.b]);
     const double limit = scenario_.settings.max_penetration_fraction * size;
-    const double depth = meanPenetration(last_pairs_[k].cv);
+    double depth = meanPenetration(last_pairs_[k].cv);
+    for (const PatchOutput& patch : last_pairs_[k].patches) {
+      depth = std::max(depth, meanPenetration(patch.cv));
+    }
     if (!std::isfinite(depth) || depth > limit) {
       std::ostringstream s;
       s << where(t) << ", pair '" << pair.name << "': mean penetration V/A " << depth
@@ -417,9 +364,11 @@ std::string Simulator::stateOwner(std::size_t i) const {
   for (std::size_t k = 0; k < pair_offset_.size(); ++k) {
     const StateLayout& layout = scenario_.pairs[k].model.stateLayout();
     const int j = static_cast<int>(i) - pair_offset_[k];
-    if (j >= 0 && j < layout.size()) {
-      return "pair '" + scenario_.pairs[k].name + "' (" + layout.describe(j) + ")";
-    }
+    if (j < 0 || j >= slots_[k] * layout.size()) continue;
+    const std::string slot =
+        slots_[k] > 1 ? ", patch slot " + std::to_string(j / layout.size()) : "";
+    return "pair '" + scenario_.pairs[k].name + "' (" + layout.describe(j % layout.size()) + slot +
+           ")";
   }
   return "state " + std::to_string(i);
 }
@@ -459,7 +408,13 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   const auto wall_start = std::chrono::steady_clock::now();
   const long rhs_start = rhs_count_, contacts_start = contact_count_;
   double t = 0.0;
+  long patch_samples = 0, patch_total = 0;
+  const OutputFn output = [&](const Snapshot& s) {
+    countPatches(s, summary, patch_samples, patch_total);
+    on_output(s);
+  };
   auto finish = [&] {
+    summary.patches_mean = patch_samples > 0 ? double(patch_total) / double(patch_samples) : 0.0;
     summary.simulated_time = t;
     summary.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -472,12 +427,12 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   rhs(x, dxdt, t);
   settle(x, t);
   rhs(x, dxdt, t);
-  on_output(snapshot(x, t));
+  output(snapshot(x, t));
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {
-      runBdf(x, t, on_output, on_progress, summary);
+      runBdf(x, t, output, on_progress, summary);
     } else {
-      runDopri5(x, dxdt, t, on_output, on_progress, summary);
+      runDopri5(x, dxdt, t, output, on_progress, summary);
     }
   } catch (...) {
     finish();

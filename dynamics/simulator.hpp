@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/patch_tracker.hpp"
 #include "dynamics/scenario.hpp"
 #include "geometry/broad_phase.hpp"
 #include "volume/contact.hpp"
@@ -43,11 +44,24 @@ class SimulationError : public std::runtime_error {
   double time_;
 };
 
+/// One contact patch of a pair at one instant (pairs with several state slots).
+struct PatchOutput {
+  volume::ContactVolume cv;
+  ContactResult result;  ///< wrench on body A at the patch's centroid
+  PairState state;       ///< the states it read (its slot's, or its host slot's)
+  int slot = -1;         ///< its own state slot, −1 when it has none (PatchMatch)
+};
+
 /// Per pair at one instant.
 struct PairOutput {
-  volume::ContactVolume cv;
+  volume::ContactVolume cv;  ///< the single-region contact (ContactPatches::aggregate)
+  /// The pair's total wrench on body A at cv.p_WC (the patches' wrenches moved there), the
+  /// sum of the patches' f_n and the s and μ_max of the largest patch; the rates of slot 0.
   ContactResult result;
-  PairState state;
+  PairState state;                   ///< the states of slot 0
+  std::vector<PatchOutput> patches;  ///< pairs with several slots only, in the query's order
+  int patch_count = 0;               ///< patches of the query (0 when apart)
+  int without_slot = 0;              ///< of those, the ones with no slot of their own
 };
 
 struct Snapshot {
@@ -66,8 +80,17 @@ struct SimulationSummary {
                                   ///< every right-hand-side evaluation)
   long jacobian_evaluations = 0;  ///< BDF: difference-quotient Jacobians (their right-hand
                                   ///< sides are in rhs_evaluations); 0 for Dormand–Prince
+  int patches_max = 0;            ///< most patches of one pair at an output time
+  double patches_mean = 0.0;      ///< mean patch count over the output times of pairs in contact
+  long patches_without_slot = 0;  ///< patches without a slot of their own, summed over outputs
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
+
+/// The state slots of pair p of scenario s (dynamics/SCENARIO.md, "Contact patches"): one for
+/// a pair that touches in one region only (distributed friction, the analytic method, two
+/// convex shapes), p.max_patches otherwise.
+/// @throws InputError when that count is outside [kMinMaxPatches, kMaxMaxPatches]
+int patchSlots(const Scenario& s, const ContactPair& p);
 
 class Simulator {
  public:
@@ -97,8 +120,13 @@ class Simulator {
   void addToBroadPhase();
   void preparePairs();
   void rhs(const State& x, State& dxdt, double t);
-  volume::ContactVolume pairContact(std::size_t k);
+  volume::ContactPatches pairContact(std::size_t k);
   void evaluatePair(std::size_t k, const State& x, State& dxdt);
+  void evaluatePatches(std::size_t k, const volume::ContactPatches& contact, const State& x,
+                       State& dxdt);
+  void addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, const Wrench& w);
+  void countPatches(const Snapshot& s, SimulationSummary& summary, long& samples,
+                    long& total) const;
   void bodyRates(std::size_t i, const State& x, State& dxdt) const;
   void screenPairs();
   bool rhsFinite(const double* x, double* dxdt, double t);
@@ -114,8 +142,11 @@ class Simulator {
   SimulationError bdfFailure(const BdfError& e, double t_last) const;
 
   Scenario scenario_;
-  std::vector<int> offset_;               ///< start of each free body's 13 states, −1 if not free
-  std::vector<int> pair_offset_;          ///< start of each pair's states (Model::stateLayout)
+  std::vector<int> offset_;       ///< start of each free body's 13 states, −1 if not free
+  std::vector<int> pair_offset_;  ///< start of each pair's states: slots × Model::stateLayout
+  std::vector<int> slots_;        ///< state slots of each pair (patchSlots)
+  std::vector<PatchTracker> trackers_;    ///< per pair, its patches' slots (several slots only)
+  std::vector<PatchMatch> matches_;       ///< per pair, the slots at the latest evaluation
   std::vector<double> size_;              ///< characteristic size of each body, m
   std::vector<Eigen::Matrix3d> I_inv_B_;  ///< inverse inertia about Bcm, B axes, 1/(kg·m²)
   // Scratch space of rhs(), kept to avoid allocations in the integrator's loop.
@@ -137,8 +168,8 @@ class Simulator {
   /// Per pair, its bodies' broad-phase ids (smaller first) as overlappingPairs() lists them;
   /// (−1, −1) when it is always queried (a body unbounded, or body A's pose adjusted).
   std::vector<std::pair<int, int>> screen_key_;
-  std::vector<char> queried_;                 ///< per pair, at the latest right-hand side
-  std::vector<volume::ContactVolume> apart_;  ///< per pair, its contact when not queried
+  std::vector<char> queried_;                  ///< per pair, at the latest right-hand side
+  std::vector<volume::ContactPatches> apart_;  ///< per pair, its contact when not queried
   bool any_screened_ = false;
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
   std::string non_finite_;  ///< the state whose rate was last found not finite

@@ -307,7 +307,22 @@ void readFriction(const Reader& p, dynamics::ContactPair& pair) {
   }
 }
 
-// A pair's model, method and friction keys (a listed pair, or "contacts").
+/// "max_patches": the pair's state slots for its contact patches (dynamics/SCENARIO.md,
+/// "Contact patches"), an integer in [kMinMaxPatches, kMaxMaxPatches].
+void readMaxPatches(const Reader& p, dynamics::ContactPair& pair) {
+  if (!p.has("max_patches")) return;
+  const auto& v = p["max_patches"];
+  const bool integer = v.is_number_integer() || v.is_number_unsigned();
+  const auto slots = integer ? v.get<long long>() : 0;
+  if (!integer || slots < dynamics::kMinMaxPatches || slots > dynamics::kMaxMaxPatches) {
+    p.fail("max_patches", "pair '" + pair.name + "': expected an integer number of patch " +
+                              "state slots in [" + std::to_string(dynamics::kMinMaxPatches) + ", " +
+                              std::to_string(dynamics::kMaxMaxPatches) + "], got " + v.dump());
+  }
+  pair.max_patches = static_cast<int>(slots);
+}
+
+// A pair's model, method, friction and patch keys (a listed pair, or "contacts").
 void readPairContact(const Reader& p, const std::map<std::string, dynamics::Model>& models,
                      const std::string& base_dir, dynamics::ContactPair& pair) {
   pair.model = readPairModel(p, models, base_dir);
@@ -319,6 +334,7 @@ void readPairContact(const Reader& p, const std::map<std::string, dynamics::Mode
     }
   }
   readFriction(p, pair);
+  readMaxPatches(p, pair);
 }
 
 // The pair's method (given, or columns for distributed friction) handles its bodies' shapes.
@@ -338,7 +354,7 @@ void checkPairMethod(const Reader& p, const dynamics::ContactPair& pair,
 // given, is the best each pair allows, and a pair no method handles is an error.
 void addDefaultContacts(const Reader& c, const std::map<std::string, dynamics::Model>& models,
                         const std::string& base_dir, dynamics::Scenario& sc) {
-  c.allowOnly({"model", "method", "friction", "columns"});
+  c.allowOnly({"model", "method", "friction", "columns", "max_patches"});
   const auto free = [&](std::size_t i) {
     return sc.bodies[i].motion == dynamics::BodyMotion::kFree;
   };
@@ -407,7 +423,7 @@ std::map<std::string, dynamics::Model> readModels(const Reader& r, const std::st
 dynamics::ContactPair readListedPair(const Reader& p,
                                      const std::map<std::string, dynamics::Model>& models,
                                      const std::string& base_dir, const dynamics::Scenario& sc) {
-  p.allowOnly({"name", "a", "b", "model", "method", "friction", "columns"});
+  p.allowOnly({"name", "a", "b", "model", "method", "friction", "columns", "max_patches"});
   dynamics::ContactPair pair;
   pair.a = bodyIndex(p, "a", sc.bodies);
   pair.b = bodyIndex(p, "b", sc.bodies);

@@ -36,6 +36,29 @@ void putHeader3(std::ostream& o, const std::string& prefix) {
   o << ',' << prefix << "x," << prefix << "y," << prefix << "z";
 }
 
+// The columns a pair row and a patch row share: the contact, the wrench on the payload at its
+// centroid, the friction figures and the states.
+void putContactHeader(std::ostream& f, const dynamics::ContactPair& pair) {
+  f << ",V,depth,area,r_gyr";
+  putHeader3(f, "c");
+  putHeader3(f, "n");
+  putHeader3(f, "f");
+  putHeader3(f, "tau");
+  f << ",f_n,s,mu_max";
+  for (const auto& name : pair.model.stateLayout().valueNames()) f << ',' << name;
+}
+
+void putContact(std::string& row, const volume::ContactVolume& cv, const dynamics::ContactResult& r,
+                const dynamics::PairState& state, int state_size) {
+  for (double x : {cv.volume, cv.depth, cv.area, cv.r_gyr}) put(row, x);
+  put(row, cv.p_WC);
+  put(row, cv.n_W);
+  put(row, r.wrench.f_W);
+  put(row, r.wrench.tau_W);
+  for (double x : {r.f_n, r.s, r.mu_max}) put(row, x);
+  for (int i = 0; i < state_size; ++i) put(row, state[i]);
+}
+
 }  // namespace
 
 std::string fileSafe(const std::string& name) {
@@ -68,13 +91,8 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
   for (const auto& pair : scenario.pairs) {
     std::ofstream& f =
         pairs_.emplace_back(open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
-    f << "t,V,depth,area,r_gyr";
-    putHeader3(f, "c");
-    putHeader3(f, "n");
-    putHeader3(f, "f");
-    putHeader3(f, "tau");
-    f << ",f_n,s,mu_max";
-    for (const auto& name : pair.model.stateLayout().valueNames()) f << ',' << name;
+    f << "t";
+    putContactHeader(f, pair);
     if (outputs_.shares) {
       for (const auto& id : pair.model.effectIds()) {
         putHeader3(f, id + ".f");
@@ -82,6 +100,14 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
       }
     }
     f << '\n';
+    patch_file_.push_back(-1);
+    if (dynamics::patchSlots(scenario, pair) < 2) continue;
+    patch_file_.back() = static_cast<int>(patches_.size());
+    std::ofstream& g = patches_.emplace_back(
+        open((base / ("pair_" + fileSafe(pair.name) + "_patches.csv")).string()));
+    g << "t,patch,slot";
+    putContactHeader(g, pair);
+    g << '\n';
   }
 }
 
@@ -102,14 +128,9 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const dynamics::PairOutput& p = s.pairs[k];
+    const int state_size = scenario_.pairs[k].model.stateLayout().size();
     std::string row = startRow(s.t);
-    for (double x : {p.cv.volume, p.cv.depth, p.cv.area, p.cv.r_gyr}) put(row, x);
-    put(row, p.cv.p_WC);
-    put(row, p.cv.n_W);
-    put(row, p.result.wrench.f_W);
-    put(row, p.result.wrench.tau_W);
-    for (double x : {p.result.f_n, p.result.s, p.result.mu_max}) put(row, x);
-    for (int i = 0; i < scenario_.pairs[k].model.stateLayout().size(); ++i) put(row, p.state[i]);
+    putContact(row, p.cv, p.result, p.state, state_size);
     if (outputs_.shares) {
       for (const auto& share : p.result.shares) {
         put(row, share.f_W);
@@ -117,12 +138,27 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
       }
     }
     pairs_[k] << row << '\n';
+    if (patch_file_[k] >= 0)
+      writePatches(s.t, p, state_size, patches_[std::size_t(patch_file_[k])]);
+  }
+}
+
+// One row per patch, in the query's order (patch = its index).
+void SimulationCsvWriter::writePatches(double t, const dynamics::PairOutput& p, int state_size,
+                                       std::ofstream& f) {
+  for (std::size_t i = 0; i < p.patches.size(); ++i) {
+    const dynamics::PatchOutput& patch = p.patches[i];
+    std::string row = startRow(t);
+    row += ',' + std::to_string(i) + ',' + std::to_string(patch.slot);
+    putContact(row, patch.cv, patch.result, patch.state, state_size);
+    f << row << '\n';
   }
 }
 
 void SimulationCsvWriter::flush() {
   bodies_.flush();
   for (auto& f : pairs_) f.flush();
+  for (auto& f : patches_) f.flush();
 }
 
 }  // namespace vcontact::report

@@ -1,7 +1,9 @@
 #pragma once
 // CSV output of a simulation: bodies.csv (one row per body per output time) and one
 // pair_<name>.csv per contact pair (volume, centroid, normal, wrench on the payload at the
-// centroid, friction states and, optionally, each effect's share of the wrench).
+// centroid, friction states and, optionally, each effect's share of the wrench), and for a
+// pair with several patch state slots pair_<name>_patches.csv (one row per patch per output
+// time; dynamics/SCENARIO.md).
 
 #include <fstream>
 #include <memory>
@@ -29,11 +31,14 @@ class SimulationCsvWriter {
 
  private:
   std::ofstream open(const std::string& path);
+  void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ofstream& f);
 
   const dynamics::Scenario& scenario_;
   formats::OutputSelection outputs_;
   std::ofstream bodies_;
   std::vector<std::ofstream> pairs_;
+  std::vector<std::ofstream> patches_;  ///< the pairs' patch files
+  std::vector<int> patch_file_;         ///< per pair, its index in patches_, −1 when none
   std::vector<std::string> files_;
 };
 

@@ -14,7 +14,11 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
           {"rejected_steps", s.rejected_steps},
           {"rhs_evaluations", s.rhs_evaluations},
           {"contact_evaluations", s.contact_evaluations},
-          {"jacobian_evaluations", s.jacobian_evaluations}};
+          {"jacobian_evaluations", s.jacobian_evaluations},
+          {"patches",
+           {{"max", s.patches_max},
+            {"mean", s.patches_mean},
+            {"without_slot", s.patches_without_slot}}}};
 }
 
 }  // namespace vcontact::report

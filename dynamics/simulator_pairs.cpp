@@ -1,0 +1,187 @@
+// The contact pairs' part of Simulator: each pair's query, its patches' forces on the two
+// bodies and the discrete updates of its patches' states (simulator.hpp).
+
+#include <algorithm>
+
+#include "dynamics/simulator.hpp"
+#include "geometry/error.hpp"
+#include "volume/mesh_convexity.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+// Can this shape meet a convex one in several regions? Primitives and half-spaces are convex,
+// and so is a mesh that bounds a convex solid; two convex solids meet in one convex region.
+bool convex(const geometry::Shape& shape) {
+  const auto* mesh = std::get_if<geometry::Mesh>(&shape);
+  return mesh == nullptr || volume::isConvex(mesh->mesh);
+}
+
+// Wrench w at p moved to the point q: the same force, τ + (p − q) × f.
+Wrench movedTo(const Wrench& w, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+  return {w.f_W, w.tau_W + (p - q).cross(w.f_W)};
+}
+
+// The pair's figures from its patches: the wrenches (and shares) summed at the aggregate's
+// centroid, f_n summed, s and μ_max of the first (largest) patch, the rates of slot 0.
+void combine(const std::vector<PatchOutput>& patches, const Eigen::Vector3d& p_c,
+             ContactResult& r) {
+  r.wrench = Wrench{};
+  r.f_n = 0.0;
+  for (Wrench& share : r.shares) share = Wrench{};
+  for (const PatchOutput& p : patches) {
+    r.wrench += movedTo(p.result.wrench, p.cv.p_WC, p_c);
+    r.f_n += p.result.f_n;
+    r.shares.resize(p.result.shares.size());
+    for (std::size_t i = 0; i < r.shares.size(); ++i) {
+      r.shares[i] += movedTo(p.result.shares[i], p.cv.p_WC, p_c);
+    }
+  }
+  r.s = patches.empty() ? 0.0 : patches.front().result.s;
+  r.mu_max = patches.empty() ? 0.0 : patches.front().result.mu_max;
+  r.rates = PairStateRates{};
+  for (const PatchOutput& p : patches) {
+    if (p.slot == 0) r.rates = p.result.rates;
+  }
+}
+
+}  // namespace
+
+int patchSlots(const Scenario& s, const ContactPair& p) {
+  if (p.friction == FrictionMode::kDistributed) return 1;
+  if (p.method == volume::Method::kAnalytic) return 1;
+  if (convex(s.bodies[p.a].shape) && convex(s.bodies[p.b].shape)) return 1;
+  if (p.max_patches < kMinMaxPatches || p.max_patches > kMaxMaxPatches) {
+    throw InputError("pair '" + p.name + "'", "max_patches " + std::to_string(p.max_patches) +
+                                                  " is outside [" + std::to_string(kMinMaxPatches) +
+                                                  ", " + std::to_string(kMaxMaxPatches) + "]");
+  }
+  return p.max_patches;
+}
+
+// Pair k's contact at kin_: queried, or its contact when apart when the broad phase
+// screened it out.
+volume::ContactPatches Simulator::pairContact(std::size_t k) {
+  const ContactPair& pair = scenario_.pairs[k];
+  if (!queried_[k]) return apart_[k];
+  // the constructor checked that the method takes the pair's shapes
+  const bool distributed = pair.friction == FrictionMode::kDistributed;
+  const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
+  const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
+  const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
+  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
+  ++contact_count_;
+  return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                                distributed ? &fields_[k] : nullptr, &caches_[k]);
+}
+
+// Wrench w on body A at p_c into force_ and torque_; body B gets the opposite.
+void Simulator::addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, const Wrench& w) {
+  force_[pair.a] += w.f_W;
+  torque_[pair.a] += w.tau_W + (p_c - kin_[pair.a].p_WBcm).cross(w.f_W);
+  force_[pair.b] -= w.f_W;
+  torque_[pair.b] -= w.tau_W + (p_c - kin_[pair.b].p_WBcm).cross(w.f_W);
+}
+
+// Pair k's contact and model: its wrench into force_ and torque_, its state rates into dxdt.
+// A one-slot pair evaluates its single-region contact (the aggregate) with slot 0.
+void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
+  const ContactPair& pair = scenario_.pairs[k];
+  PairOutput& out = last_pairs_[k];
+  const volume::ContactPatches contact = pairContact(k);
+  out.patch_count = static_cast<int>(contact.patches.size());
+  out.without_slot = 0;
+  if (slots_[k] > 1) {
+    evaluatePatches(k, contact, x, dxdt);
+    return;
+  }
+  out.without_slot = std::max(0, out.patch_count - 1);  // lumped into the one region
+  const bool distributed = pair.friction == FrictionMode::kDistributed;
+  out.cv = contact.aggregate;
+  const int state_size = pair.model.stateLayout().size();
+  out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
+  const Eigen::Vector3d& p_c = out.cv.p_WC;
+  const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], p_c);
+  pair.model.evaluate(out.cv, motion, out.state, out.result,
+                      distributed && out.cv.inContact() ? &fields_[k] : nullptr);
+  addWrench(pair, p_c, out.result.wrench);
+  out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
+}
+
+// A pair with several slots: the model once per patch with the states of its slot
+// (PatchTracker::match), each patch's wrench applied at its own centroid; a slot without a
+// patch has zero rates.
+void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& contact,
+                                const State& x, State& dxdt) {
+  const ContactPair& pair = scenario_.pairs[k];
+  PairOutput& out = last_pairs_[k];
+  PatchMatch& m = matches_[k];
+  trackers_[k].match(contact.patches, kin_[pair.a].X_WB, kin_[pair.b].X_WB, m);
+  out.without_slot = m.without_slot;
+  out.cv = contact.aggregate;
+  const int size = pair.model.stateLayout().size();
+  const std::size_t base = static_cast<std::size_t>(pair_offset_[k]);
+  std::fill(dxdt.begin() + std::ptrdiff_t(base),
+            dxdt.begin() + std::ptrdiff_t(base + std::size_t(slots_[k] * size)), 0.0);
+  out.patches.resize(contact.patches.size());
+  for (std::size_t i = 0; i < contact.patches.size(); ++i) {
+    PatchOutput& p = out.patches[i];
+    p.cv = contact.patches[i];
+    p.slot = m.slot[i];
+    p.state = PairState::unpack(&x[base + std::size_t(m.host[i] * size)], size);
+    const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], p.cv.p_WC);
+    pair.model.evaluate(p.cv, motion, p.state, p.result);
+    addWrench(pair, p.cv.p_WC, p.result.wrench);
+    if (p.slot >= 0) p.result.rates.pack(&dxdt[base + std::size_t(p.slot * size)], size);
+  }
+  out.state = PairState::unpack(&x[base], size);
+  combine(out.patches, out.cv.p_WC, out.result);
+}
+
+// The pair states' discrete updates (Model::settle) at the contacts of the latest evaluation:
+// a one-slot pair at its single-region contact; with several slots, each slot at its patch
+// (none: reset), and the tracker records the patches' places (PatchTracker::update).
+bool Simulator::settlePairs(State& x, double t) {
+  bool changed = false;
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const ContactPair& pair = scenario_.pairs[k];
+    const BodyKinematics A = kinematics(x, pair.a, t);
+    const BodyKinematics B = kinematics(x, pair.b, t);
+    const int size = pair.model.stateLayout().size();
+    const PairOutput& out = last_pairs_[k];
+    for (int slot = 0; slot < slots_[k]; ++slot) {
+      const volume::ContactVolume* cv = slots_[k] == 1 ? &out.cv : nullptr;
+      for (const PatchOutput& p : out.patches) {
+        if (p.slot == slot) cv = &p.cv;
+      }
+      const volume::ContactVolume none;
+      const volume::ContactVolume& c = cv ? *cv : none;
+      const RelativeMotion motion = relativeMotion(A, B, c.p_WC);
+      double* s = &x[static_cast<std::size_t>(pair_offset_[k] + slot * size)];
+      PairState state = PairState::unpack(s, size);
+      changed = pair.model.settle(c, motion, state) || changed;
+      state.pack(s, size);
+    }
+    if (slots_[k] > 1) {
+      std::vector<volume::ContactVolume> patches;
+      for (const PatchOutput& p : out.patches) patches.push_back(p.cv);
+      trackers_[k].update(patches, matches_[k], A.X_WB, B.X_WB);
+    }
+  }
+  return changed;
+}
+
+// The patch figures of one output: the largest count, and the counts of the pairs in contact
+// towards the mean.
+void Simulator::countPatches(const Snapshot& s, SimulationSummary& summary, long& samples,
+                             long& total) const {
+  for (const PairOutput& p : s.pairs) {
+    summary.patches_max = std::max(summary.patches_max, p.patch_count);
+    summary.patches_without_slot += p.without_slot;
+    if (p.patch_count == 0) continue;
+    ++samples;
+    total += p.patch_count;
+  }
+}
+
+}  // namespace vcontact::dynamics
