@@ -2,17 +2,21 @@
 // the validation workflow of issue #5. Every input is read and checked before DIR is
 // created, so that bad input writes nothing.
 
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "formats/candidates_file.hpp"
 #include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
+#include "io/shape_json.hpp"
 #include "report/report_html.hpp"
 #include "report/validation_output.hpp"
 #include "validation/diagnose.hpp"
@@ -26,6 +30,7 @@ namespace fs = std::filesystem;
 struct ValidationOptions {
   std::string dataset, model, out;
   std::string loss = "none";
+  std::string candidates;  ///< diagnose: candidates file, empty for the library
   int maxIterations = 100;
   bool iterate = false;
 };
@@ -135,12 +140,13 @@ void runFit(const ValidationOptions& o) {
 
 void runDiagnose(const ValidationOptions& o) {
   const Inputs in = readInputs(o);
+  validation::DiagnoseOptions options{{in.loss, o.maxIterations}, o.iterate};
+  if (!o.candidates.empty()) options.candidates = formats::readCandidatesFile(o.candidates);
   const validation::Dataset& d = in.data.dataset;
   const auto noise = validation::noiseLevels(d);
   printNoise(noise);
   const auto start = std::chrono::steady_clock::now();
-  const validation::Diagnosis diag =
-      validation::diagnose(d, noise, in.model, {{in.loss, o.maxIterations}, o.iterate});
+  const validation::Diagnosis diag = validation::diagnose(d, noise, in.model, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report::ReportInput report{
@@ -177,7 +183,41 @@ struct SynthOptions {
   std::size_t samples = 2000;
   unsigned seed = 1;
   double noiseScale = 1.0;
+  std::string payload;       ///< mesh file replacing the profile's payload; empty: keep it
+  std::string payloadScale;  ///< the mesh's scale to metres: a number or a unit name
+  std::string motion;        ///< motion CSV replacing the profile's motion; empty: keep it
 };
+
+// The mesh payload of --payload as the sidecar will name it, read and checked now.
+struct MeshPayload {
+  nlohmann::json entry;  ///< {"mesh": absolute path, "scale": ...}
+  geometry::Shape shape;
+};
+
+MeshPayload readMeshPayload(const SynthOptions& o) {
+  MeshPayload p;
+  p.entry = {{"mesh", fs::absolute(o.payload).lexically_normal().string()}};
+  if (!o.payloadScale.empty()) {
+    double number = 0.0;
+    const auto [end, ec] = std::from_chars(o.payloadScale.data(),
+                                           o.payloadScale.data() + o.payloadScale.size(), number);
+    const bool isNumber = ec == std::errc() && end == o.payloadScale.data() + o.payloadScale.size();
+    p.entry["scale"] = isNumber ? nlohmann::json(number) : nlohmann::json(o.payloadScale);
+  }
+  io::JsonShape s = io::parseShapeJson(p.entry, "--payload", "");
+  printWarnings(s.warnings);
+  p.shape = std::move(s.shape);
+  return p;
+}
+
+// Replaces the profile's samples and kinematic columns by the motion CSV's.
+void useMotion(validation::Dataset& d, const std::string& path) {
+  formats::MotionReadResult m = formats::readMotionCsv(path);
+  printWarnings(m.warnings);
+  d.samples = std::move(m.dataset.samples);
+  d.columns = std::move(m.dataset.columns);
+  d.notes += "; motion from " + fs::path(path).filename().string();
+}
 
 void runSynth(const SynthOptions& o) {
   const fs::path out(o.out);
@@ -186,10 +226,23 @@ void runSynth(const SynthOptions& o) {
     throw InputError("--out", out.parent_path().string() + " is not a directory");
   }
   if (!(o.noiseScale >= 0.0)) throw InputError("--noise-scale", "expected a number >= 0");
+  if (!o.motion.empty() && fs::exists(o.motion) &&
+      fs::equivalent(o.motion, fs::path(out).replace_extension(".csv"))) {
+    throw InputError("--motion", o.motion + " is the CSV that --out would overwrite; name another");
+  }
+  if (!o.payloadScale.empty() && o.payload.empty())
+    throw InputError("--payload-scale", "needs --payload (the mesh it scales)");
   const dynamics::Model truth = formats::readModelFile(o.model);
   validation::Dataset d =
       namingOptions({{"rig profile", "--profile"}, {"sample count", "--samples"}},
                     [&] { return validation::rigMotion(o.profile, o.samples); });
+  std::optional<MeshPayload> mesh;
+  if (!o.payload.empty()) {
+    mesh = readMeshPayload(o);
+    d.payload = mesh->shape;
+    d.notes += "; payload " + fs::path(o.payload).filename().string();
+  }
+  if (!o.motion.empty()) useMotion(d, o.motion);
   for (auto& [output, sigma] : d.noise) sigma *= o.noiseScale;
   if (o.noiseScale == 0.0) d.noise.clear();
   d.name = out.stem().string();
@@ -198,7 +251,7 @@ void runSynth(const SynthOptions& o) {
         << formats::modelToJson(truth)["effects"].dump() << "; seed " << o.seed << ")";
   d.notes = notes.str();
   validation::synthesizeMeasurement(d, truth, o.seed);
-  formats::writeDataset(d, o.out);
+  formats::writeDataset(d, o.out, mesh ? &mesh->entry : nullptr);
   std::cout << "wrote " << o.out << " (" << d.size() << " samples, profile " << o.profile << ")\n";
 }
 
@@ -237,6 +290,9 @@ void addValidationCommands(CLI::App& app) {
   addValidationOptions(g, diag, true);
   g->add_flag("--iterate", diag->iterate,
               "add the best effect and repeat until the verdict is none");
+  g->add_option("--candidates", diag->candidates,
+                "candidates file (vcontact.candidates/1): the effects to try, built-in ids and "
+                "expression effects; default: every library effect");
   g->callback([diag] { runDiagnose(*diag); });
 
   auto synth = std::make_shared<SynthOptions>();
@@ -251,8 +307,20 @@ void addValidationCommands(CLI::App& app) {
       ->required();
   s->add_option("--samples", synth->samples, "number of samples")->capture_default_str();
   s->add_option("--seed", synth->seed, "noise seed")->capture_default_str();
-  s->add_option("--noise-scale", synth->noiseScale, "multiplies the profile's noise sigma")
+  s->add_option("--noise-scale", synth->noiseScale,
+                "multiplies the profile's noise sigma (0: an exact record, no noise)")
       ->capture_default_str();
+  s->add_option("--payload", synth->payload,
+                "a closed mesh file as the payload, in the payload frame (instead of the "
+                "profile's punch or ball)");
+  s->add_option("--payload-scale", synth->payloadScale,
+                "the mesh's scale to metres: a number or a unit name (mm, in, ...)");
+  auto* samples = s->get_option("--samples");
+  s->add_option("--motion", synth->motion,
+                "a motion CSV (t, x, y, z, qw, qx, qy, qz; optional vx, vy, vz, wx, wy, wz; "
+                "docs/DATASET.md) instead of the profile's motion; the profile still gives "
+                "the outputs and the noise")
+      ->excludes(samples);
   s->callback([synth] { runSynth(*synth); });
 }
 

@@ -119,13 +119,15 @@ bool hasTriple(const Table& t, const std::string& path, const std::array<std::st
   return true;
 }
 
-void fillSamples(const Table& t, const std::string& path, validation::Dataset& d) {
+// `needWrench`: a dataset's CSV needs a wrench column, a motion CSV (synth --motion) not.
+void fillSamples(const Table& t, const std::string& path, validation::Dataset& d,
+                 bool needWrench = true) {
   for (const auto& r : kRequired) {
     if (columnIndex(t, r) == t.names.size()) {
       throw InputError(path, "line 1: missing required column '" + r + "'");
     }
   }
-  if (std::none_of(t.names.begin(), t.names.end(), isWrench)) {
+  if (needWrench && std::none_of(t.names.begin(), t.names.end(), isWrench)) {
     throw InputError(path,
                      "line 1: no wrench column; expected at least one of fx, fy, fz, tx, ty, tz");
   }
@@ -257,14 +259,39 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   return result;
 }
 
-void writeDataset(const validation::Dataset& d, const std::string& sidecarPath) {
+MotionReadResult readMotionCsv(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "motion file not found");
+  MotionReadResult result;
+  validation::Dataset& d = result.dataset;
+  d.dataPath = path;
+  fillSamples(readCsv(path), path, d, /*needWrench=*/false);
+  for (const auto& c : validation::kWrenchColumns) d.columns.erase(c);  // a motion measures nothing
+  const char* names[] = {"vx", "vy", "vz", "wx", "wy", "wz"};
+  for (int k = 0; k < 6; ++k) {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(d.size()));
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const auto& s = d.samples[i];
+      v[static_cast<Eigen::Index>(i)] = k < 3 ? s.v_BA[k] : s.w_BA[k - 3];
+    }
+    d.columns[names[k]] = std::move(v);
+  }
+  if (d.velocityFromPositions)
+    result.warnings.push_back(path + ": no vx, vy, vz columns; differentiated from x, y, z");
+  if (d.omegaFromAttitude)
+    result.warnings.push_back(path +
+                              ": no wx, wy, wz columns; differentiated from the quaternions");
+  return result;
+}
+
+void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
+                  const nlohmann::json* payloadEntry) {
   const fs::path sidecar(sidecarPath);
   const fs::path csv = fs::path(sidecar).replace_extension(".csv");
   json j = {{"format", kFormat},
             {"name", d.name},
             {"data", csv.filename().string()},
             {"mode", "kinematic"},
-            {"payload", io::shapeJson(d.payload, "payload")},
+            {"payload", payloadEntry ? *payloadEntry : io::shapeJson(d.payload, "payload")},
             {"plate", io::shapeJson(d.plate, "plate")},
             {"outputs", d.outputs},
             {"notes", d.notes}};

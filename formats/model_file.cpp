@@ -4,7 +4,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "dynamics/effects/expression.hpp"
 #include "dynamics/effects/registry.hpp"
+#include "formats/expression_entry.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 
@@ -104,10 +106,15 @@ dynamics::Model modelFromJson(const nlohmann::json& j, const std::string& source
   }
   dynamics::Model model;
   for (const auto& [id, params] : j["effects"].items()) {
+    if (isExpressionEntry(params)) {
+      model.add(expressionEffectFromJson(id, params, source, at(place, "effects." + id)));
+      continue;
+    }
     auto effect = dynamics::createEffect(id);
     if (!effect) {
       throw InputError(source, at(place, "effects." + id) + ": unknown effect; expected one of: " +
-                                   joined(dynamics::registeredEffectIds()));
+                                   joined(dynamics::registeredEffectIds()) +
+                                   ", or an expression effect {\"kind\": \"expression\", ...}");
     }
     const dynamics::Effect& ref = *effect;
     model.add(std::move(effect));
@@ -133,6 +140,10 @@ nlohmann::json modelToJson(const dynamics::Model& model) {
   nlohmann::json effects = nlohmann::json::object();
   for (std::size_t i = 0; i < model.effectCount(); ++i) {
     const dynamics::Effect& e = model.effect(i);
+    if (dynamics::expressionDefinition(e)) {
+      effects[std::string(e.id())] = expressionEffectToJson(e);
+      continue;
+    }
     nlohmann::json params = nlohmann::json::object();
     const auto& specs = e.parameterSpecs();
     for (std::size_t k = 0; k < specs.size(); ++k) params[specs[k].name] = e.parameter(k);

@@ -6,7 +6,9 @@
 //    "fixed": ["stiffness.kv"],
 //    "settings": {"v_eps": 1e-5}}          // optional: model settings, not fitted
 //
-// Parameters left out take their defaults. Errors name the file, the JSON place
+// An effect entry {"kind": "expression", ...} is a user-defined expression effect
+// (formats/expression_entry.hpp, docs/EXTENDING.md). Parameters left out take their defaults.
+// Errors name the file, the JSON place
 // ("effects.coulomb.mu") and what was expected.
 
 #include <nlohmann/json.hpp>

@@ -17,6 +17,8 @@ PACKAGES=(
   # fcl's CMake package finds and links libccd (fcl-config.cmake: find_dependency(ccd)).
   libccd-dev
   libceres-dev libsundials-dev
+  # muparser compiles the formulas of expression effects (dynamics/effects/expression.cpp).
+  libmuparser-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang-format
 )

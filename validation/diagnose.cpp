@@ -7,7 +7,7 @@
 #include <functional>
 #include <sstream>
 
-#include "dynamics/effects/registry.hpp"
+#include "geometry/error.hpp"
 
 namespace vcontact::validation {
 namespace {
@@ -25,42 +25,47 @@ constexpr double kWindowFraction = 0.01;
 constexpr std::size_t kMaxWindows = 8;
 
 // Every effect `id` needs that `model` lacks, `id` first (MODEL.md §3 requirements).
-void closure(const Model& model, const std::string& id, std::vector<std::string>& out) {
+// @throws InputError when a required effect is neither a candidate nor a library effect
+void closure(const Model& model, const CandidateSet& set, const std::string& id,
+             std::vector<std::string>& out) {
   if (model.has(id) || std::find(out.begin(), out.end(), id) != out.end()) return;
+  const auto effect = set.create(id);
+  if (!effect)
+    throw InputError("candidates", "no effect '" + id + "' (required by " + out.front() + ")");
   out.push_back(id);
-  for (auto req : dynamics::createEffect(id)->requiredEffects())
-    closure(model, std::string(req), out);
+  for (auto req : effect->requiredEffects()) closure(model, set, std::string(req), out);
 }
 
-std::vector<Candidate> candidatesFor(const Model& model) {
+std::vector<Candidate> candidatesFor(const Model& model, const CandidateSet& set) {
   std::vector<Candidate> candidates;
-  for (const auto& id : dynamics::registeredEffectIds()) {
+  for (const auto& id : set.ids()) {
     if (model.has(id)) continue;
     Candidate c;
     c.effect = id;
-    closure(model, id, c.added);
+    closure(model, set, id, c.added);
     candidates.push_back(std::move(c));
   }
   return candidates;
 }
 
-// The candidate's model: the baseline's fitted values, the new effects at their defaults.
+// The candidate's model: the baseline's fitted values, the new effects at the values of the
+// candidate set (the defaults for the library's).
 // Relations between parameters (μ_S ≥ μ_C) are not enforced at the start: the fit moves
 // them, and fit() reports a relation the fitted values break.
-Model candidateModel(const Model& baseline, const Candidate& c) {
+Model candidateModel(const Model& baseline, const CandidateSet& set, const Candidate& c) {
   Model m = baseline;
-  for (const auto& id : c.added) m.add(dynamics::createEffect(id));
+  for (const auto& id : c.added) m.add(set.create(id));
   m.setFixed(baseline.fixed());
   return m;
 }
 
 void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model& baseline,
-                   const FitOptions& options, std::vector<Candidate>& candidates) {
+                   const DiagnoseOptions& options, std::vector<Candidate>& candidates) {
   tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
     Candidate& c = candidates[i];
     try {
       Replayer replayer(dataset);
-      c.fit = fit(replayer, noise, candidateModel(baseline, c), options);
+      c.fit = fit(replayer, noise, candidateModel(baseline, options.candidates, c), options.fit);
     } catch (const std::exception& e) {
       c.error = e.what();
     }
@@ -214,8 +219,8 @@ DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, c
   Replayer replayer(dataset);
   stage.baseline = fit(replayer, noise, start, options.fit);
   stage.where = failureWindows(dataset, stage.baseline.comparison, stage.baseline.prediction);
-  stage.ranking = candidatesFor(stage.baseline.model);
-  fitCandidates(dataset, noise, stage.baseline.model, options.fit, stage.ranking);
+  stage.ranking = candidatesFor(stage.baseline.model, options.candidates);
+  fitCandidates(dataset, noise, stage.baseline.model, options, stage.ranking);
   rank(stage.ranking, stage.baseline.bic, options.margin);
   const bool found = !stage.ranking.empty() && stage.ranking.front().error.empty() &&
                      stage.ranking.front().redundantWith.empty() &&

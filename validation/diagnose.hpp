@@ -1,8 +1,9 @@
 #pragma once
 // Which physical effect is the model missing? (issue #5)
 //
-// The model is fitted (the baseline), then for every effect of the library that it lacks the
-// effect is added (with the effects it requires, MODEL.md §3), the model refitted, and the
+// The model is fitted (the baseline), then for every effect of the library (or of the user's
+// candidate set, DiagnoseOptions::candidates) that it lacks the effect is added (with the
+// effects it requires, MODEL.md §3), the model refitted, and the
 // candidates ranked by ΔBIC = BIC_candidate − BIC_baseline, BIC = χ² + k ln n (known σ).
 // Verdict: the best candidate when ΔBIC < −kBicMargin, else "none".
 // kBicMargin = 10 is "very strong" evidence on the Kass–Raftery (1995) scale (2 ln B > 10,
@@ -32,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "validation/candidates.hpp"
 #include "validation/fit.hpp"
 
 namespace vcontact::validation {
@@ -71,6 +73,8 @@ struct DiagnoseOptions {
   FitOptions fit;
   bool iterate = false;  ///< add the best and repeat until "none"
   double margin = kBicMargin;
+  /// The effects tried at each stage (validation/candidates.hpp); the library's by default.
+  CandidateSet candidates = CandidateSet::library();
 };
 
 struct Diagnosis {

@@ -194,7 +194,10 @@ void synthesizeMeasurement(Dataset& d, const dynamics::Model& truth, unsigned se
   std::normal_distribution<double> normal(0.0, 1.0);
   for (const auto& o : d.outputs) {
     Eigen::VectorXd y = p.column(o);
-    for (Eigen::Index i = 0; i < y.size(); ++i) y[i] += d.noise.at(o) * normal(rng);
+    const auto sigma = d.noise.find(o);  // none: an exact record (synth --noise-scale 0)
+    if (sigma != d.noise.end()) {
+      for (Eigen::Index i = 0; i < y.size(); ++i) y[i] += sigma->second * normal(rng);
+    }
     d.columns[o] = y;
   }
 }

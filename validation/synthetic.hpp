@@ -28,7 +28,8 @@ namespace vcontact::validation {
 Dataset rigMotion(const std::string& profile, std::size_t samples);
 
 /// Replays `dataset` through `truth`, adds N(0, σ²) noise with σ = dataset.noise (seeded,
-/// reproducible) and stores the result as the measured wrench columns of the outputs.
+/// reproducible; none for an output without σ) and stores the result as the measured wrench
+/// columns of the outputs.
 void synthesizeMeasurement(Dataset& dataset, const dynamics::Model& truth, unsigned seed);
 
 }  // namespace vcontact::validation
