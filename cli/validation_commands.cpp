@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -32,8 +33,17 @@ struct ValidationOptions {
   std::string loss = "none";
   std::string candidates;  ///< diagnose: candidates file, empty for the library
   int maxIterations = 100;
+  int starts = validation::FitOptions{}.designPoints;
   bool iterate = false;
 };
+
+validation::FitOptions fitOptions(const ValidationOptions& o, validation::Loss loss) {
+  validation::FitOptions f;
+  f.loss = loss;
+  f.maxIterations = o.maxIterations;
+  f.designPoints = o.starts;
+  return f;
+}
 
 struct Inputs {
   formats::DatasetReadResult data;
@@ -47,6 +57,7 @@ Inputs readInputs(const ValidationOptions& o) {
     throw InputError("--out", o.out + " exists and is not a directory");
   }
   if (o.maxIterations < 1) throw InputError("--max-iterations", "expected a positive count");
+  if (o.starts < 0) throw InputError("--starts", "expected a count >= 0");
   Inputs in{
       formats::readDataset(o.dataset), formats::readModelFile(o.model),
       namingOptions({{"robust loss", "--loss"}}, [&] { return validation::parseLoss(o.loss); })};
@@ -117,7 +128,7 @@ void runFit(const ValidationOptions& o) {
   validation::Replayer replayer(d);
   const validation::FitResult before = asGiven(replayer, noise, in.model);
   const validation::FitResult r =
-      validation::fit(replayer, noise, in.model, {in.loss, o.maxIterations});
+      validation::fit(replayer, noise, in.model, fitOptions(o, in.loss));
   printNoise(noise);
   printComparison("as given", before.comparison);
   printComparison("fitted", r.comparison);
@@ -138,9 +149,44 @@ void runFit(const ValidationOptions& o) {
                       nullptr});
 }
 
+// One stage's chi (fitted and held out), its verdict and why.
+void printStage(const validation::DiagnosisStage& s) {
+  printComparison(label(s.effects), s.baseline.comparison);
+  std::cout << "  held-out chi2 " << s.heldOutChi2 << " (" << validation::kCvBlocks
+            << " contiguous blocks)\n";
+  printWarnings(s.baseline.warnings);
+  std::cout << "  verdict: " << s.verdict << " (time: baseline fit " << s.seconds.baseline
+            << " s, candidates " << s.seconds.candidates << " s, cross-validation "
+            << s.seconds.crossValidation << " s, rig and residual " << s.seconds.rest << " s)\n";
+  for (const auto& c : s.ranking) {
+    if (!c.error.empty() || !(c.deltaBic < 0.0)) continue;
+    std::cout << "    " << c.effect << ": chi " << c.fit.comparison.chi << ", delta BIC "
+              << c.deltaBic;
+    if (!std::isnan(c.heldOutChi2)) std::cout << ", held-out chi2 " << c.heldOutChi2;
+    if (c.accepted) std::cout << ", accepted";
+    if (!c.rejected.empty()) std::cout << ", rejected: " << c.rejected;
+    if (!c.redundantWith.empty()) std::cout << ", redundant with " << c.redundantWith;
+    std::cout << '\n';
+  }
+  for (const auto& r : s.rig) {
+    if (r.deltaBic < 0.0) std::cout << "    rig " << r.text << ": delta BIC " << r.deltaBic << '\n';
+  }
+  if (s.kind != "unexplained") return;
+  const auto& res = s.residual;
+  std::cout << "  unexplained: the best candidate removes " << 100.0 * s.explainedFraction
+            << " % of the residual chi2; noise accounts for " << 100.0 * res.noiseShare
+            << " %\n  worst output " << res.output;
+  if (res.frequency > 0.0)
+    std::cout << ", rings at " << res.frequency << " Hz (" << 100.0 * res.frequencyShare
+              << " % of its residual variance)";
+  std::cout << '\n';
+  for (const auto& [name, r] : res.correlation)
+    std::cout << "    |residual| vs " << name << ": r = " << r << '\n';
+}
+
 void runDiagnose(const ValidationOptions& o) {
   const Inputs in = readInputs(o);
-  validation::DiagnoseOptions options{{in.loss, o.maxIterations}, o.iterate};
+  validation::DiagnoseOptions options{fitOptions(o, in.loss), o.iterate};
   if (!o.candidates.empty()) options.candidates = formats::readCandidatesFile(o.candidates);
   const validation::Dataset& d = in.data.dataset;
   const auto noise = validation::noiseLevels(d);
@@ -149,24 +195,18 @@ void runDiagnose(const ValidationOptions& o) {
   const validation::Diagnosis diag = validation::diagnose(d, noise, in.model, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // the failing windows and ranking shown are the final model's (the last stage's baseline)
   report::ReportInput report{
-      "diagnose", &d, noise, {}, diag.stages.front().where, &diag.stages.front().ranking};
+      "diagnose", &d, noise, {}, diag.stages.back().where, &diag.stages.back().ranking};
   for (std::size_t i = 0; i < diag.stages.size(); ++i) {
     const auto& s = diag.stages[i];
     const std::string stageLabel = i == 0               ? label(s.effects)
                                    : !s.removed.empty() ? "- " + s.removed
                                                         : "+ " + diag.stages[i - 1].verdict;
-    report.stages.push_back({stageLabel, &s.baseline});
-    printComparison(label(s.effects), s.baseline.comparison);
-    std::cout << "  verdict: " << s.verdict;
-    if (!s.ranking.empty() && s.ranking.front().error.empty()) {
-      std::cout << " (best: " << s.ranking.front().effect << ", chi "
-                << s.ranking.front().fit.comparison.chi << ", delta BIC "
-                << s.ranking.front().deltaBic << ")";
-    }
-    std::cout << '\n';
+    report.stages.push_back({stageLabel, &s.baseline, &s});
+    printStage(s);
   }
-  for (const auto& w : diag.stages.front().where) {
+  for (const auto& w : diag.stages.back().where) {
     std::cout << "  fails: " << w.output << " t = " << w.t0 << " .. " << w.t1 << " s, chi " << w.chi
               << ", " << w.regime << '\n';
   }
@@ -263,6 +303,9 @@ void addValidationOptions(CLI::App* cmd, const std::shared_ptr<ValidationOptions
   cmd->add_option("--loss", o->loss, "none | huber | cauchy (robust loss on residual/sigma)")
       ->capture_default_str();
   cmd->add_option("--max-iterations", o->maxIterations, "Ceres iterations per fit")
+      ->capture_default_str();
+  cmd->add_option("--starts", o->starts,
+                  "Halton design points screened besides the model's start (0: single start)")
       ->capture_default_str();
 }
 

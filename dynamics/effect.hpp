@@ -50,6 +50,13 @@ struct ParameterSpec {
   std::string description;  ///< one line
 };
 
+/// p ≥ q between two parameters of a model, by qualified names ("stribeck.mu_s" ≥
+/// "coulomb.mu"). A fit keeps it by optimising p − q ≥ 0 instead of p (validation/fit.hpp).
+struct ParameterRelation {
+  std::string parameter;  ///< p, a parameter of the effect that declares the relation
+  std::string atLeast;    ///< q, a parameter of an effect it requires
+};
+
 /// Model settings that are not fitted parameters.
 struct ModelSettings {
   double v_eps = 1e-5;  ///< m/s, regularisation speed of dir_ε and sgn_ε (MODEL.md §3)
@@ -142,6 +149,9 @@ class Effect {
   /// the values break, in words naming both parameters; empty when it holds.
   /// @pre the effects of requiredEffects() are in `model`
   virtual std::string brokenRelation(const Model& /*model*/) const { return {}; }
+  /// The relations of brokenRelation() that are inequalities p ≥ q, for the fit to enforce by
+  /// its parametrisation; every q is a parameter of an effect in requiredEffects().
+  virtual std::vector<ParameterRelation> relations() const { return {}; }
 
   /// Distributed friction (Model::checkDistributedFriction): does this effect integrate its
   /// friction pointwise over the δ map (ContactContext::field)?

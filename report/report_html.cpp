@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "geometry/primitives.hpp"
 #include "report/svg_chart.hpp"
 
 namespace vcontact::report {
@@ -16,6 +17,9 @@ using validation::FitResult;
 // Points drawn per series: a 6000-sample record is decimated by a stride so that the page
 // stays small; 1500 points exceed the pixel width of a chart.
 constexpr std::size_t kMaxPointsPerSeries = 1500;
+// Chart widths: the page body is 1100 px wide; regime panels go three to a row.
+constexpr int kPageWidth = 1060;
+constexpr int kPanelWidth = 350;
 
 std::string num(double v, int digits = 4) {
   std::ostringstream s;
@@ -55,23 +59,23 @@ void measuredVsModel(std::ostringstream& h, const ReportInput& in, const std::ve
       s.push_back(
           series("model: " + in.stages.back().label, t, last.comparison.outputs[k].predicted));
     }
-    h << lineChart(
-             {o.output + ": measured and model", "t [s]", o.output + " [" + unitOf(o.output) + "]"},
-             s)
+    h << lineChart({o.output + ": measured and model", "t [s]",
+                    o.output + " [" + unitOf(o.output) + "]", kPageWidth, 300},
+                   s)
       << '\n';
   }
 }
 
 void residuals(std::ostringstream& h, const ReportInput& in, const std::vector<double>& t) {
-  h << "<h2>Residuals of " << escapeXml(in.stages.front().label)
+  h << "<h2>Residuals of the final model, " << escapeXml(in.stages.back().label)
     << " (shaded: where it fails)</h2>\n";
-  for (const auto& o : in.stages.front().fit->comparison.outputs) {
+  for (const auto& o : in.stages.back().fit->comparison.outputs) {
     std::vector<Window> windows;
     for (const auto& w : in.where) {
       if (w.output == o.output) windows.push_back({w.t0, w.t1, "chi " + num(w.chi, 3)});
     }
     h << lineChart({o.output + ": residual (measured − model)", "t [s]",
-                    "residual [" + unitOf(o.output) + "]"},
+                    "residual [" + unitOf(o.output) + "]", kPageWidth, 300},
                    {series("residual", t, o.residual)}, windows)
       << '\n';
   }
@@ -88,8 +92,9 @@ void residuals(std::ostringstream& h, const ReportInput& in, const std::vector<d
 }
 
 void residualsAgainstRegime(std::ostringstream& h, const ReportInput& in) {
-  h << "<h2>Normalised residuals against the regime variables</h2>\n";
-  const FitResult& f = *in.stages.front().fit;
+  h << "<h2>Normalised residuals of the final model against the regime variables that "
+       "vary</h2>\n";
+  const FitResult& f = *in.stages.back().fit;
   struct Var {
     const char* label;
     double (*get)(const validation::RegimeSample&);
@@ -107,50 +112,65 @@ void residualsAgainstRegime(std::ostringstream& h, const ReportInput& in) {
   for (const auto& v : vars) {
     std::vector<double> x;
     for (const auto& r : f.prediction.regime) x.push_back(v.get(r));
+    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+    if (x.empty() || *lo == *hi) continue;  // constant over the record: nothing to show
     std::vector<Series> s;
     for (const auto& o : f.comparison.outputs)
       s.push_back(series(o.output, x, o.residual / o.sigma, true));
-    h << lineChart(
-             {std::string("residual/σ against ") + v.label, v.label, "residual / σ", 360, 260}, s)
+    h << lineChart({std::string("residual/σ against ") + v.label, v.label, "residual / σ",
+                    kPanelWidth, 260},
+                   s)
       << '\n';
   }
 }
 
+std::string candidateNote(const validation::Candidate& c) {
+  if (c.accepted) return "accepted";
+  if (!c.redundantWith.empty()) return "adds nothing beyond " + c.redundantWith;
+  return c.rejected;
+}
+
 void candidateTable(std::ostringstream& h, const ReportInput& in) {
   if (!in.ranking) return;
-  h << "<h2>Candidate effects (ranked by ΔBIC; verdict needs ΔBIC &lt; −"
-    << num(validation::kBicMargin) << ")</h2>\n<table><tr><th>effect</th><th>adds</th>"
-    << "<th>chi</th><th>ΔBIC</th><th>fitted parameters</th><th>note</th></tr>\n";
+  h << "<h2>Candidate effects for the final model (ranked by ΔBIC; accepted when ΔBIC &lt; −"
+    << num(validation::kBicMargin) << ", parameters inside their bounds and the held-out χ² of "
+    << validation::kCvBlocks << "-block cross-validation lower by more than "
+    << num(validation::kHeldOutMargin) << ")</h2>\n<table><tr><th>effect</th><th>adds</th>"
+    << "<th>chi</th><th>ΔBIC</th><th>held-out χ²</th><th>fitted parameters</th><th>note</th>"
+    << "</tr>\n";
   for (const auto& c : *in.ranking) {
     std::ostringstream added, params;
     for (const auto& a : c.added) added << a << ' ';
     h << "<tr><td>" << c.effect << "</td><td>" << added.str() << "</td>";
     if (!c.error.empty()) {
-      h << "<td></td><td></td><td></td><td>" << escapeXml(c.error) << "</td></tr>\n";
+      h << "<td></td><td></td><td></td><td></td><td>" << escapeXml(c.error) << "</td></tr>\n";
       continue;
     }
     for (const auto& p : c.fit.parameters) {
-      if (!p.fixed) params << p.name << " = " << num(p.value) << "<br>";
+      if (p.fixed) continue;
+      params << p.name << " = " << num(p.value);
+      if (!p.atBound.empty()) params << " <b>(at " << escapeXml(p.atBound) << " bound)</b>";
+      params << "<br>";
     }
     h << "<td>" << num(c.fit.comparison.chi) << "</td><td>" << num(c.deltaBic, 6) << "</td><td>"
-      << params.str() << "</td><td>"
-      << (c.redundantWith.empty() ? "" : "adds nothing beyond " + c.redundantWith)
-      << "</td></tr>\n";
+      << (std::isnan(c.heldOutChi2) ? "" : num(c.heldOutChi2, 6)) << "</td><td>" << params.str()
+      << "</td><td>" << escapeXml(candidateNote(c)) << "</td></tr>\n";
   }
   h << "</table>\n";
 }
 
 void parameterTable(std::ostringstream& h, const ReportInput& in) {
   const FitResult& f = *in.stages.back().fit;
-  h << "<h2>Parameters of " << escapeXml(in.stages.back().label)
+  h << "<h2>Parameters of the final model, " << escapeXml(in.stages.back().label)
     << "</h2>\n<table><tr><th>parameter</th><th>value</th><th>std error</th><th>unit</th>"
     << "<th>status</th></tr>\n";
   for (const auto& p : f.parameters) {
     const std::string err = p.fixed ? "" : (std::isfinite(p.stdError) ? num(p.stdError, 3) : "∞");
     const std::string held = in.command == "compare" ? "as given" : "fixed";
-    const std::string status = p.fixed ? held : (p.identifiable ? "fitted" : "not identifiable");
+    std::string status = p.fixed ? held : (p.identifiable ? "fitted" : "not identifiable");
+    if (!p.fixed && !p.atBound.empty()) status += ", AT " + p.atBound + " BOUND";
     h << "<tr><td>" << p.name << "</td><td>" << num(p.value, 6) << "</td><td>" << err << "</td><td>"
-      << escapeXml(p.unit) << "</td><td>" << status << "</td></tr>\n";
+      << escapeXml(p.unit) << "</td><td>" << escapeXml(status) << "</td></tr>\n";
   }
   h << "</table>\n";
   if (f.warnings.empty()) return;
@@ -159,6 +179,8 @@ void parameterTable(std::ostringstream& h, const ReportInput& in) {
   h << "</ul>\n";
 }
 
+// chi of each stage as bars (compare, fit), or fitted and held-out chi against the stage
+// number with a key (diagnose): held-out chi = sqrt(held-out χ² / residual count).
 void chiBars(std::ostringstream& h, const ReportInput& in) {
   std::vector<std::string> labels;
   std::vector<double> chi;
@@ -166,10 +188,63 @@ void chiBars(std::ostringstream& h, const ReportInput& in) {
     labels.push_back(s.label);
     chi.push_back(s.fit->comparison.chi);
   }
-  h << "<h2>chi of each model stage</h2>\n"
-    << barChart({"chi = sqrt(mean (residual/σ)²) as effects are added", "model", "chi"}, labels,
-                chi, 1.0, "noise level (chi = 1)")
+  if (!in.stages.front().stage) {
+    h << "<h2>chi of each model stage</h2>\n"
+      << barChart({"chi = sqrt(mean (residual/σ)²) as effects are added", "model", "chi"}, labels,
+                  chi, 1.0, "noise level (chi = 1)")
+      << '\n';
+    return;
+  }
+  Series fitted{"fitted chi", {}, {}, "", true}, held{"held-out chi", {}, {}, "", true};
+  h << "<h2>chi of each stage, fitted and held out</h2>\n<table><tr><th>stage</th><th>model"
+    << "</th><th>chi fitted</th><th>chi held out</th><th>verdict</th></tr>\n";
+  for (std::size_t i = 0; i < in.stages.size(); ++i) {
+    const auto& st = *in.stages[i].stage;
+    const double out =
+        std::sqrt(st.heldOutChi2 / static_cast<double>(st.baseline.comparison.count));
+    fitted.x.push_back(static_cast<double>(i + 1));
+    fitted.y.push_back(chi[i]);
+    held.x.push_back(static_cast<double>(i + 1));
+    held.y.push_back(out);
+    h << "<tr><td>" << i + 1 << "</td><td>" << escapeXml(labels[i]) << "</td><td>" << num(chi[i])
+      << "</td><td>" << num(out) << "</td><td>" << escapeXml(st.verdict) << "</td></tr>\n";
+  }
+  h << "</table>\n"
+    << lineChart({"chi per stage: fitted and predicted on held-out blocks (1 = noise level)",
+                  "stage", "chi", kPageWidth, 260},
+                 {fitted, held})
     << '\n';
+}
+
+// The verdict of the final stage in words: effect, rig finding, none, or what is unexplained.
+void verdictSection(std::ostringstream& h, const ReportInput& in) {
+  if (!in.stages.back().stage) return;
+  const auto& st = *in.stages.back().stage;
+  h << "<h2>Verdict: " << escapeXml(st.verdict)
+    << "</h2>\n<p>Final model: " << escapeXml(in.stages.back().label) << " (effects:";
+  for (const auto& e : st.effects) h << ' ' << e;
+  h << ").</p>\n";
+  if (!st.rig.empty()) {
+    h << "<p>Rig candidates (not contact effects), best first:</p><ul>";
+    for (std::size_t i = 0; i < std::min<std::size_t>(st.rig.size(), 4); ++i) {
+      h << "<li>" << escapeXml(st.rig[i].text) << ": ΔBIC " << num(st.rig[i].deltaBic, 5)
+        << "</li>";
+    }
+    h << "</ul>\n";
+  }
+  if (st.kind != "unexplained") return;
+  const auto& r = st.residual;
+  h << "<p>Structure remains that no library effect removes out of sample. The best candidate "
+    << "removes " << num(100.0 * st.explainedFraction, 3) << " % of the residual χ²; the noise "
+    << "accounts for " << num(100.0 * r.noiseShare, 3) << " %. Worst output " << r.output;
+  if (r.frequency > 0.0) {
+    h << "; its residual rings at " << num(r.frequency, 3) << " Hz ("
+      << num(100.0 * r.frequencyShare, 3) << " % of its variance)";
+  }
+  h << ".</p>\n<ul>";
+  for (const auto& [name, c] : r.correlation)
+    h << "<li>|residual| against " << escapeXml(name) << ": r = " << num(c, 3) << "</li>";
+  h << "</ul>\n";
 }
 
 const char* kStyle =
@@ -195,7 +270,9 @@ std::string reportHtml(const ReportInput& in) {
   h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vcontact " << in.command << ": "
     << escapeXml(d.name) << "</title><style>" << kStyle << "</style></head><body>\n"
     << "<h1>vcontact " << in.command << ": " << escapeXml(d.name) << "</h1>\n<p>"
-    << escapeXml(d.notes) << "</p>\n<p>" << d.size() << " samples; σ per output: ";
+    << escapeXml(d.notes) << "</p>\n<p>payload: " << escapeXml(geometry::describe(d.payload))
+    << "; plate: " << escapeXml(geometry::describe(d.plate)) << "</p>\n<p>" << d.size()
+    << " samples; σ per output: ";
   for (const auto& [o, n] : in.noise) {
     h << o << " = " << num(n.sigma, 3) << ' ' << unitOf(o)
       << (n.estimated ? " (estimated from the data)" : " (sidecar)") << "; ";
@@ -204,6 +281,7 @@ std::string reportHtml(const ReportInput& in) {
   for (const auto& s : in.stages)
     h << escapeXml(s.label) << " = " << num(s.fit->comparison.chi) << "; ";
   h << "</p>\n";
+  verdictSection(h, in);
   chiBars(h, in);
   measuredVsModel(h, in, t);
   residuals(h, in, t);

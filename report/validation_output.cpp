@@ -33,13 +33,54 @@ json parametersJson(const FitResult& fit) {
   return params;
 }
 
+// Names of the free parameters at a bound, with the bound: {"bristle.sigma0": "upper"}.
+json atBoundJson(const FitResult& fit) {
+  json at = json::object();
+  for (const auto& p : fit.parameters) {
+    if (!p.fixed && !p.atBound.empty()) at[p.name] = p.atBound;
+  }
+  return at;
+}
+
+json rigJson(const validation::DiagnosisStage& s) {
+  json rig = json::array();
+  for (const auto& r : s.rig) {
+    rig.push_back({{"kind", r.kind},
+                   {"output", r.output},
+                   {"value", r.value},
+                   {"unit", r.unit},
+                   {"chi2_drop", r.chi2Drop},
+                   {"delta_bic", r.deltaBic},
+                   {"text", r.text}});
+  }
+  return rig;
+}
+
+json residualJson(const validation::DiagnosisStage& s) {
+  const auto& r = s.residual;
+  json corr = json::object();
+  for (const auto& [name, value] : r.correlation) corr[name] = value;
+  return {{"explained_fraction", s.explainedFraction},
+          {"noise_share", r.noiseShare},
+          {"worst_output", r.output},
+          {"dominant_frequency", r.frequency > 0.0 ? json(r.frequency) : json(nullptr)},
+          {"frequency_share", r.frequencyShare},
+          {"abs_residual_correlation", corr}};
+}
+
 json stageSummary(const validation::DiagnosisStage& s) {
   return {{"effects", s.effects},
           {"chi", s.baseline.comparison.chi},
+          {"held_out_chi2", number(s.heldOutChi2)},
+          {"chi2", s.baseline.comparison.chi2},
           {"bic", s.baseline.bic},
           {"rms", rmsJson(s.baseline.comparison)},
           {"params", parametersJson(s.baseline)},
+          {"at_bound", atBoundJson(s.baseline)},
           {"verdict", s.verdict},
+          {"kind", s.kind},
+          {"rig", rigJson(s)},
+          {"residual", residualJson(s)},
           {"removed", s.removed.empty() ? json(nullptr) : json(s.removed)}};
 }
 
@@ -53,6 +94,10 @@ json rankingJson(const validation::DiagnosisStage& s) {
       r["chi"] = c.fit.comparison.chi;
       r["delta_bic"] = c.deltaBic;
       r["params"] = parametersJson(c.fit);
+      r["at_bound"] = atBoundJson(c.fit);
+      r["held_out_chi2"] = number(c.heldOutChi2);
+      r["accepted"] = c.accepted;
+      if (!c.rejected.empty()) r["rejected"] = c.rejected;
       if (!c.redundantWith.empty()) r["redundant_with"] = c.redundantWith;
       if (!c.fit.warnings.empty()) r["warnings"] = c.fit.warnings;
     }
@@ -116,7 +161,9 @@ json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validat
                       {"value", p.value},
                       {"std_error", number(p.stdError)},
                       {"fixed", p.fixed},
-                      {"identifiable", p.identifiable}});
+                      {"identifiable", p.identifiable},
+                      {"at_bound", p.fixed ? json(false) : json(!p.atBound.empty())},
+                      {"bound", p.atBound.empty() ? json(nullptr) : json(p.atBound)}});
   }
   json corr = json::array();
   for (Eigen::Index i = 0; i < fit.correlation.rows(); ++i) {
@@ -131,6 +178,7 @@ json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validat
           {"loss", validation::lossName(loss)},
           {"converged", fit.converged},
           {"iterations", fit.iterations},
+          {"multistart", {{"polished", fit.startsPolished}, {"winning_start", fit.winningStart}}},
           {"solver", fit.solverReport},
           {"parameters", params},
           {"correlation", {{"names", fit.freeNames}, {"matrix", corr}}},
@@ -141,7 +189,10 @@ json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validat
 json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels& noise) {
   const auto& first = d.stages.front();
   json j = {{"verdict", first.verdict},
+            {"kind", first.kind},
             {"margin", validation::kBicMargin},
+            {"held_out_margin", validation::kHeldOutMargin},
+            {"cv_blocks", validation::kCvBlocks},
             {"baseline", stageSummary(first)},
             {"ranking", rankingJson(first)},
             {"where", whereJson(first)},
@@ -157,6 +208,10 @@ json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels
     j["stages"] = std::move(stages);
     j["final"] = {{"effects", d.final().model.effectIds()},
                   {"chi", d.final().comparison.chi},
+                  {"held_out_chi2", number(d.stages.back().heldOutChi2)},
+                  {"verdict", d.stages.back().verdict},
+                  {"kind", d.stages.back().kind},
+                  {"where", whereJson(d.stages.back())},
                   {"model", formats::modelToJson(d.final().model)}};
   }
   return j;

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -36,27 +37,25 @@ void closure(const Model& model, const CandidateSet& set, const std::string& id,
   for (auto req : effect->requiredEffects()) closure(model, set, std::string(req), out);
 }
 
-std::vector<Candidate> candidatesFor(const Model& model, const CandidateSet& set) {
-  std::vector<Candidate> candidates;
-  for (const auto& id : set.ids()) {
-    if (model.has(id)) continue;
-    Candidate c;
-    c.effect = id;
-    closure(model, set, id, c.added);
-    candidates.push_back(std::move(c));
-  }
-  return candidates;
-}
-
 // The candidate's model: the baseline's fitted values, the new effects at the values of the
-// candidate set (the defaults for the library's).
-// Relations between parameters (μ_S ≥ μ_C) are not enforced at the start: the fit moves
-// them, and fit() reports a relation the fitted values break.
+// candidate set (the defaults for the library's); a relation such as μ_S ≥ μ_C is kept by the
+// fit's parametrisation (fit.hpp).
 Model candidateModel(const Model& baseline, const CandidateSet& set, const Candidate& c) {
   Model m = baseline;
   for (const auto& id : c.added) m.add(set.create(id));
   m.setFixed(baseline.fixed());
   return m;
+}
+
+// The parameters of the added effects: what the candidate's multistart explores.
+std::vector<std::string> addedParameters(const Model& m, const Candidate& c) {
+  std::vector<std::string> out;
+  for (const auto& name : m.parameterNames()) {
+    for (const auto& id : c.added) {
+      if (name.rfind(id + ".", 0) == 0) out.push_back(name);
+    }
+  }
+  return out;
 }
 
 void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model& baseline,
@@ -65,7 +64,10 @@ void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model
     Candidate& c = candidates[i];
     try {
       Replayer replayer(dataset);
-      c.fit = fit(replayer, noise, candidateModel(baseline, options.candidates, c), options.fit);
+      const Model start = candidateModel(baseline, options.candidates, c);
+      FitOptions own = options.fit;
+      own.explore = addedParameters(start, c);
+      c.fit = fit(replayer, noise, start, own);
     } catch (const std::exception& e) {
       c.error = e.what();
     }
@@ -212,20 +214,108 @@ void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
   }
 }
 
+// Why the candidate's added parameters are not physical; empty when they are.
+std::string unphysical(const Candidate& c) {
+  for (const auto& p : c.fit.parameters) {
+    if (p.fixed || p.atBound.empty()) continue;
+    for (const auto& id : c.added) {
+      if (p.name.rfind(id + ".", 0) == 0)
+        return p.name + " = " + format3(p.value) + " is at its " + p.atBound + " bound";
+    }
+  }
+  return {};
+}
+
+// Steps 1–3 of the acceptance (see the header); marks the first accepted candidate.
+void accept(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOptions& options,
+            DiagnosisStage& stage) {
+  std::size_t validated = 0;
+  for (auto& c : stage.ranking) {
+    if (!c.error.empty() || !c.redundantWith.empty()) continue;
+    if (!(c.deltaBic < -options.margin)) break;  // ranked: the rest are worse
+    c.rejected = unphysical(c);
+    if (!c.rejected.empty()) continue;
+    if (validated++ == kCvCandidates) {
+      c.rejected = "not cross-validated (only the best " + std::to_string(kCvCandidates) + " are)";
+      continue;
+    }
+    c.heldOutChi2 = heldOutChi2(dataset, noise, c.fit.model, options.fit);
+    const double drop = stage.heldOutChi2 - c.heldOutChi2;
+    const double excess = stage.heldOutChi2 - static_cast<double>(stage.baseline.comparison.count);
+    const double needed = std::max(options.heldOutMargin, kHeldOutShare * excess);
+    if (!(drop > needed)) {
+      c.rejected = "held-out chi2 falls by " + format3(drop) + ", not more than " +
+                   format3(needed) + " (the margin, or a quarter of the excess over the noise)";
+      continue;
+    }
+    c.accepted = true;
+    return;
+  }
+}
+
+void decide(const Dataset& dataset, const DiagnoseOptions& options, DiagnosisStage& stage) {
+  const auto accepted = std::find_if(stage.ranking.begin(), stage.ranking.end(),
+                                     [](const Candidate& c) { return c.accepted; });
+  // a rig verdict needs the (refined) finding to pass the margin and to remove at least
+  // kRigShare of the baseline's excess χ² (χ² − n): a rig artifact is one global correction,
+  // not a partial stand-in for structure it does not explain
+  const double excess =
+      stage.baseline.comparison.chi2 - static_cast<double>(stage.baseline.comparison.count);
+  const RigFinding* rig = !stage.rig.empty() && stage.rig.front().deltaBic < -options.margin &&
+                                  stage.rig.front().chi2Drop >= kRigShare * excess
+                              ? &stage.rig.front()
+                              : nullptr;
+  double bestChi2 = stage.baseline.comparison.chi2;
+  for (const auto& c : stage.ranking) {
+    if (c.error.empty()) bestChi2 = std::min(bestChi2, c.fit.comparison.chi2);
+  }
+  const double base = stage.baseline.comparison.chi2;
+  stage.explainedFraction = base > 0.0 ? std::max(0.0, 1.0 - bestChi2 / base) : 0.0;
+  stage.residual = describeResidual(dataset, stage.baseline);
+  if (accepted != stage.ranking.end() && (!rig || accepted->deltaBic <= rig->deltaBic)) {
+    stage.kind = "effect";
+    stage.verdict = accepted->effect;
+  } else if (rig) {
+    stage.kind = "rig";
+    stage.verdict = "rig: " + rig->text;
+  } else if (stage.baseline.comparison.chi <= options.explainedChi) {
+    stage.kind = stage.verdict = "none";
+  } else {
+    stage.kind = stage.verdict = "unexplained";
+  }
+}
+
+// Seconds since `t`, and t reset to now.
+double lap(std::chrono::steady_clock::time_point& t) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - t).count();
+  t = now;
+  return s;
+}
+
 DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
-                             const DiagnoseOptions& options) {
+                             const DiagnoseOptions& options, bool explore) {
   DiagnosisStage stage;
+  auto t = std::chrono::steady_clock::now();
   stage.effects = start.effectIds();
   Replayer replayer(dataset);
-  stage.baseline = fit(replayer, noise, start, options.fit);
+  FitOptions baselineOptions = options.fit;
+  if (!explore) baselineOptions.designPoints = 0;  // the start is the previous optimum
+  stage.baseline = fit(replayer, noise, start, baselineOptions);
   stage.where = failureWindows(dataset, stage.baseline.comparison, stage.baseline.prediction);
-  stage.ranking = candidatesFor(stage.baseline.model, options.candidates);
+  stage.seconds.baseline = lap(t);
+  stage.ranking = candidateList(stage.baseline.model, options);
   fitCandidates(dataset, noise, stage.baseline.model, options, stage.ranking);
   rank(stage.ranking, stage.baseline.bic, options.margin);
-  const bool found = !stage.ranking.empty() && stage.ranking.front().error.empty() &&
-                     stage.ranking.front().redundantWith.empty() &&
-                     stage.ranking.front().deltaBic < -options.margin;
-  stage.verdict = found ? stage.ranking.front().effect : "none";
+  stage.seconds.candidates = lap(t);
+  stage.heldOutChi2 = heldOutChi2(dataset, noise, stage.baseline.model, options.fit);
+  accept(dataset, noise, options, stage);
+  stage.seconds.crossValidation = lap(t);
+  stage.rig = rigCandidates(dataset, stage.baseline.comparison);
+  if (!stage.rig.empty() && stage.rig.front().deltaBic < -options.margin)
+    stage.rig.front() = refineRig(dataset, noise, stage.baseline, stage.rig.front(), options.fit);
+  decide(dataset, options, stage);
+  stage.seconds.rest = lap(t);
   return stage;
 }
 
@@ -262,7 +352,7 @@ void prune(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOptio
     Replayer replayer(dataset);
     const FitResult refit = fit(replayer, noise, *reduced, options.fit);
     if (refit.bic >= current.bic + options.margin) continue;
-    DiagnosisStage stage = diagnoseStage(dataset, noise, *reduced, options);
+    DiagnosisStage stage = diagnoseStage(dataset, noise, *reduced, options, false);
     stage.removed = id;
     d.stages.push_back(std::move(stage));
   }
@@ -281,13 +371,27 @@ std::vector<FailureWindow> failureWindows(const Dataset& dataset, const Comparis
   return out;
 }
 
+std::vector<Candidate> candidateList(const Model& model, const DiagnoseOptions& options) {
+  std::vector<Candidate> candidates;
+  for (const auto& id : options.candidates.ids()) {
+    if (model.has(id)) continue;
+    Candidate c;
+    c.effect = id;
+    closure(model, options.candidates, id, c.added);
+    candidates.push_back(std::move(c));
+  }
+  return candidates;
+}
+
 Diagnosis diagnose(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
                    const DiagnoseOptions& options) {
   Diagnosis d;
-  d.stages.push_back(diagnoseStage(dataset, noise, start, options));
-  while (options.iterate && d.stages.back().verdict != "none") {
-    const Candidate& best = d.stages.back().ranking.front();
-    d.stages.push_back(diagnoseStage(dataset, noise, best.fit.model, options));
+  d.stages.push_back(diagnoseStage(dataset, noise, start, options, true));
+  while (options.iterate && d.stages.back().kind == "effect") {
+    const DiagnosisStage& last = d.stages.back();
+    const auto best = std::find_if(last.ranking.begin(), last.ranking.end(),
+                                   [](const Candidate& c) { return c.accepted; });
+    d.stages.push_back(diagnoseStage(dataset, noise, best->fit.model, options, false));
   }
   if (options.iterate) prune(dataset, noise, options, d);
   return d;

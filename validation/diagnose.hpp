@@ -1,16 +1,40 @@
 #pragma once
-// Which physical effect is the model missing? (issue #5)
+// Which physical effect is the model missing? (issues #5, 15)
 //
-// The model is fitted (the baseline), then for every effect of the library (or of the user's
-// candidate set, DiagnoseOptions::candidates) that it lacks the effect is added (with the
-// effects it requires, MODEL.md §3), the model refitted, and the
-// candidates ranked by ΔBIC = BIC_candidate − BIC_baseline, BIC = χ² + k ln n (known σ).
-// Verdict: the best candidate when ΔBIC < −kBicMargin, else "none".
-// kBicMargin = 10 is "very strong" evidence on the Kass–Raftery (1995) scale (2 ln B > 10,
-// a Bayes factor above 150). Under the null (the effect is absent), adding k parameters lowers
-// χ² by about a χ²_k variable, so ΔBIC ≈ k ln n − χ²_k: P(ΔBIC < −10) < 1e-3 for k ≤ 2 even at
-// n = 100, while a missing effect whose share of the signal is a few σ over a window of m
-// samples lowers χ² by far more. A model that already explains the data stays as it is.
+// The model is fitted (the baseline, multistart: fit.hpp), then for every candidate effect that
+// it lacks (candidateList: by default every effect of the library, or the user's candidate set,
+// validation/candidates.hpp) the effect is added (with
+// the effects it requires, MODEL.md §3), the model refitted from the baseline's optimum with a
+// multistart design over the added parameters only, and the candidates ranked by
+// ΔBIC = BIC_candidate − BIC_baseline, BIC = χ² + k ln n (known σ).
+//
+// Acceptance: a candidate is accepted when, in ranking order,
+//   1. ΔBIC < −margin; margin = 10 is "very strong" evidence on the Kass–Raftery (1995) scale
+//      (2 ln B > 10). Under the null, adding k parameters lowers χ² by about a χ²_k variable,
+//      so P(ΔBIC < −10) < 1e-3 for k ≤ 2 even at n = 100;
+//   2. its parameters are physical: none of the added effects' parameters ends at a bound
+//      (relations such as μ_S ≥ μ_C hold by the parametrisation, fit.hpp);
+//   3. it predicts data it was not fitted on: its held-out χ² (blocked cross-validation over
+//      kCvBlocks contiguous blocks, selection.hpp) is below the baseline's by more than
+//      heldOutMargin = 10, the same "very strong" margin in χ² units, and by at least
+//      kHeldOutShare = a quarter of the baseline's held-out excess over the noise (H − n): under
+//      gross model error every candidate lowers χ² by far more than 10, and a stand-in that
+//      removes a small part of what is wrong is not a finding. (A missing library effect removes
+//      nearly all of the excess; with two missing, each removes a large share.) Only the
+//      kCvCandidates best candidates that pass 1 and 2 are cross-validated (the cost).
+// Rig candidates (rig.hpp: offset, gain per output, a motion–force lag) are scored on the
+// baseline's residual with the same ΔBIC and reported apart from the effects.
+// Verdict, in this order:
+//   the accepted effect, unless a rig candidate has a lower ΔBIC;
+//   "rig: <finding>" when a rig candidate (refined with the contact model refitted, rig.hpp)
+//   passes the margin, removes at least kRigShare = half of the baseline's excess χ² − n
+//   (one global correction, not a partial stand-in), and no effect beats it;
+//   "none" when the baseline's chi is ≤ explainedChi (explained down to the noise);
+//   "unexplained" otherwise, with the share of the residual variance the best candidate
+//   explains (1 − χ²_c/χ²_baseline) and a description of the residual (selection.hpp).
+// explainedChi = 1.2: chi of a model that explains the data is 1 within the sampling scatter
+// of chi over a few hundred samples (sqrt(1 ± sqrt(2/n)) ≈ 1 ± 0.03 at n = 600 residuals;
+// 1.2 also leaves room for σ estimated from the data).
 //
 // `where` locates the baseline's failures: samples whose moving-window chi exceeds
 // kWindowChi are merged into time windows, and each window is described by the regime
@@ -18,10 +42,11 @@
 // in which it is most unlike the rest of the record (mean rank of its samples farthest from
 // the middle), as that variable's 10–90 % range over the window and what it means.
 //
-// --iterate adds greedily; an effect added early can become unnecessary once a later one is
-// in (it was the best partial stand-in). When the last verdict is "none", each effect added
-// by the iteration is removed in turn and the model refitted; an effect whose removal raises
-// BIC by less than the margin is dropped (backward elimination), as a new stage.
+// --iterate adds the accepted effect and repeats while the verdict is an effect (a rig finding
+// stops it: correct the record first). An effect added early can become unnecessary once a
+// later one is in; at the end each effect added by the iteration is removed in turn and the
+// model refitted; an effect whose removal raises BIC by less than the margin is dropped
+// (backward elimination), as a new stage.
 //
 // A candidate whose added effects contain another candidate's, and whose χ² is not lower by
 // the margin, is marked redundant (adding spin brings coulomb along; when coulomb alone fits
@@ -29,17 +54,30 @@
 //
 // Candidates are fitted in parallel with TBB (one Replayer each).
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "validation/candidates.hpp"
 #include "validation/fit.hpp"
+#include "validation/rig.hpp"
+#include "validation/selection.hpp"
 
 namespace vcontact::validation {
 
 /// Kass–Raftery "very strong": see the header.
 inline constexpr double kBicMargin = 10.0;
+/// Held-out χ² drop an accepted effect must reach: see the header.
+inline constexpr double kHeldOutMargin = 10.0;
+/// Share of the baseline's held-out excess χ² an accepted effect must remove.
+inline constexpr double kHeldOutShare = 0.25;
+/// chi at or below which the verdict is "none": see the header.
+inline constexpr double kExplainedChi = 1.2;
+/// Share of the baseline's excess χ² a rig finding must remove to be the verdict.
+inline constexpr double kRigShare = 0.5;
+/// Candidates cross-validated per stage.
+inline constexpr std::size_t kCvCandidates = 3;
 
 struct Candidate {
   std::string effect;              ///< the effect ranked
@@ -50,6 +88,9 @@ struct Candidate {
   /// Non-empty: a candidate adding a subset of these effects fits as well (χ² within the
   /// margin), so this one adds nothing of its own; ranked after the others.
   std::string redundantWith;
+  double heldOutChi2 = std::numeric_limits<double>::quiet_NaN();  ///< NaN: not cross-validated
+  std::string rejected;  ///< why a candidate past the ΔBIC margin was not accepted
+  bool accepted = false;
 };
 
 struct FailureWindow {
@@ -65,17 +106,33 @@ struct DiagnosisStage {
   FitResult baseline;
   std::vector<Candidate> ranking;  ///< best (lowest ΔBIC) first; failed candidates last
   std::vector<FailureWindow> where;
-  std::string verdict;  ///< the best candidate's id, or "none"
+  /// The accepted effect's id, "rig: <finding>", "none" or "unexplained" (see the header).
+  std::string verdict;
+  std::string kind;     ///< "effect", "rig", "none" or "unexplained"
   std::string removed;  ///< non-empty: this stage dropped an effect (pruning)
+  double heldOutChi2 = std::numeric_limits<double>::quiet_NaN();  ///< of the baseline
+  std::vector<RigFinding> rig;                                    ///< best first
+  double explainedFraction = 0.0;  ///< 1 − χ²_best candidate / χ²_baseline, ≥ 0
+  ResidualDescription residual;    ///< of the baseline
+  /// Wall-clock seconds of the stage's parts: baseline fit, candidate fits, cross-validation
+  /// (baseline and candidates), rig candidates and residual description.
+  struct {
+    double baseline = 0.0, candidates = 0.0, crossValidation = 0.0, rest = 0.0;
+  } seconds;
 };
 
 struct DiagnoseOptions {
   FitOptions fit;
-  bool iterate = false;  ///< add the best and repeat until "none"
+  bool iterate = false;  ///< add the accepted effect and repeat while there is one
   double margin = kBicMargin;
+  double heldOutMargin = kHeldOutMargin;
+  double explainedChi = kExplainedChi;
   /// The effects tried at each stage (validation/candidates.hpp); the library's by default.
   CandidateSet candidates = CandidateSet::library();
 };
+
+/// The candidates for `model`: each effect of options.candidates that the model lacks, with the effects it requires. @throws InputError on an unknown id
+std::vector<Candidate> candidateList(const dynamics::Model& model, const DiagnoseOptions& options);
 
 struct Diagnosis {
   std::vector<DiagnosisStage> stages;  ///< one without iterate

@@ -1,6 +1,7 @@
 #include "validation/fit.hpp"
 
 #include <ceres/ceres.h>
+#include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -35,6 +36,13 @@ constexpr double kNullComponent = 0.3;
 constexpr double kRelativeStep = 1e-3;
 // |correlation| above which two parameters are reported as nearly interchangeable.
 constexpr double kHighCorrelation = 0.99;
+// A parameter within this fraction of its u range from a bound is "at the bound".
+constexpr double kAtBoundFraction = 1e-6;
+// Design range of a positive parameter: its scale s times 10^±3 (see the header).
+constexpr double kDesignDecades = 1e-3;
+// Another polished start replaces the best only when its cost is lower by this fraction:
+// LM runs that end in the same minimum differ in the last digits, and the earlier start wins.
+constexpr double kBetterCost = 1e-9;
 
 // u ↔ p for one parameter (see the header).
 struct Scaling {
@@ -54,7 +62,27 @@ struct FreeParameter {
   std::size_t index;  // into Model::parameters()
   ParameterSpec spec;
   Scaling scaling;
+  /// Index of q for a relation p ≥ q (u then maps Δ = p − q); −1: u maps p itself.
+  long reference = -1;
+  double lowerU() const { return scaling.toU(reference >= 0 ? 0.0 : spec.lower); }
+  double upperU(const std::vector<ParameterSpec>& specs) const {
+    if (reference < 0) return scaling.toU(spec.upper);
+    return scaling.toU(spec.upper - specs[static_cast<std::size_t>(reference)].lower);
+  }
 };
+
+// The relation p ≥ q declared for parameter `name`, as the index of q; −1 when none.
+long referenceOf(const Model& m, const std::string& name) {
+  const auto names = m.parameterNames();
+  for (std::size_t e = 0; e < m.effectCount(); ++e) {
+    for (const auto& r : m.effect(e).relations()) {
+      if (r.parameter != name) continue;
+      const auto it = std::find(names.begin(), names.end(), r.atLeast);
+      if (it != names.end()) return static_cast<long>(it - names.begin());
+    }
+  }
+  return -1;
+}
 
 std::vector<FreeParameter> freeParameters(const Model& m) {
   std::vector<FreeParameter> free;
@@ -62,18 +90,52 @@ std::vector<FreeParameter> freeParameters(const Model& m) {
   const auto& fixed = m.fixed();
   for (std::size_t i = 0; i < specs.size(); ++i) {
     if (std::find(fixed.begin(), fixed.end(), specs[i].name) != fixed.end()) continue;
-    free.push_back({i, specs[i], scalingOf(specs[i])});
+    FreeParameter f{i, specs[i], scalingOf(specs[i]), referenceOf(m, specs[i].name)};
+    if (f.reference >= 0)
+      f.scaling = {true, specs[i].default_value > 0.0 ? specs[i].default_value : 1.0};
+    free.push_back(f);
   }
   return free;
+}
+
+// Model parameter values for u: plain parameters first, then those tied by a relation
+// (p = q + Δ, so q must be set before).
+void applyU(const std::vector<FreeParameter>& free, const std::vector<double>& u,
+            std::vector<double>& values) {
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t j = 0; j < free.size(); ++j) {
+      const auto& f = free[j];
+      if ((f.reference >= 0) != (pass == 1)) continue;
+      const double base = pass == 1 ? values[static_cast<std::size_t>(f.reference)] : 0.0;
+      values[f.index] = std::clamp(base + f.scaling.toP(u[j]), f.spec.lower, f.spec.upper);
+    }
+  }
+}
+
+// u of the model values (a relation the values break starts at Δ = 0).
+std::vector<double> uOf(const std::vector<FreeParameter>& free, const std::vector<double>& values) {
+  std::vector<double> u;
+  for (const auto& f : free) {
+    const double p = values[f.index];
+    u.push_back(f.reference < 0 ? f.scaling.toU(p)
+                                : f.scaling.toU(std::max(
+                                      0.0, p - values[static_cast<std::size_t>(f.reference)])));
+  }
+  return u;
 }
 
 // Normalised (and robustified) residuals of the whole record as a function of u.
 class RecordResiduals {
  public:
   RecordResiduals(Replayer& replayer, const NoiseLevels& noise, Model model,
-                  std::vector<FreeParameter> free, Loss loss)
-      : replayer_(replayer), noise_(noise), model_(std::move(model)), free_(std::move(free)) {
+                  std::vector<FreeParameter> free, Loss loss, std::vector<bool> heldOut)
+      : replayer_(replayer),
+        noise_(noise),
+        model_(std::move(model)),
+        free_(std::move(free)),
+        heldOut_(std::move(heldOut)) {
     values_ = model_.parameters();
+    u_.resize(free_.size());
     if (loss == Loss::kHuber) loss_ = std::make_unique<ceres::HuberLoss>(kHuberScale);
     if (loss == Loss::kCauchy) loss_ = std::make_unique<ceres::CauchyLoss>(kCauchyScale);
   }
@@ -83,19 +145,31 @@ class RecordResiduals {
   }
 
   bool operator()(double const* const* u, double* residuals) const {
-    for (std::size_t j = 0; j < free_.size(); ++j) {
-      const auto& f = free_[j];
-      values_[f.index] = std::clamp(f.scaling.toP(u[j][0]), f.spec.lower, f.spec.upper);
-    }
+    for (std::size_t j = 0; j < free_.size(); ++j) u_[j] = u[j][0];
+    applyU(free_, u_, values_);
     model_.setParameters(values_);
     const Prediction p = replayer_.run(model_);
     const auto& d = replayer_.dataset();
     int k = 0;
     for (const auto& o : d.outputs) {
       const Eigen::VectorXd e = (d.measured(o) - p.column(o)) / noise_.at(o).sigma;
-      for (Eigen::Index i = 0; i < e.size(); ++i) residuals[k++] = robust(e[i]);
+      for (Eigen::Index i = 0; i < e.size(); ++i) {
+        const bool out = !heldOut_.empty() && heldOut_[static_cast<std::size_t>(i)];
+        residuals[k++] = out ? 0.0 : robust(e[i]);
+      }
     }
     return true;
+  }
+
+  /// Σ residual² at u (the multistart's screening).
+  double cost(const std::vector<double>& u) const {
+    std::vector<const double*> ptr;
+    for (const auto& x : u) ptr.push_back(&x);
+    std::vector<double> r(static_cast<std::size_t>(residualCount()));
+    (*this)(ptr.data(), r.data());
+    double c = 0.0;
+    for (double x : r) c += x * x;
+    return std::isfinite(c) ? c : std::numeric_limits<double>::infinity();
   }
 
  private:
@@ -111,7 +185,9 @@ class RecordResiduals {
   const NoiseLevels& noise_;
   mutable Model model_;
   std::vector<FreeParameter> free_;
+  std::vector<bool> heldOut_;
   mutable std::vector<double> values_;
+  mutable std::vector<double> u_;
   std::unique_ptr<ceres::LossFunction> loss_;
 };
 
@@ -164,6 +240,13 @@ void addWarnings(FitResult& r) {
   for (const auto& p : r.parameters) {
     if (p.fixed) continue;
     std::ostringstream s;
+    if (!p.atBound.empty()) {
+      s << p.name << " = " << str(p.value) << " is at its " << p.atBound
+        << " bound: the data push it out of the physical range (the effect stands in for "
+        << "something else)";
+      r.warnings.push_back(s.str());
+      s.str("");
+    }
     if (!p.identifiable) {
       s << p.name << ": the data cannot identify it (no independent effect on the outputs); "
         << "fix it or add data that exercises it";
@@ -222,14 +305,30 @@ void estimateUncertainty(ceres::Problem& problem, const std::vector<FreeParamete
   covariance.GetCovarianceMatrix(kept, C.data());
   const double dof = static_cast<double>(r.comparison.count) - static_cast<double>(k);
   const double scale = std::max(1.0, r.comparison.chi2 / std::max(dof, 1.0));
+  // Cov p = D Cov u Dᵀ, D = dp/du: diagonal, plus dp/du_q for p = q + Δ.
+  const auto kk = static_cast<Eigen::Index>(k);
+  Eigen::MatrixXd Cu = Eigen::MatrixXd::Zero(kk, kk), D = Eigen::MatrixXd::Zero(kk, kk);
   for (Eigen::Index a = 0; a < m; ++a) {
-    const std::size_t ja = keptIndex[static_cast<std::size_t>(a)];
-    const double da = free[ja].scaling.dPdU(u[ja]);
-    r.parameters[free[ja].index].stdError = da * std::sqrt(std::max(C(a, a), 0.0) * scale);
     for (Eigen::Index b = 0; b < m; ++b) {
-      const std::size_t jb = keptIndex[static_cast<std::size_t>(b)];
-      r.correlation(static_cast<Eigen::Index>(ja), static_cast<Eigen::Index>(jb)) =
-          C(a, b) / std::sqrt(C(a, a) * C(b, b));
+      Cu(static_cast<Eigen::Index>(keptIndex[static_cast<std::size_t>(a)]),
+         static_cast<Eigen::Index>(keptIndex[static_cast<std::size_t>(b)])) = C(a, b);
+    }
+  }
+  for (std::size_t j = 0; j < k; ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    D(jj, jj) = free[j].scaling.dPdU(u[j]);
+    for (std::size_t q = 0; q < k && free[j].reference >= 0; ++q) {
+      if (free[q].index == static_cast<std::size_t>(free[j].reference))
+        D(jj, static_cast<Eigen::Index>(q)) = free[q].scaling.dPdU(u[q]);
+    }
+  }
+  const Eigen::MatrixXd Cp = D * Cu * D.transpose() * scale;
+  for (const std::size_t ja : keptIndex) {
+    const auto a = static_cast<Eigen::Index>(ja);
+    r.parameters[free[ja].index].stdError = std::sqrt(std::max(Cp(a, a), 0.0));
+    for (const std::size_t jb : keptIndex) {
+      const auto b = static_cast<Eigen::Index>(jb);
+      r.correlation(a, b) = Cp(a, b) / std::sqrt(Cp(a, a) * Cp(b, b));
     }
   }
 }
@@ -242,7 +341,7 @@ FitResult startingResult(const Model& start, const std::vector<FreeParameter>& f
   const auto initial = start.parameters();
   for (std::size_t i = 0; i < specs.size(); ++i) {
     r.parameters.push_back(
-        {specs[i].name, specs[i].unit, initial[i], initial[i], std::nan(""), true, true});
+        {specs[i].name, specs[i].unit, initial[i], initial[i], std::nan(""), true, true, ""});
   }
   for (const auto& f : free) {
     r.parameters[f.index].fixed = false;
@@ -255,9 +354,9 @@ FitResult startingResult(const Model& start, const std::vector<FreeParameter>& f
 // The least-squares problem in u: one residual block over the whole record (central
 // differences), each u bounded by its parameter's bounds.
 void buildProblem(Replayer& replayer, const NoiseLevels& noise, const Model& start,
-                  const std::vector<FreeParameter>& free, Loss loss, std::vector<double>& u,
-                  ceres::Problem& problem) {
-  auto* functor = new RecordResiduals(replayer, noise, start, free, loss);
+                  const std::vector<FreeParameter>& free, const FitOptions& options,
+                  std::vector<double>& u, ceres::Problem& problem) {
+  auto* functor = new RecordResiduals(replayer, noise, start, free, options.loss, options.heldOut);
   ceres::NumericDiffOptions diff;
   diff.relative_step_size = kRelativeStep;
   auto* cost = new ceres::DynamicNumericDiffCostFunction<RecordResiduals, ceres::CENTRAL>(
@@ -267,9 +366,10 @@ void buildProblem(Replayer& replayer, const NoiseLevels& noise, const Model& sta
   std::vector<double*> blocks;
   for (auto& x : u) blocks.push_back(&x);
   problem.AddResidualBlock(cost, nullptr, blocks);
+  const auto specs = start.parameterSpecs();
   for (std::size_t j = 0; j < free.size(); ++j) {
-    problem.SetParameterLowerBound(blocks[j], 0, free[j].scaling.toU(free[j].spec.lower));
-    problem.SetParameterUpperBound(blocks[j], 0, free[j].scaling.toU(free[j].spec.upper));
+    problem.SetParameterLowerBound(blocks[j], 0, free[j].lowerU());
+    problem.SetParameterUpperBound(blocks[j], 0, free[j].upperU(specs));
   }
 }
 
@@ -277,19 +377,31 @@ ceres::Solver::Options solverOptions(const FitOptions& options) {
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = options.maxIterations;
-  so.num_threads = 1;  // candidates run in parallel one level up (TBB)
+  so.num_threads = 1;  // starts and candidates run in parallel one level up (TBB)
   so.logging_type = ceres::SILENT;
   return so;
 }
 
-// r's model and free parameter values at the solution u, clamped to their bounds.
+// r's model and free parameter values at the solution u, clamped to their bounds, and the
+// parameters that sit at a bound (see the header).
 void takeSolution(const std::vector<FreeParameter>& free, const std::vector<double>& u,
                   FitResult& r) {
   std::vector<double> values = r.model.parameters();
+  applyU(free, u, values);
+  const auto specs = r.model.parameterSpecs();
   for (std::size_t j = 0; j < free.size(); ++j) {
-    values[free[j].index] =
-        std::clamp(free[j].scaling.toP(u[j]), free[j].spec.lower, free[j].spec.upper);
-    r.parameters[free[j].index].value = values[free[j].index];
+    auto& est = r.parameters[free[j].index];
+    est.value = values[free[j].index];
+    const double lo = free[j].lowerU(), hi = free[j].upperU(specs);
+    const double tol = kAtBoundFraction * std::max(hi - lo, 1.0);
+    est.atBound.clear();
+    if (u[j] <= lo + tol) {
+      est.atBound = free[j].reference < 0
+                        ? "lower"
+                        : ">= " + specs[static_cast<std::size_t>(free[j].reference)].name;
+    } else if (u[j] >= hi - tol) {
+      est.atBound = "upper";
+    }
   }
   r.model.setParameters(values);
 }
@@ -300,22 +412,113 @@ void predict(Replayer& replayer, const NoiseLevels& noise, FitResult& r) {
   r.comparison = compare(replayer.dataset(), r.prediction, noise);
 }
 
-// Solves for the free parameters from `start` and fills r: solver outcome, fitted model,
+// Point i ≥ 1 of the Halton sequence in the prime base `base`: in [0, 1).
+double halton(int i, int base) {
+  double f = 1.0, x = 0.0;
+  for (; i > 0; i /= base) {
+    f /= base;
+    x += f * (i % base);
+  }
+  return x;
+}
+
+// Design range in u of one free parameter (see the header).
+std::pair<double, double> designRange(const FreeParameter& f,
+                                      const std::vector<ParameterSpec>& specs) {
+  double lo = f.lowerU(), hi = f.upperU(specs);
+  if (f.scaling.logarithmic) {
+    lo = std::max(lo, f.scaling.toU(f.scaling.s * kDesignDecades));
+    hi = std::min(hi, f.scaling.toU(f.scaling.s / kDesignDecades));
+    if (f.reference >= 0 || f.spec.lower <= 0.0) lo = f.lowerU();  // from 0 (Δ = 0, p = 0)
+  }
+  return {lo, std::max(lo, hi)};
+}
+
+// The start and the Halton points (see the header), in u.
+std::vector<std::vector<double>> designStarts(const Model& start,
+                                              const std::vector<FreeParameter>& free,
+                                              const FitOptions& options) {
+  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53};
+  const std::vector<double> u0 = uOf(free, start.parameters());
+  std::vector<std::vector<double>> starts{u0};
+  const auto specs = start.parameterSpecs();
+  std::vector<std::size_t> explored;
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    const auto& e = options.explore;
+    if (e.empty() || std::find(e.begin(), e.end(), free[j].spec.name) != e.end())
+      explored.push_back(j);
+  }
+  if (explored.empty() || explored.size() > std::size(kPrimes)) return starts;
+  for (int i = 1; i <= options.designPoints; ++i) {
+    std::vector<double> u = u0;
+    for (std::size_t d = 0; d < explored.size(); ++d) {
+      const auto [lo, hi] = designRange(free[explored[d]], specs);
+      u[explored[d]] = lo + (hi - lo) * halton(i, kPrimes[d]);
+    }
+    starts.push_back(std::move(u));
+  }
+  return starts;
+}
+
+struct Polished {
+  std::vector<double> u;
+  double cost = std::numeric_limits<double>::infinity();
+  ceres::Solver::Summary summary;
+};
+
+// LM from u (its own Replayer: runs in parallel).
+Polished polish(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
+                const std::vector<FreeParameter>& free, const FitOptions& options,
+                std::vector<double> u) {
+  Replayer replayer(dataset);
+  Polished p;
+  ceres::Problem problem;
+  buildProblem(replayer, noise, start, free, options, u, problem);
+  ceres::Solve(solverOptions(options), &problem, &p.summary);
+  p.cost = std::isfinite(p.summary.final_cost) ? p.summary.final_cost : p.cost;
+  p.u = std::move(u);
+  return p;
+}
+
+// Screens every start by its cost, polishes the cheapest, returns the best (see the header).
+std::pair<Polished, int> multistart(Replayer& replayer, const NoiseLevels& noise,
+                                    const Model& start, const std::vector<FreeParameter>& free,
+                                    const FitOptions& options) {
+  const auto starts = designStarts(start, free, options);
+  const RecordResiduals screen(replayer, noise, start, free, options.loss, options.heldOut);
+  std::vector<std::pair<double, int>> ranked;
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    ranked.emplace_back(i == 0 ? -1.0 : screen.cost(starts[i]), static_cast<int>(i));
+  // the given start is always polished (cost −1 ranks it first)
+  std::stable_sort(ranked.begin(), ranked.end());
+  ranked.resize(std::min(ranked.size(), static_cast<std::size_t>(std::max(1, options.polished))));
+  std::vector<Polished> runs(ranked.size());
+  tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t i) {
+    runs[i] = polish(replayer.dataset(), noise, start, free, options,
+                     starts[static_cast<std::size_t>(ranked[i].second)]);
+  });
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    if (runs[i].cost < runs[best].cost * (1.0 - kBetterCost)) best = i;
+  }
+  return {std::move(runs[best]), ranked[best].second};
+}
+
+// Solves for the free parameters (multistart) and fills r: solver outcome, fitted model,
 // its prediction and the uncertainty of the free parameters.
 void solveFree(Replayer& replayer, const NoiseLevels& noise, const Model& start,
                const std::vector<FreeParameter>& free, const FitOptions& options, FitResult& r) {
-  const auto initial = start.parameters();
-  std::vector<double> u;
-  for (const auto& f : free) u.push_back(f.scaling.toU(initial[f.index]));
-  ceres::Problem problem;
-  buildProblem(replayer, noise, start, free, options.loss, u, problem);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solverOptions(options), &problem, &summary);
-  r.iterations = static_cast<int>(summary.iterations.size());
-  r.converged = summary.termination_type == ceres::CONVERGENCE;
-  r.solverReport = summary.BriefReport();
+  auto [best, index] = multistart(replayer, noise, start, free, options);
+  r.startsPolished = std::min(options.designPoints + 1, std::max(1, options.polished));
+  r.winningStart = index;
+  r.iterations = static_cast<int>(best.summary.iterations.size());
+  r.converged = best.summary.termination_type == ceres::CONVERGENCE;
+  r.solverReport = best.summary.BriefReport();
+  std::vector<double> u = best.u;
   takeSolution(free, u, r);
   predict(replayer, noise, r);
+  ceres::Problem problem;
+  buildProblem(replayer, noise, start, free, options, u, problem);
   estimateUncertainty(problem, free, u, r);
   if (!r.converged)
     r.warnings.push_back("the solver stopped before convergence: " + r.solverReport);

@@ -13,6 +13,27 @@
 //               linear near zero, logarithmic over decades (kv ~ 1e12, a ~ 1e4, μ ~ 0.2).
 // Bounds are the ParameterSpec bounds mapped through the same transform.
 //
+// Relations: a parameter p that an effect declares p ≥ q (Effect::relations(), e.g.
+// stribeck.mu_s ≥ coulomb.mu) is optimised as Δ = p − q ≥ 0 (u = asinh(Δ/s), s its default),
+// so that every trial point of the solver keeps the relation; a start that breaks it starts
+// at Δ = 0. Δ = 0 at the end is reported as the parameter being at its relation bound.
+//
+// Multistart: the start, plus FitOptions::designPoints points of a Halton sequence (bases
+// 2, 3, 5, …; deterministic) over the design range of the explored parameters, the others kept
+// at the start. Design range in u: the bounds, narrowed for positive parameters to three
+// decades either side of the default (s·10^±3), which covers the physical magnitudes of
+// MODEL.md §4 without spending points on 1e-6 or 1e12. Every point is screened by one replay
+// (its cost), the `polished` cheapest are solved by Levenberg–Marquardt in parallel (TBB,
+// one Replayer each) and the lowest final cost wins (ties: the earlier point, so the result
+// does not depend on the thread schedule).
+//
+// At a bound: a free parameter whose u ends within 1e-6 of the u range from a bound
+// (ParameterEstimate::atBound) is flagged with a warning: the data push it out of the
+// physical range, so the effect stands in for something else.
+//
+// Held-out samples (FitOptions::heldOut, for cross-validation): the replay still runs over the
+// whole record (friction states carry through), their residuals are weighted 0.
+//
 // Uncertainty: the covariance of u from ceres::Covariance (dense SVD) on the normalised
 // residuals, mapped to p by the Jacobian dp/du, scaled by max(1, χ²/(n − k)) so that a model
 // that does not explain the data does not claim precision it has not earned. Parameters in a
@@ -40,6 +61,12 @@ std::string lossName(Loss loss);
 struct FitOptions {
   Loss loss = Loss::kSquared;
   int maxIterations = 100;
+  int designPoints = 16;  ///< Halton points screened besides the start (0: the start alone)
+  int polished = 3;       ///< cheapest screened starts solved by LM
+  /// Parameters the design varies; empty: every free parameter.
+  std::vector<std::string> explore{};
+  /// Per sample: true = left out of the objective (cross-validation). Empty: none.
+  std::vector<bool> heldOut{};
 };
 
 struct ParameterEstimate {
@@ -50,6 +77,8 @@ struct ParameterEstimate {
   double stdError = 0.0;  ///< NaN when fixed; +inf when not identifiable
   bool fixed = false;
   bool identifiable = true;
+  /// Empty, or the bound the fitted value sits at: "lower", "upper", or "≥ q" for a relation.
+  std::string atBound;
 };
 
 struct FitResult {
@@ -64,6 +93,8 @@ struct FitResult {
   std::vector<std::string> warnings;
   int iterations = 0;
   bool converged = false;
+  int startsPolished = 0;    ///< LM runs of the multistart
+  int winningStart = 0;      ///< 0: the given start; i > 0: Halton point i
   std::string solverReport;  ///< Ceres' one-line summary
 };
 

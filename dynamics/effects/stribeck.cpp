@@ -28,6 +28,10 @@ class Stribeck final : public EffectBase<Stribeck> {
     return s.str();
   }
 
+  std::vector<ParameterRelation> relations() const override {
+    return {{"stribeck.mu_s", "coulomb.mu"}};
+  }
+
   void configure(ContactContext& ctx) const override { ctx.mu_S = parameter(0); }
 
   Wrench apply(ContactContext& ctx) const override {
