@@ -200,9 +200,9 @@ void runDiagnose(const ValidationOptions& o) {
       "diagnose", &d, noise, {}, diag.stages.back().where, &diag.stages.back().ranking};
   for (std::size_t i = 0; i < diag.stages.size(); ++i) {
     const auto& s = diag.stages[i];
-    const std::string stageLabel = i == 0               ? label(s.effects)
-                                   : !s.removed.empty() ? "- " + s.removed
-                                                        : "+ " + diag.stages[i - 1].verdict;
+    // every stage named by its whole model, so that the final model reads right
+    const std::string stageLabel =
+        label(s.effects) + (s.removed.empty() ? "" : " (- " + s.removed + ")");
     report.stages.push_back({stageLabel, &s.baseline, &s});
     printStage(s);
   }

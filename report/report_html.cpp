@@ -195,7 +195,9 @@ void chiBars(std::ostringstream& h, const ReportInput& in) {
       << '\n';
     return;
   }
-  Series fitted{"fitted chi", {}, {}, "", true}, held{"held-out chi", {}, {}, "", true};
+  // log10: chi falls over decades (100 → 1); 0 is the noise level
+  Series fitted{"fitted", {}, {}, "", false},
+      held{"held out (5-block cross-validation)", {}, {}, "", false};
   h << "<h2>chi of each stage, fitted and held out</h2>\n<table><tr><th>stage</th><th>model"
     << "</th><th>chi fitted</th><th>chi held out</th><th>verdict</th></tr>\n";
   for (std::size_t i = 0; i < in.stages.size(); ++i) {
@@ -203,15 +205,15 @@ void chiBars(std::ostringstream& h, const ReportInput& in) {
     const double out =
         std::sqrt(st.heldOutChi2 / static_cast<double>(st.baseline.comparison.count));
     fitted.x.push_back(static_cast<double>(i + 1));
-    fitted.y.push_back(chi[i]);
+    fitted.y.push_back(std::log10(chi[i]));
     held.x.push_back(static_cast<double>(i + 1));
-    held.y.push_back(out);
+    held.y.push_back(std::log10(out));
     h << "<tr><td>" << i + 1 << "</td><td>" << escapeXml(labels[i]) << "</td><td>" << num(chi[i])
       << "</td><td>" << num(out) << "</td><td>" << escapeXml(st.verdict) << "</td></tr>\n";
   }
   h << "</table>\n"
-    << lineChart({"chi per stage: fitted and predicted on held-out blocks (1 = noise level)",
-                  "stage", "chi", kPageWidth, 260},
+    << lineChart({"log10 chi per stage, fitted and predicted on held-out blocks (0 = noise level)",
+                  "stage (table above)", "log10 chi", kPageWidth, 260},
                  {fitted, held})
     << '\n';
 }
@@ -224,14 +226,15 @@ void verdictSection(std::ostringstream& h, const ReportInput& in) {
     << "</h2>\n<p>Final model: " << escapeXml(in.stages.back().label) << " (effects:";
   for (const auto& e : st.effects) h << ' ' << e;
   h << ").</p>\n";
-  if (!st.rig.empty()) {
-    h << "<p>Rig candidates (not contact effects), best first:</p><ul>";
-    for (std::size_t i = 0; i < std::min<std::size_t>(st.rig.size(), 4); ++i) {
-      h << "<li>" << escapeXml(st.rig[i].text) << ": ΔBIC " << num(st.rig[i].deltaBic, 5)
-        << "</li>";
-    }
-    h << "</ul>\n";
+  h << "<p>Rig candidates (properties of the rig, not of the contact) with ΔBIC &lt; −"
+    << num(validation::kBicMargin) << ":";
+  bool any = false;
+  for (const auto& r : st.rig) {
+    if (!(r.deltaBic < -validation::kBicMargin)) continue;
+    h << (any ? "; " : " ") << escapeXml(r.text) << " (ΔBIC " << num(r.deltaBic, 5) << ")";
+    any = true;
   }
+  h << (any ? "" : " none") << ".</p>\n";
   if (st.kind != "unexplained") return;
   const auto& r = st.residual;
   h << "<p>Structure remains that no library effect removes out of sample. The best candidate "

@@ -271,6 +271,42 @@ void addWarnings(FitResult& r) {
   }
 }
 
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Standard errors and correlations in p from the covariance C of the kept u (keptIndex),
+// scaled: Cov p = D Cov u Dᵀ, D = dp/du: diagonal, plus dp/du_q for p = q + Δ.
+void takeCovariance(const std::vector<FreeParameter>& free, const std::vector<double>& u,
+                    const std::vector<std::size_t>& keptIndex, const RowMajor& C, double scale,
+                    FitResult& r) {
+  const std::size_t k = free.size();
+  const auto m = static_cast<Eigen::Index>(keptIndex.size());
+  const auto kk = static_cast<Eigen::Index>(k);
+  Eigen::MatrixXd Cu = Eigen::MatrixXd::Zero(kk, kk), D = Eigen::MatrixXd::Zero(kk, kk);
+  for (Eigen::Index a = 0; a < m; ++a) {
+    for (Eigen::Index b = 0; b < m; ++b) {
+      Cu(static_cast<Eigen::Index>(keptIndex[static_cast<std::size_t>(a)]),
+         static_cast<Eigen::Index>(keptIndex[static_cast<std::size_t>(b)])) = C(a, b);
+    }
+  }
+  for (std::size_t j = 0; j < k; ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    D(jj, jj) = free[j].scaling.dPdU(u[j]);
+    for (std::size_t q = 0; q < k && free[j].reference >= 0; ++q) {
+      if (free[q].index == static_cast<std::size_t>(free[j].reference))
+        D(jj, static_cast<Eigen::Index>(q)) = free[q].scaling.dPdU(u[q]);
+    }
+  }
+  const Eigen::MatrixXd Cp = D * Cu * D.transpose() * scale;
+  for (const std::size_t ja : keptIndex) {
+    const auto a = static_cast<Eigen::Index>(ja);
+    r.parameters[free[ja].index].stdError = std::sqrt(std::max(Cp(a, a), 0.0));
+    for (const std::size_t jb : keptIndex) {
+      const auto b = static_cast<Eigen::Index>(jb);
+      r.correlation(a, b) = Cp(a, b) / std::sqrt(Cp(a, a) * Cp(b, b));
+    }
+  }
+}
+
 // Covariance of the identifiable free parameters in p, scaled (see the header).
 void estimateUncertainty(ceres::Problem& problem, const std::vector<FreeParameter>& free,
                          std::vector<double>& u, FitResult& r) {
@@ -301,36 +337,11 @@ void estimateUncertainty(ceres::Problem& problem, const std::vector<FreeParamete
   ceres::Covariance covariance(opts);
   if (!covariance.Compute(kept, &problem)) return;
   const auto m = static_cast<Eigen::Index>(kept.size());
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> C(m, m);
+  RowMajor C(m, m);
   covariance.GetCovarianceMatrix(kept, C.data());
   const double dof = static_cast<double>(r.comparison.count) - static_cast<double>(k);
   const double scale = std::max(1.0, r.comparison.chi2 / std::max(dof, 1.0));
-  // Cov p = D Cov u Dᵀ, D = dp/du: diagonal, plus dp/du_q for p = q + Δ.
-  const auto kk = static_cast<Eigen::Index>(k);
-  Eigen::MatrixXd Cu = Eigen::MatrixXd::Zero(kk, kk), D = Eigen::MatrixXd::Zero(kk, kk);
-  for (Eigen::Index a = 0; a < m; ++a) {
-    for (Eigen::Index b = 0; b < m; ++b) {
-      Cu(static_cast<Eigen::Index>(keptIndex[static_cast<std::size_t>(a)]),
-         static_cast<Eigen::Index>(keptIndex[static_cast<std::size_t>(b)])) = C(a, b);
-    }
-  }
-  for (std::size_t j = 0; j < k; ++j) {
-    const auto jj = static_cast<Eigen::Index>(j);
-    D(jj, jj) = free[j].scaling.dPdU(u[j]);
-    for (std::size_t q = 0; q < k && free[j].reference >= 0; ++q) {
-      if (free[q].index == static_cast<std::size_t>(free[j].reference))
-        D(jj, static_cast<Eigen::Index>(q)) = free[q].scaling.dPdU(u[q]);
-    }
-  }
-  const Eigen::MatrixXd Cp = D * Cu * D.transpose() * scale;
-  for (const std::size_t ja : keptIndex) {
-    const auto a = static_cast<Eigen::Index>(ja);
-    r.parameters[free[ja].index].stdError = std::sqrt(std::max(Cp(a, a), 0.0));
-    for (const std::size_t jb : keptIndex) {
-      const auto b = static_cast<Eigen::Index>(jb);
-      r.correlation(a, b) = Cp(a, b) / std::sqrt(Cp(a, a) * Cp(b, b));
-    }
-  }
+  takeCovariance(free, u, keptIndex, C, scale, r);
 }
 
 // The result before solving: `start`'s parameters, the free ones marked.
