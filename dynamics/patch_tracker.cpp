@@ -28,59 +28,76 @@ double gatedDistance(const volume::ContactVolume& p, const PatchRecord& r,
   return d <= reach ? d : -1.0;
 }
 
+// Rules 1 and 2: each patch to the nearest record that may be the same patch, greedily.
+void matchRecords(const std::vector<volume::ContactVolume>& patches,
+                  const std::vector<PatchRecord>& records, const Eigen::Isometry3d& X_WA,
+                  const Eigen::Isometry3d& X_WB, std::vector<int>& slot, std::vector<char>& taken) {
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    for (std::size_t j = 0; j < records.size(); ++j) {
+      if (!records[j].active) continue;
+      const double d = gatedDistance(patches[i], records[j], X_WA, X_WB);
+      if (d >= 0.0) candidates.push_back({d, int(i), int(j)});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  for (const Candidate& c : candidates) {
+    if (slot[std::size_t(c.patch)] >= 0 || taken[std::size_t(c.slot)]) continue;
+    slot[std::size_t(c.patch)] = c.slot;
+    taken[std::size_t(c.slot)] = 1;
+  }
+}
+
+// Rule 3: the patches left over take the lowest free slots.
+void takeFreeSlots(const std::vector<PatchRecord>& records, std::vector<int>& slot,
+                   std::vector<char>& taken) {
+  for (int& s : slot) {
+    if (s >= 0) continue;
+    for (std::size_t j = 0; j < records.size(); ++j) {
+      if (records[j].active || taken[j]) continue;
+      s = int(j);
+      taken[j] = 1;
+      break;
+    }
+  }
+}
+
+// Rule 4: a patch without a slot reads the slot whose patch (matched now, else its record)
+// is nearest.
+void chooseHosts(const std::vector<volume::ContactVolume>& patches,
+                 const std::vector<PatchRecord>& records, const Eigen::Isometry3d& X_WB,
+                 PatchMatch& out) {
+  std::vector<Eigen::Vector3d> where(records.size());
+  for (std::size_t j = 0; j < records.size(); ++j) where[j] = X_WB * records[j].p_BC;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (out.slot[i] >= 0) where[std::size_t(out.slot[i])] = patches[i].p_WC;
+  }
+  out.host = out.slot;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (out.slot[i] >= 0) continue;
+    ++out.without_slot;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < records.size(); ++j) {
+      const double d = (where[j] - patches[i].p_WC).norm();
+      if (d < best) {
+        best = d;
+        out.host[i] = int(j);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void PatchTracker::match(const std::vector<volume::ContactVolume>& patches,
                          const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
                          PatchMatch& out) const {
-  const int np = static_cast<int>(patches.size()), ns = slots();
   out.slot.assign(patches.size(), -1);
-  out.host.assign(patches.size(), -1);
   out.without_slot = 0;
-  std::vector<Candidate> candidates;
-  for (int i = 0; i < np; ++i) {
-    for (int j = 0; j < ns; ++j) {
-      if (!records_[std::size_t(j)].active) continue;
-      const double d = gatedDistance(patches[std::size_t(i)], records_[std::size_t(j)], X_WA, X_WB);
-      if (d >= 0.0) candidates.push_back({d, i, j});
-    }
-  }
-  std::sort(candidates.begin(), candidates.end());  // rule 2
   std::vector<char> taken(records_.size(), 0);
-  for (const Candidate& c : candidates) {
-    if (out.slot[std::size_t(c.patch)] >= 0 || taken[std::size_t(c.slot)]) continue;
-    out.slot[std::size_t(c.patch)] = c.slot;
-    taken[std::size_t(c.slot)] = 1;
-  }
-  for (int i = 0; i < np; ++i) {  // rule 3
-    if (out.slot[std::size_t(i)] >= 0) continue;
-    for (int j = 0; j < ns; ++j) {
-      if (records_[std::size_t(j)].active || taken[std::size_t(j)]) continue;
-      out.slot[std::size_t(i)] = j;
-      taken[std::size_t(j)] = 1;
-      break;
-    }
-  }
-  // Rule 4: where each slot's patch is now (its matched patch, else its record).
-  std::vector<Eigen::Vector3d> where(records_.size());
-  for (int j = 0; j < ns; ++j) where[std::size_t(j)] = X_WB * records_[std::size_t(j)].p_BC;
-  for (int i = 0; i < np; ++i) {
-    if (out.slot[std::size_t(i)] >= 0)
-      where[std::size_t(out.slot[std::size_t(i)])] = patches[std::size_t(i)].p_WC;
-  }
-  for (int i = 0; i < np; ++i) {
-    out.host[std::size_t(i)] = out.slot[std::size_t(i)];
-    if (out.slot[std::size_t(i)] >= 0) continue;
-    ++out.without_slot;
-    double best = std::numeric_limits<double>::infinity();
-    for (int j = 0; j < ns; ++j) {
-      const double d = (where[std::size_t(j)] - patches[std::size_t(i)].p_WC).norm();
-      if (d < best) {
-        best = d;
-        out.host[std::size_t(i)] = j;
-      }
-    }
-  }
+  matchRecords(patches, records_, X_WA, X_WB, out.slot, taken);
+  takeFreeSlots(records_, out.slot, taken);
+  chooseHosts(patches, records_, X_WB, out);
 }
 
 void PatchTracker::update(const std::vector<volume::ContactVolume>& patches, const PatchMatch& m,
