@@ -1,7 +1,9 @@
 #include "report/simulation_csv.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 
 #include "geometry/error.hpp"
@@ -46,28 +48,27 @@ std::string fileSafe(const std::string& name) {
   return s;
 }
 
-std::ofstream SimulationCsvWriter::open(const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw InputError(path, "cannot open for writing");
+io::OutputFile& SimulationCsvWriter::open(const std::string& path) {
   files_.push_back(path);
-  return f;
+  return files_out_.emplace_back(path);
 }
 
 SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                                          const formats::OutputSelection& outputs)
     : scenario_(scenario), outputs_(outputs) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create output directory: " + ec.message());
+  io::makeOutputFolder(dir);
   const std::filesystem::path base(dir);
+  // Every OutputFile first, the pointers after: files_out_ does not move once filled.
+  files_out_.reserve((outputs_.bodies ? 1 : 0) + (outputs_.pairs ? scenario.pairs.size() : 0));
   if (outputs_.bodies) {
-    bodies_ = open((base / "bodies.csv").string());
-    bodies_ << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+    bodies_ = &open((base / "bodies.csv").string());
+    bodies_->stream() << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
   }
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
-    std::ofstream& f =
-        pairs_.emplace_back(open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
+    std::ostream& f =
+        pairs_.emplace_back(&open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()))
+            ->stream();
     f << "t,V,depth,area,r_gyr";
     putHeader3(f, "c");
     putHeader3(f, "n");
@@ -97,7 +98,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
       put(row, q.vec());
       put(row, k.pointVelocity(k.X_WB.translation()));
       put(row, k.w_WB);
-      bodies_ << row << '\n';
+      bodies_->stream() << row << '\n';
     }
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -116,13 +117,42 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
         put(row, share.tau_W);
       }
     }
-    pairs_[k] << row << '\n';
+    pairs_[k]->stream() << row << '\n';
+  }
+  checkWrites();
+}
+
+// On a failed write every file is given up, not only the one that failed: a run's files
+// belong together. Destroying the OutputFiles deletes their temporaries.
+void SimulationCsvWriter::checkWrites() {
+  for (io::OutputFile& f : files_out_) {
+    if (f.stream()) continue;
+    try {
+      f.check();
+    } catch (...) {
+      files_out_.clear();
+      pairs_.clear();
+      bodies_ = nullptr;
+      throw;
+    }
   }
 }
 
-void SimulationCsvWriter::flush() {
-  bodies_.flush();
-  for (auto& f : pairs_) f.flush();
+void SimulationCsvWriter::commit() {
+  for (io::OutputFile& f : files_out_) f.stream().flush();
+  checkWrites();
+  for (io::OutputFile& f : files_out_) f.commit();
+}
+
+std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
+                             const formats::OutputSelection& outputs) {
+  const dynamics::SimulationSettings& set = scenario.settings;
+  const double times = std::floor(set.duration * set.output_rate_hz) + 1.0;
+  const double per_time = (outputs.bodies ? static_cast<double>(scenario.bodies.size()) : 0.0) +
+                          (outputs.pairs ? static_cast<double>(scenario.pairs.size()) : 0.0);
+  const double rows = times * per_time;
+  constexpr double kBeyond = 1e19;  // beyond any limit; keeps the cast defined
+  return static_cast<std::uint64_t>(std::min(rows, kBeyond));
 }
 
 }  // namespace vcontact::report
