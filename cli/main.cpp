@@ -4,6 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
+#include "io/output_file.hpp"
 
 namespace {
 
@@ -32,6 +33,7 @@ int exitCode(const CLI::App& app, const CLI::ParseError& e) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  vcontact::io::ignoreFileSizeSignal();
   CLI::App app{
       "vcontact: volumetric contact between rigid bodies (Gonthier-McPhee model).\n"
       "Shapes: sphere:R | cylinder:R,L | box:X,Y,Z | halfspace | MESHFILE[@SCALE] (metres;\n"

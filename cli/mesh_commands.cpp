@@ -1,3 +1,4 @@
+#include <cstdint>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -152,6 +153,25 @@ void runMeshRepair(const MeshRepairOptions& o) {
             << geometry::meshMoments(r.mesh).m0 << " m^3\n";
 }
 
+/// The most triangles `tessellate` writes: 10 million make a 500 MB binary STL and about 1 GB
+/// in memory while built, far beyond what a contact query needs (faceting error, README).
+constexpr std::int64_t kMaxTessellationTriangles = 10'000'000;
+
+// Refuses a tessellation beyond kMaxTessellationTriangles before any memory is taken, with
+// the count: 2 · segments · (rings − 1) for a sphere, 4 · segments for a cylinder.
+void checkTriangleCount(const geometry::Shape& shape, int segments, int rings) {
+  std::int64_t triangles = 12;  // a box
+  if (std::holds_alternative<geometry::Sphere>(shape)) {
+    triangles = 2 * std::int64_t{segments} * (std::int64_t{rings} - 1);
+  } else if (std::holds_alternative<geometry::Cylinder>(shape)) {
+    triangles = 4 * std::int64_t{segments};
+  }
+  if (triangles <= kMaxTessellationTriangles) return;
+  throw InputError("--segments/--rings", "the mesh would have " + std::to_string(triangles) +
+                                             " triangles, more than the limit of " +
+                                             std::to_string(kMaxTessellationTriangles));
+}
+
 struct TessellateOptions {
   std::string shape, out;
   int segments = 64;
@@ -163,6 +183,7 @@ void runTessellate(const TessellateOptions& o) {
     throw InputError("--segments/--rings", "need at least 3 segments and 2 rings");
   }
   const io::ParsedShape s = io::parseShape(o.shape, o.shape);
+  checkTriangleCount(s.shape, o.segments, o.rings);
   geometry::TriangleMesh mesh;
   if (const auto* sp = std::get_if<geometry::Sphere>(&s.shape)) {
     mesh = geometry::tessellateSphere(sp->radius, o.segments, o.rings);

@@ -1,14 +1,15 @@
 // vcontact simulate SCENARIO --out DIR: integrates a scenario and writes CSV output.
 
-#include <chrono>
-#include <fstream>
 #include <iostream>
+#include <optional>
+#include <sstream>
 
 #include "cli/commands.hpp"
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
+#include "io/progress.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
 
@@ -16,39 +17,15 @@ namespace vcontact::cli {
 namespace {
 
 constexpr int kSimulationFailedExitCode = 3;  // 2 is bad input (main.cpp)
-constexpr double kProgressIntervalS = 0.5;    // wall-clock seconds between progress lines
 
 struct SimulateOptions {
   std::string scenario;
   std::string out = "out";
+  std::optional<double> outputRate;  ///< Hz; the scenario's output_rate when not given
   bool quiet = false;
 };
 
-// Prints "t = … s (…%)" at most every kProgressIntervalS of wall time.
-class Progress {
- public:
-  Progress(double duration, bool quiet) : duration_(duration), quiet_(quiet) {}
-  void operator()(double t) {
-    if (quiet_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last_).count() < kProgressIntervalS) return;
-    last_ = now;
-    std::cerr << "\rvcontact: t = " << t << " s (" << static_cast<int>(100.0 * t / duration_)
-              << "%)   " << std::flush;
-  }
-  void done() const {
-    if (!quiet_) std::cerr << '\n';
-  }
-
- private:
-  double duration_;
-  bool quiet_;
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
-void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
-                  const std::string& status) {
-  io::writeJson(report::simulationSummaryJson(s, status), dir + "/summary.json");
+void printSummary(const dynamics::SimulationSummary& s) {
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
             << s.rejected_steps << " rejected), " << s.contact_evaluations
@@ -57,26 +34,51 @@ void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
   std::cerr << '\n';
 }
 
+// The output rate of the command line replaces the scenario's; then the rows the run would
+// write are counted and refused beyond report::kMaxOutputRows, before anything is written.
+void applyOutputOptions(const SimulateOptions& o, formats::ScenarioFile& file) {
+  dynamics::SimulationSettings& set = file.scenario.settings;
+  if (o.outputRate) {
+    if (!(*o.outputRate > 0.0 && *o.outputRate <= 1e9)) {
+      throw InputError("--output-rate", "expected a rate in Hz, > 0 and <= 1e9");
+    }
+    set.output_rate_hz = *o.outputRate;
+  }
+  const std::uint64_t rows = report::outputRowCount(file.scenario, file.outputs);
+  if (rows <= report::kMaxOutputRows) return;
+  std::ostringstream s;
+  s << "the run would write " << rows << " CSV rows (" << set.duration << " s at "
+    << set.output_rate_hz << " Hz), more than the limit of " << report::kMaxOutputRows
+    << "; lower the output rate";
+  throw InputError(o.outputRate ? "--output-rate" : o.scenario, s.str());
+}
+
 void runSimulate(const SimulateOptions& o) {
-  const formats::ScenarioFile file = formats::readScenarioFile(o.scenario);
+  formats::ScenarioFile file = formats::readScenarioFile(o.scenario);
   printWarnings(file.warnings);
+  applyOutputOptions(o, file);
   dynamics::Simulator sim(file.scenario);
   report::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
-  Progress progress(file.scenario.settings.duration, o.quiet);
+  io::Progress progress("simulate", file.scenario.settings.duration, "s", o.quiet);
   dynamics::SimulationSummary summary;
+  const std::string summaryPath = o.out + "/summary.json";
   try {
-    sim.run([&](const dynamics::Snapshot& s) { writer.write(s); }, [&](double t) { progress(t); },
-            summary);
+    sim.run([&](const dynamics::Snapshot& s) { writer.write(s); },
+            [&](double t) { progress.update(t); }, summary);
   } catch (const dynamics::SimulationError& e) {
-    writer.flush();
-    progress.done();
-    writeSummary(o.out, summary, e.what());
+    progress.finish();
+    writer.commit();
+    io::writeJson(report::simulationSummaryJson(summary, e.what(), report::StopInfo{e}),
+                  summaryPath);
+    printSummary(summary);
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()
               << "; output up to then is in " << o.out << '\n';
     throw CLI::RuntimeError(kSimulationFailedExitCode);
   }
-  progress.done();
-  writeSummary(o.out, summary, "completed");
+  progress.finish();
+  writer.commit();
+  io::writeJson(report::simulationSummaryJson(summary, "completed"), summaryPath);
+  printSummary(summary);
 }
 
 }  // namespace
@@ -89,7 +91,10 @@ void addSimulateCommand(CLI::App& app) {
       "and summary.json.");
   cmd->add_option("SCENARIO", opts->scenario, "scenario JSON file")->required();
   cmd->add_option("--out", opts->out, "output directory")->capture_default_str();
-  cmd->add_flag("--quiet", opts->quiet, "no progress on standard error");
+  cmd->add_option("--output-rate", opts->outputRate,
+                  "states written per simulated second, Hz (default: the scenario's "
+                  "output_rate_hz)");
+  cmd->add_flag("--quiet", opts->quiet, "no progress on standard error (none in pipes or CI)");
   cmd->callback([opts] { runSimulate(*opts); });
 }
 

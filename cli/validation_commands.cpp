@@ -18,6 +18,7 @@
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 #include "io/shape_json.hpp"
+#include "io/output_file.hpp"
 #include "report/report_html.hpp"
 #include "report/validation_output.hpp"
 #include "validation/diagnose.hpp"
@@ -110,7 +111,7 @@ void runCompare(const ValidationOptions& o) {
   const validation::FitResult r = asGiven(replayer, noise, in.model);
   printNoise(noise);
   printComparison("model", r.comparison);
-  fs::create_directories(o.out);
+  io::makeOutputFolder(o.out);
   report::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
   io::writeJson(report::comparisonJson(r.comparison, noise), o.out + "/compare.json");
   writeReport(o.out, {"compare",
@@ -137,7 +138,7 @@ void runFit(const ValidationOptions& o) {
       std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << '\n';
   }
   printWarnings(r.warnings);
-  fs::create_directories(o.out);
+  io::makeOutputFolder(o.out);
   io::writeJson(formats::modelToJson(r.model), o.out + "/model.json");
   io::writeJson(report::fitJson(r, noise, in.loss), o.out + "/fit.json");
   report::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
@@ -211,12 +212,16 @@ void runDiagnose(const ValidationOptions& o) {
               << ", " << w.regime << '\n';
   }
   std::cout << "diagnose took " << seconds << " s\n";
-  fs::create_directories(o.out);
+  io::makeOutputFolder(o.out);
   io::writeJson(report::diagnosisJson(diag, noise), o.out + "/diagnosis.json");
   io::writeJson(formats::modelToJson(diag.final().model), o.out + "/model.json");
   report::writeResidualsCsv(d, diag.final().comparison, o.out + "/residuals.csv");
   writeReport(o.out, report);
 }
+
+/// The most samples `synth` makes: 10 million rows are about 3 GB of CSV and as much memory
+/// while the measurement is synthesised; the bundled datasets have a few thousand.
+constexpr std::size_t kMaxSynthSamples = 10'000'000;
 
 struct SynthOptions {
   std::string profile, model, out;
@@ -272,6 +277,11 @@ void runSynth(const SynthOptions& o) {
   }
   if (!o.payloadScale.empty() && o.payload.empty())
     throw InputError("--payload-scale", "needs --payload (the mesh it scales)");
+  if (o.samples > kMaxSynthSamples) {
+    throw InputError("--samples", std::to_string(o.samples) +
+                                      " samples asked, more than the limit of " +
+                                      std::to_string(kMaxSynthSamples));
+  }
   const dynamics::Model truth = formats::readModelFile(o.model);
   validation::Dataset d =
       namingOptions({{"rig profile", "--profile"}, {"sample count", "--samples"}},

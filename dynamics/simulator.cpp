@@ -291,14 +291,29 @@ bool Simulator::settle(State& x, double t) {
   return settlePairs(x, t);
 }
 
+const char* stopCauseName(StopCause cause) {
+  switch (cause) {
+    case StopCause::kNonFinite:
+      return "non_finite_state";
+    case StopCause::kStepCollapse:
+      return "step_size_collapse";
+    case StopCause::kPenetration:
+      return "penetration_beyond_bound";
+    case StopCause::kIntegratorFailure:
+      break;
+  }
+  return "integrator_failure";
+}
+
 // Failures that stop the run: non-finite state, too deep a penetration.
 void Simulator::check(const State& x, double t) const {
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
     if (offset_[i] < 0) continue;
     for (int j = 0; j < kBodyStates; ++j) {
       if (std::isfinite(x[static_cast<std::size_t>(offset_[i] + j)])) continue;
-      throw SimulationError(t, where(t) + ", body '" + scenario_.bodies[i].name +
-                                   "': state is not finite (position, attitude or velocity)");
+      throw SimulationError(t, StopCause::kNonFinite,
+                            where(t) + ", body '" + scenario_.bodies[i].name +
+                                "': state is not finite (position, attitude or velocity)");
     }
   }
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
@@ -315,7 +330,7 @@ void Simulator::check(const State& x, double t) const {
         << " m exceeds " << scenario_.settings.max_penetration_fraction
         << " of the smaller body's size (" << size << " m); the contact is too soft or the "
         << "bodies passed through each other";
-      throw SimulationError(t, s.str());
+      throw SimulationError(t, StopCause::kPenetration, s.str());
     }
   }
 }
@@ -342,7 +357,7 @@ SimulationError Simulator::stepCollapse(double t, double h, const std::string& d
   s << where(t) << stiffestPair() << ": step size " << h << " s fell below the minimum "
     << scenario_.settings.min_step << " s (contact too stiff for the tolerances, or a "
     << "discontinuity" << detail << ")";
-  return SimulationError(t, s.str());
+  return SimulationError(t, StopCause::kStepCollapse, s.str());
 }
 
 // "body 'name' (velocity)" or "pair 'name' (bristle state zx)" for state index i.
@@ -396,11 +411,11 @@ SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
   if (e.rhsFailed()) {
     s << where(t) << ", " << non_finite_ << ": the rate of change is not finite at every step "
       << "size tried, down to " << std::abs(e.stepSize()) << " s";
-  } else {
-    s << where(t) << stiffestPair() << ": the implicit (BDF) integrator stopped at step size "
-      << std::abs(e.stepSize()) << " s: " << e.what();
+    return SimulationError(t, StopCause::kNonFinite, s.str());
   }
-  return SimulationError(t, s.str());
+  s << where(t) << stiffestPair() << ": the implicit (BDF) integrator stopped at step size "
+    << std::abs(e.stepSize()) << " s: " << e.what();
+  return SimulationError(t, StopCause::kIntegratorFailure, s.str());
 }
 
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,

@@ -35,13 +35,27 @@ namespace vcontact::dynamics {
 
 class BdfError;
 
+/// Why a run stopped, for a program reading its summary (the message says it in words).
+enum class StopCause {
+  kNonFinite,         ///< a state or its rate is NaN or infinite
+  kStepCollapse,      ///< the step size fell below SimulationSettings::min_step
+  kPenetration,       ///< a pair's mean penetration exceeds max_penetration_fraction
+  kIntegratorFailure  ///< another failure of the integrator (CVODE), in its words
+};
+
+/// "non_finite_state", "step_size_collapse", "penetration_beyond_bound", "integrator_failure".
+const char* stopCauseName(StopCause cause);
+
 class SimulationError : public std::runtime_error {
  public:
-  SimulationError(double t, std::string message) : std::runtime_error(message), time_(t) {}
-  double time() const { return time_; }
+  SimulationError(double t, StopCause cause, const std::string& message)
+      : std::runtime_error(message), time_(t), cause_(cause) {}
+  double time() const { return time_; }  ///< s, where the run stopped
+  StopCause cause() const { return cause_; }
 
  private:
   double time_;
+  StopCause cause_;
 };
 
 /// One contact patch of a pair at one instant (pairs with several state slots).

@@ -7,11 +7,14 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "io/csv_table.hpp"
 #include "io/json_file.hpp"
+#include "io/output_file.hpp"
 #include "io/shape_json.hpp"
 
 namespace vcontact::formats {
@@ -36,71 +39,7 @@ std::string requireString(const json& j, const std::string& key, const std::stri
   return j.at(key).get<std::string>();
 }
 
-// --- CSV -------------------------------------------------------------------------------
-
-std::vector<std::string> splitFields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::string field;
-  std::stringstream ss(line);
-  while (std::getline(ss, field, ',')) {
-    const auto b = field.find_first_not_of(" \t\r");
-    const auto e = field.find_last_not_of(" \t\r");
-    fields.push_back(b == std::string::npos ? "" : field.substr(b, e - b + 1));
-  }
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
-
-struct Table {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  std::vector<std::size_t> lineOf;  // file line of each row, for messages
-};
-
-Table readCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot be read");
-  Table table;
-  std::string line;
-  std::size_t lineNo = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (table.names.empty()) {
-      table.names = splitFields(line);
-      std::set<std::string> seen;
-      for (const auto& n : table.names) {
-        if (n.empty()) throw InputError(path, "line 1: empty column name");
-        if (!seen.insert(n).second)
-          throw InputError(path, "line 1: column '" + n + "' appears twice");
-      }
-      continue;
-    }
-    const auto fields = splitFields(line);
-    if (fields.size() != table.names.size()) {
-      std::ostringstream os;
-      os << "line " << lineNo << ": " << fields.size() << " fields, but the header names "
-         << table.names.size() << " columns";
-      throw InputError(path, os.str());
-    }
-    std::vector<double> row(fields.size());
-    for (std::size_t c = 0; c < fields.size(); ++c) {
-      const std::string& f = fields[c];
-      const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), row[c]);
-      const std::string where =
-          "line " + std::to_string(lineNo) + ", column '" + table.names[c] + "'";
-      if (f.empty() || ec != std::errc() || end != f.data() + f.size()) {
-        throw InputError(path, where + ": '" + f + "' is not a number");
-      }
-      if (!std::isfinite(row[c])) throw InputError(path, where + ": '" + f + "' is not finite");
-    }
-    table.rows.push_back(std::move(row));
-    table.lineOf.push_back(lineNo);
-  }
-  if (table.names.empty())
-    throw InputError(path, "empty file: expected a header line of column names");
-  return table;
-}
+using Table = io::CsvTable;
 
 std::size_t columnIndex(const Table& t, const std::string& name) {
   return static_cast<std::size_t>(std::find(t.names.begin(), t.names.end(), name) -
@@ -119,6 +58,16 @@ bool hasTriple(const Table& t, const std::string& path, const std::array<std::st
   return true;
 }
 
+// The columns PREFIXx, PREFIXy, PREFIXz (present: hasTriple), and row i of them.
+struct Triple {
+  Triple(const Table& t, const std::string& prefix)
+      : x(t.columns[columnIndex(t, prefix + "x")]),
+        y(t.columns[columnIndex(t, prefix + "y")]),
+        z(t.columns[columnIndex(t, prefix + "z")]) {}
+  Eigen::Vector3d operator[](std::size_t i) const { return {x[i], y[i], z[i]}; }
+  const std::vector<double>&x, &y, &z;
+};
+
 // `needWrench`: a dataset's CSV needs a wrench column, a motion CSV (synth --motion) not.
 void fillSamples(const Table& t, const std::string& path, validation::Dataset& d,
                  bool needWrench = true) {
@@ -131,42 +80,48 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
     throw InputError(path,
                      "line 1: no wrench column; expected at least one of fx, fy, fz, tx, ty, tz");
   }
-  if (t.rows.size() < kMinimumSamples) {
-    throw InputError(path, "only " + std::to_string(t.rows.size()) + " samples; at least " +
+  if (t.rowCount() < kMinimumSamples) {
+    throw InputError(path, "only " + std::to_string(t.rowCount()) + " samples; at least " +
                                std::to_string(kMinimumSamples) + " are needed");
   }
   const bool hasV = hasTriple(t, path, {"vx", "vy", "vz"});
   const bool hasW = hasTriple(t, path, {"wx", "wy", "wz"});
-  auto col = [&](const std::string& n) { return columnIndex(t, n); };
-
   for (std::size_t c = 0; c < t.names.size(); ++c) {
-    Eigen::VectorXd v(static_cast<Eigen::Index>(t.rows.size()));
-    for (std::size_t i = 0; i < t.rows.size(); ++i) v(static_cast<Eigen::Index>(i)) = t.rows[i][c];
-    d.columns[t.names[c]] = std::move(v);
+    d.columns[t.names[c]] = Eigen::Map<const Eigen::VectorXd>(
+        t.columns[c].data(), static_cast<Eigen::Index>(t.rowCount()));
   }
-  d.samples.resize(t.rows.size());
-  for (std::size_t i = 0; i < t.rows.size(); ++i) {
-    const auto& r = t.rows[i];
-    const std::string where = "line " + std::to_string(t.lineOf[i]);
+  // The columns of the named quantities, looked up once.
+  const auto column = [&](const std::string& n) -> const std::vector<double>& {
+    return t.columns[columnIndex(t, n)];
+  };
+  const auto& ct = column("t");
+  const auto &qw = column("qw"), &qx = column("qx"), &qy = column("qy"), &qz = column("qz");
+  const Triple p(t, "");
+  std::optional<Triple> v, w;
+  if (hasV) v.emplace(t, "v");
+  if (hasW) w.emplace(t, "w");
+  d.samples.resize(t.rowCount());
+  for (std::size_t i = 0; i < t.rowCount(); ++i) {
+    const auto where = [&] { return "line " + std::to_string(t.lineOf[i]); };
     validation::Sample& s = d.samples[i];
-    s.t = r[col("t")];
+    s.t = ct[i];
     if (i > 0 && !(s.t > d.samples[i - 1].t)) {
       std::ostringstream os;
-      os << where << ", column 't': time " << s.t << " is not after the previous sample's "
+      os << where() << ", column 't': time " << s.t << " is not after the previous sample's "
          << d.samples[i - 1].t << " (time must increase strictly)";
       throw InputError(path, os.str());
     }
-    const Eigen::Vector4d q(r[col("qw")], r[col("qx")], r[col("qy")], r[col("qz")]);
+    const Eigen::Vector4d q(qw[i], qx[i], qy[i], qz[i]);
     if (std::abs(q.norm() - 1.0) > kDatasetQuaternionTolerance) {
       std::ostringstream os;
-      os << where << ", columns 'qw'..'qz': quaternion length " << q.norm()
+      os << where() << ", columns 'qw'..'qz': quaternion length " << q.norm()
          << " is far from 1 (tolerance " << kDatasetQuaternionTolerance << ")";
       throw InputError(path, os.str());
     }
     s.X_BA.linear() = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
-    s.X_BA.translation() = Eigen::Vector3d(r[col("x")], r[col("y")], r[col("z")]);
-    if (hasV) s.v_BA = Eigen::Vector3d(r[col("vx")], r[col("vy")], r[col("vz")]);
-    if (hasW) s.w_BA = Eigen::Vector3d(r[col("wx")], r[col("wy")], r[col("wz")]);
+    s.X_BA.translation() = p[i];
+    if (v) s.v_BA = (*v)[i];
+    if (w) s.w_BA = (*w)[i];
   }
   d.velocityFromPositions = !hasV;
   d.omegaFromAttitude = !hasW;
@@ -245,7 +200,7 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   if (std::holds_alternative<geometry::HalfSpace>(d.payload)) {
     throw InputError(where + ": payload", "the payload must be a bounded body, not a half-space");
   }
-  fillSamples(readCsv(d.dataPath), d.dataPath, d);
+  fillSamples(io::readCsvTable(d.dataPath), d.dataPath, d);
   readOutputsAndNoise(j, where, d.dataPath, d);
   if (d.velocityFromPositions) {
     result.warnings.push_back(d.dataPath +
@@ -264,7 +219,7 @@ MotionReadResult readMotionCsv(const std::string& path) {
   MotionReadResult result;
   validation::Dataset& d = result.dataset;
   d.dataPath = path;
-  fillSamples(readCsv(path), path, d, /*needWrench=*/false);
+  fillSamples(io::readCsvTable(path), path, d, /*needWrench=*/false);
   for (const auto& c : validation::kWrenchColumns) d.columns.erase(c);  // a motion measures nothing
   const char* names[] = {"vx", "vy", "vz", "wx", "wy", "wz"};
   for (int k = 0; k < 6; ++k) {
@@ -282,6 +237,23 @@ MotionReadResult readMotionCsv(const std::string& path) {
                               ": no wx, wy, wz columns; differentiated from the quaternions");
   return result;
 }
+
+namespace {
+
+// The dataset's columns `names` as CSV, a header line first, every number in round-trip form.
+void putTable(const validation::Dataset& d, const std::vector<std::string>& names,
+              std::ostream& out) {
+  out.precision(std::numeric_limits<double>::max_digits10);
+  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
+  out << '\n';
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(d.size()); ++i) {
+    for (std::size_t c = 0; c < names.size(); ++c)
+      out << (c ? "," : "") << d.columns.at(names[c])[i];
+    out << '\n';
+  }
+}
+
+}  // namespace
 
 void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
                   const nlohmann::json* payloadEntry) {
@@ -302,17 +274,9 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
   for (const auto& n : names) {
     if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
   }
+  // The table first: a sidecar is only left behind with a complete table beside it.
+  io::writeFile(csv.string(), [&](std::ostream& out) { putTable(d, names, out); });
   io::writeJson(j, sidecar.string());
-  std::ofstream out(csv);
-  if (!out) throw InputError(csv.string(), "cannot open for writing");
-  out.precision(std::numeric_limits<double>::max_digits10);
-  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
-  out << '\n';
-  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(d.size()); ++i) {
-    for (std::size_t c = 0; c < names.size(); ++c)
-      out << (c ? "," : "") << d.columns.at(names[c])[i];
-    out << '\n';
-  }
 }
 
 }  // namespace vcontact::formats

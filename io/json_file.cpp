@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "io/output_file.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -129,9 +130,8 @@ nlohmann::json readJsonFile(const std::string& path) {
 }
 
 void writeJson(const nlohmann::json& j, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, "cannot open for writing");
-  out << j.dump(2) << '\n';
+  const std::string text = j.dump(2) + '\n';
+  writeFile(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace vcontact::io

@@ -19,6 +19,7 @@
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/mesh_check.hpp"
+#include "io/output_file.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -257,9 +258,9 @@ MeshReadResult readMesh(const std::string& path, double scale, const MeshReadOpt
   return result;
 }
 
-void writeStl(const geometry::TriangleMesh& mesh, const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(path, "cannot open for writing");
+namespace {
+
+void putStl(const geometry::TriangleMesh& mesh, std::ostream& out) {
   std::array<char, 80> header{};
   const std::string title = "vcontact binary STL, metres";
   std::copy(title.begin(), title.end(), header.begin());
@@ -280,12 +281,9 @@ void writeStl(const geometry::TriangleMesh& mesh, const std::string& path) {
     const std::uint16_t attributes = 0;
     out.write(reinterpret_cast<const char*>(&attributes), 2);
   }
-  if (!out) throw InputError(path, "write failed");
 }
 
-void writeObj(const geometry::TriangleMesh& mesh, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, "cannot open for writing");
+void putObj(const geometry::TriangleMesh& mesh, std::ostream& out) {
   out.precision(17);
   out << "# vcontact mesh, metres\n";
   for (Eigen::Index i = 0; i < mesh.vertexCount(); ++i) {
@@ -296,7 +294,17 @@ void writeObj(const geometry::TriangleMesh& mesh, const std::string& path) {
     out << "f " << mesh.triangles(f, 0) + 1 << ' ' << mesh.triangles(f, 1) + 1 << ' '
         << mesh.triangles(f, 2) + 1 << '\n';
   }
-  if (!out) throw InputError(path, "write failed");
+}
+
+}  // namespace
+
+void writeStl(const geometry::TriangleMesh& mesh, const std::string& path) {
+  writeFile(
+      path, [&](std::ostream& out) { putStl(mesh, out); }, std::ios::binary);
+}
+
+void writeObj(const geometry::TriangleMesh& mesh, const std::string& path) {
+  writeFile(path, [&](std::ostream& out) { putObj(mesh, out); });
 }
 
 }  // namespace vcontact::io

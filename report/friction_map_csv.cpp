@@ -1,14 +1,14 @@
 #include "report/friction_map_csv.hpp"
 
-#include <fstream>
+#include <ostream>
 
-#include "geometry/error.hpp"
+#include "io/output_file.hpp"
 
 namespace vcontact::report {
 
-void writeFrictionMapCsv(const validation::FrictionMap& map, const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw InputError(path, "cannot open for writing");
+namespace {
+
+void putFrictionMap(const validation::FrictionMap& map, std::ostream& f) {
   f.precision(12);
   f << "eps,v_mps,omega_radps,f_n_N,F_lumped_N,F_distributed_N,F_exact_N,M_lumped_Nm,"
        "M_distributed_Nm,M_exact_Nm,F_lumped_over_distributed,M_lumped_over_distributed\n";
@@ -22,6 +22,12 @@ void writeFrictionMapCsv(const validation::FrictionMap& map, const std::string& 
     f << ',' << validation::lumpedOverDistributed(r.f_lumped, r.f_dist) << ','
       << validation::lumpedOverDistributed(r.m_lumped, r.m_dist) << '\n';
   }
+}
+
+}  // namespace
+
+void writeFrictionMapCsv(const validation::FrictionMap& map, const std::string& path) {
+  io::writeFile(path, [&](std::ostream& f) { putFrictionMap(map, f); });
 }
 
 }  // namespace vcontact::report

@@ -7,6 +7,7 @@
 
 #include "geometry/error.hpp"
 #include "geometry/primitives.hpp"
+#include "io/output_file.hpp"
 #include "report/svg_chart.hpp"
 
 namespace vcontact::report {
@@ -296,9 +297,8 @@ std::string reportHtml(const ReportInput& in) {
 }
 
 void writeReportHtml(const ReportInput& input, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, "cannot open for writing");
-  out << reportHtml(input);
+  const std::string html = reportHtml(input);
+  io::writeFile(path, [&](std::ostream& out) { out << html; });
 }
 
 }  // namespace vcontact::report

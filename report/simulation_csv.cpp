@@ -1,7 +1,9 @@
 #include "report/simulation_csv.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 
 #include "geometry/error.hpp"
@@ -69,28 +71,31 @@ std::string fileSafe(const std::string& name) {
   return s;
 }
 
-std::ofstream SimulationCsvWriter::open(const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw InputError(path, "cannot open for writing");
+io::OutputFile& SimulationCsvWriter::open(const std::string& path) {
   files_.push_back(path);
-  return f;
+  return files_out_.emplace_back(path);
 }
 
 SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                                          const formats::OutputSelection& outputs)
     : scenario_(scenario), outputs_(outputs) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create output directory: " + ec.message());
+  io::makeOutputFolder(dir);
   const std::filesystem::path base(dir);
+  // Every OutputFile first, the pointers after: files_out_ does not move once filled.
+  std::size_t count = outputs_.bodies ? 1 : 0;
+  for (const auto& pair : scenario.pairs) {
+    if (outputs_.pairs) count += dynamics::patchSlots(scenario, pair) < 2 ? 1 : 2;
+  }
+  files_out_.reserve(count);
   if (outputs_.bodies) {
-    bodies_ = open((base / "bodies.csv").string());
-    bodies_ << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+    bodies_ = &open((base / "bodies.csv").string());
+    bodies_->stream() << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
   }
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
-    std::ofstream& f =
-        pairs_.emplace_back(open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
+    std::ostream& f =
+        pairs_.emplace_back(&open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()))
+            ->stream();
     f << "t";
     putContactHeader(f, pair);
     if (outputs_.shares) {
@@ -100,11 +105,10 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
       }
     }
     f << '\n';
-    patch_file_.push_back(-1);
+    patches_.push_back(nullptr);
     if (dynamics::patchSlots(scenario, pair) < 2) continue;
-    patch_file_.back() = static_cast<int>(patches_.size());
-    std::ofstream& g = patches_.emplace_back(
-        open((base / ("pair_" + fileSafe(pair.name) + "_patches.csv")).string()));
+    patches_.back() = &open((base / ("pair_" + fileSafe(pair.name) + "_patches.csv")).string());
+    std::ostream& g = patches_.back()->stream();
     g << "t,patch,slot";
     putContactHeader(g, pair);
     g << '\n';
@@ -123,7 +127,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
       put(row, q.vec());
       put(row, k.pointVelocity(k.X_WB.translation()));
       put(row, k.w_WB);
-      bodies_ << row << '\n';
+      bodies_->stream() << row << '\n';
     }
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -137,15 +141,15 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
         put(row, share.tau_W);
       }
     }
-    pairs_[k] << row << '\n';
-    if (patch_file_[k] >= 0)
-      writePatches(s.t, p, state_size, patches_[std::size_t(patch_file_[k])]);
+    pairs_[k]->stream() << row << '\n';
+    if (patches_[k]) writePatches(s.t, p, state_size, patches_[k]->stream());
   }
+  checkWrites();
 }
 
 // One row per patch, in the query's order (patch = its index).
 void SimulationCsvWriter::writePatches(double t, const dynamics::PairOutput& p, int state_size,
-                                       std::ofstream& f) {
+                                       std::ostream& f) {
   for (std::size_t i = 0; i < p.patches.size(); ++i) {
     const dynamics::PatchOutput& patch = p.patches[i];
     std::string row = startRow(t);
@@ -155,10 +159,38 @@ void SimulationCsvWriter::writePatches(double t, const dynamics::PairOutput& p, 
   }
 }
 
-void SimulationCsvWriter::flush() {
-  bodies_.flush();
-  for (auto& f : pairs_) f.flush();
-  for (auto& f : patches_) f.flush();
+// On a failed write every file is given up, not only the one that failed: a run's files
+// belong together. Destroying the OutputFiles deletes their temporaries.
+void SimulationCsvWriter::checkWrites() {
+  for (io::OutputFile& f : files_out_) {
+    if (f.stream()) continue;
+    try {
+      f.check();
+    } catch (...) {
+      files_out_.clear();
+      pairs_.clear();
+      patches_.clear();
+      bodies_ = nullptr;
+      throw;
+    }
+  }
+}
+
+void SimulationCsvWriter::commit() {
+  for (io::OutputFile& f : files_out_) f.stream().flush();
+  checkWrites();
+  for (io::OutputFile& f : files_out_) f.commit();
+}
+
+std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
+                             const formats::OutputSelection& outputs) {
+  const dynamics::SimulationSettings& set = scenario.settings;
+  const double times = std::floor(set.duration * set.output_rate_hz) + 1.0;
+  const double per_time = (outputs.bodies ? static_cast<double>(scenario.bodies.size()) : 0.0) +
+                          (outputs.pairs ? static_cast<double>(scenario.pairs.size()) : 0.0);
+  const double rows = times * per_time;
+  constexpr double kBeyond = 1e19;  // beyond any limit; keeps the cast defined
+  return static_cast<std::uint64_t>(std::min(rows, kBeyond));
 }
 
 }  // namespace vcontact::report

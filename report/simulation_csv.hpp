@@ -5,42 +5,57 @@
 // pair with several patch state slots pair_<name>_patches.csv (one row per patch per output
 // time; dynamics/SCENARIO.md).
 
-#include <fstream>
-#include <memory>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
+#include "io/output_file.hpp"
 
 namespace vcontact::report {
 
 class SimulationCsvWriter {
  public:
-  /// Creates `dir` if needed and writes the headers. @throws InputError when a file cannot open
+  /// Creates `dir` if needed and writes the headers to temporaries beside the final files
+  /// (io/output_file.hpp). @throws InputError when a file cannot be created
   SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                       const formats::OutputSelection& outputs);
 
-  /// Appends one row per body and per pair (buffered; flushed by flush() and on destruction,
-  /// so a run that stops with an error keeps its rows).
+  /// Appends one row per body and per pair.
+  /// @throws InputError naming the file when a write failed (all temporaries are deleted)
   void write(const dynamics::Snapshot& snapshot);
-  void flush();
+  /// Completes the files: the rows written so far, under their final names. A run that
+  /// stopped with an error commits too, so its output up to the stop is kept.
+  /// @throws InputError naming the file when a write or the close failed
+  void commit();
 
   /// The files written, for the summary.
   const std::vector<std::string>& files() const { return files_; }
 
  private:
-  std::ofstream open(const std::string& path);
-  void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ofstream& f);
+  io::OutputFile& open(const std::string& path);
+  void checkWrites();
+  void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ostream& f);
 
   const dynamics::Scenario& scenario_;
   formats::OutputSelection outputs_;
-  std::ofstream bodies_;
-  std::vector<std::ofstream> pairs_;
-  std::vector<std::ofstream> patches_;  ///< the pairs' patch files
-  std::vector<int> patch_file_;         ///< per pair, its index in patches_, −1 when none
+  /// bodies.csv (when selected) first, then each pair's file and its patch file
+  std::vector<io::OutputFile> files_out_;
+  io::OutputFile* bodies_ = nullptr;
+  std::vector<io::OutputFile*> pairs_;
+  std::vector<io::OutputFile*> patches_;  ///< per pair, its patch file; null when it has none
   std::vector<std::string> files_;
 };
+
+/// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs).
+std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
+                             const formats::OutputSelection& outputs);
+
+/// The most rows a simulation may write (about 10 GB of CSV at 200 bytes a row): more is
+/// refused before the run, with the count, since it would fill a disk rather than be read.
+constexpr std::uint64_t kMaxOutputRows = 50'000'000;
 
 /// A file-name-safe form of a pair name: letters, digits, '-', '_' kept, others '_'.
 std::string fileSafe(const std::string& name);

@@ -5,20 +5,26 @@
 namespace vcontact::report {
 
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
-                                     const std::string& status) {
-  return {{"status", status},
-          {"simulated_time_s", s.simulated_time},
-          {"wall_time_s", s.wall_time},
-          {"real_time_factor", s.realTimeFactor()},
-          {"steps", s.steps},
-          {"rejected_steps", s.rejected_steps},
-          {"rhs_evaluations", s.rhs_evaluations},
-          {"contact_evaluations", s.contact_evaluations},
-          {"jacobian_evaluations", s.jacobian_evaluations},
-          {"patches",
-           {{"max", s.patches_max},
-            {"mean", s.patches_mean},
-            {"without_slot", s.patches_without_slot}}}};
+                                     const std::string& status,
+                                     const std::optional<StopInfo>& stop) {
+  nlohmann::json j = {{"status", status},
+                      {"simulated_time_s", s.simulated_time},
+                      {"wall_time_s", s.wall_time},
+                      {"real_time_factor", s.realTimeFactor()},
+                      {"steps", s.steps},
+                      {"rejected_steps", s.rejected_steps},
+                      {"rhs_evaluations", s.rhs_evaluations},
+                      {"contact_evaluations", s.contact_evaluations},
+                      {"jacobian_evaluations", s.jacobian_evaluations},
+                      {"patches",
+                       {{"max", s.patches_max},
+                        {"mean", s.patches_mean},
+                        {"without_slot", s.patches_without_slot}}}};
+  if (stop) {
+    j["stopped_at_s"] = stop->time;
+    j["stop_cause"] = dynamics::stopCauseName(stop->cause);
+  }
+  return j;
 }
 
 }  // namespace vcontact::report

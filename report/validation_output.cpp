@@ -7,6 +7,7 @@
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
+#include "io/output_file.hpp"
 
 namespace vcontact::report {
 namespace {
@@ -115,11 +116,7 @@ json whereJson(const validation::DiagnosisStage& s) {
   return where;
 }
 
-}  // namespace
-
-void writeResidualsCsv(const validation::Dataset& d, const Comparison& c, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, "cannot open for writing");
+void putResiduals(const validation::Dataset& d, const Comparison& c, std::ostream& out) {
   out.precision(std::numeric_limits<double>::max_digits10);
   out << "t";
   for (const auto& o : c.outputs) {
@@ -136,6 +133,12 @@ void writeResidualsCsv(const validation::Dataset& d, const Comparison& c, const 
     }
     out << '\n';
   }
+}
+
+}  // namespace
+
+void writeResidualsCsv(const validation::Dataset& d, const Comparison& c, const std::string& path) {
+  io::writeFile(path, [&](std::ostream& out) { putResiduals(d, c, out); });
 }
 
 json comparisonJson(const Comparison& c, const validation::NoiseLevels& noise) {

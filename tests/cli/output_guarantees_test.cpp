@@ -1,0 +1,289 @@
+// What the commands promise about their output (README "Exit codes and output"): a failed
+// write exits 2 naming the file and leaves nothing behind; a refused resource exits 2 with
+// the number before anything is written; a stopped simulation exits 3 and keeps complete,
+// parseable CSVs up to the stop, its summary saying where and why.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "support/run_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vcontact::test::CommandResult;
+
+const std::string kBinary = VCONTACT_BINARY;
+const std::string kAssets = VCONTACT_ASSETS_DIR;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("vcontact_output_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string quoted(const fs::path& p) { return '"' + p.string() + '"'; }
+
+CommandResult vcontact(const std::string& args, const fs::path& dir) {
+  return vcontact::test::runCommand('"' + kBinary + "\" " + args, dir / "stderr.txt");
+}
+
+std::string readAll(const fs::path& p) {
+  std::ifstream f(p);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The names in `dir`, but the test's own stderr.txt and inputs (*.json given as `keep`).
+std::vector<std::string> leftovers(const fs::path& dir, const std::vector<std::string>& keep) {
+  std::vector<std::string> names;
+  if (!fs::exists(dir)) return names;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name == "stderr.txt" || std::count(keep.begin(), keep.end(), name)) continue;
+    if (e.is_directory()) continue;
+    names.push_back(fs::relative(e.path(), dir).string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void expectBadOutput(const CommandResult& r, const std::string& file, const std::string& why) {
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("vcontact: error: " + file + ": "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+}
+
+// ---- failed writes -------------------------------------------------------------------------
+
+// /dev/full accepts the open and fails every write with ENOSPC: the full-disk case.
+TEST(OutputGuarantees, WriteToDevFullExitsTwoNamingTheFile) {
+  const fs::path dir = scratch("devfull");
+  const CommandResult r = vcontact("tessellate sphere:0.01 --out /dev/full", dir);
+  expectBadOutput(r, "/dev/full", "No space left on device");
+  EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+// RLIMIT_FSIZE set by the shell in the child before exec (ulimit -f counts 1024-byte blocks):
+// writes past 16 KiB fail with EFBIG instead of killing the process with SIGXFSZ. The ball
+// drop writes ~150 KiB of bodies.csv, so the run fails while writing; nothing is left.
+TEST(OutputGuarantees, SizeLimitedSimulationExitsTwoAndLeavesNoFiles) {
+  const fs::path dir = scratch("fsize");
+  const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary + "\" simulate \"" +
+                              kAssets + "/scenarios/ball_drop.json\" --out \"" +
+                              (dir / "out").string() + "\"'";
+  const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find((dir / "out").string() + "/"), std::string::npos) << r.err;
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+// The same limit on a single-file writer (a 64-segment sphere is 200 KiB of STL).
+TEST(OutputGuarantees, SizeLimitedMeshWriteLeavesNoFile) {
+  const fs::path dir = scratch("fsize_mesh");
+  const fs::path out = dir / "ball.stl";
+  const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary +
+                              "\" tessellate sphere:0.01 --out \"" + out.string() + "\"'";
+  const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
+  expectBadOutput(r, out.string(), "File too large");
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+// A failed write replaces nothing: the file that was there stays as it was.
+TEST(OutputGuarantees, FailedWriteKeepsThePreviousFile) {
+  const fs::path dir = scratch("keep");
+  const fs::path out = dir / "ball.stl";
+  std::ofstream(out) << "previous";
+  const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary +
+                              "\" tessellate sphere:0.01 --out \"" + out.string() + "\"'";
+  const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_EQ(readAll(out), "previous");
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{"ball.stl"});
+  fs::remove_all(dir);
+}
+
+// A folder that refuses new files. Permission bits do not stop root (the CI container runs as
+// root), so /proc stands for it: no regular file can be created there by anyone.
+TEST(OutputGuarantees, UnwritableFolderExitsTwoNamingTheFile) {
+  const fs::path dir = scratch("unwritable");
+  const CommandResult r = vcontact("tessellate sphere:0.01 --out /proc/vcontact-test.stl", dir);
+  expectBadOutput(r, "/proc/vcontact-test.stl", "cannot create a file in folder '/proc'");
+  EXPECT_FALSE(fs::exists("/proc/vcontact-test.stl"));
+  fs::remove_all(dir);
+}
+
+// The same through permission bits, where they apply (not as root).
+TEST(OutputGuarantees, ReadOnlyFolderExitsTwoWhenNotRoot) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root ignores permission bits";
+  const fs::path dir = scratch("readonly");
+  fs::create_directories(dir / "ro");
+  fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+  const CommandResult r =
+      vcontact("tessellate sphere:0.01 --out " + quoted(dir / "ro" / "b.stl"), dir);
+  expectBadOutput(r, (dir / "ro" / "b.stl").string(), "Permission denied");
+  fs::permissions(dir / "ro", fs::perms::owner_all);
+  EXPECT_TRUE(fs::is_empty(dir / "ro"));
+  fs::remove_all(dir);
+}
+
+TEST(OutputGuarantees, MissingFolderExitsTwo) {
+  const fs::path dir = scratch("missing");
+  const fs::path out = dir / "no" / "such" / "b.stl";
+  const CommandResult r = vcontact("tessellate sphere:0.01 --out " + quoted(out), dir);
+  expectBadOutput(r, out.string(), "does not exist");
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+TEST(OutputGuarantees, OutputPathThatIsAFolderExitsTwo) {
+  const fs::path dir = scratch("folder");
+  fs::create_directories(dir / "b.stl");
+  const CommandResult r = vcontact("tessellate sphere:0.01 --out " + quoted(dir / "b.stl"), dir);
+  expectBadOutput(r, (dir / "b.stl").string(), "is a folder; expected a file path");
+  EXPECT_TRUE(fs::is_empty(dir / "b.stl"));
+  fs::remove_all(dir);
+}
+
+// simulate --out names a folder: a file there is refused, and it is left alone.
+TEST(OutputGuarantees, OutputFolderThatIsAFileExitsTwo) {
+  const fs::path dir = scratch("notfolder");
+  std::ofstream(dir / "out") << "x";
+  const CommandResult r = vcontact(
+      "simulate \"" + kAssets + "/scenarios/ball_drop.json\" --out " + quoted(dir / "out"), dir);
+  expectBadOutput(r, (dir / "out").string(), "is a file; expected an output folder");
+  EXPECT_EQ(readAll(dir / "out"), "x");
+  fs::remove_all(dir);
+}
+
+// ---- resource guards -----------------------------------------------------------------------
+
+TEST(OutputGuarantees, TessellationBeyondTheTriangleLimitIsRefused) {
+  const fs::path dir = scratch("tess");
+  const CommandResult r = vcontact(
+      "tessellate sphere:0.01 --segments 100000 --rings 100000 --out " + quoted(dir / "b.stl"),
+      dir);
+  // 2 · 100000 · 99999 triangles
+  expectBadOutput(r, "--segments/--rings",
+                  "19999800000 triangles, more than the limit of 10000000");
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+TEST(OutputGuarantees, SynthSamplesBeyondTheLimitAreRefused) {
+  const fs::path dir = scratch("synth");
+  const CommandResult r = vcontact("synth --profile loading --model \"" + kAssets +
+                                       "/datasets/models/loading-truth.model.json\" --samples "
+                                       "10000000000 --out " +
+                                       quoted(dir / "big.json"),
+                                   dir);
+  expectBadOutput(r, "--samples", "10000000000 samples asked, more than the limit of 10000000");
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+// 1 s at 1e9 Hz would be 2e9 rows of two bodies and one pair... refused up front.
+TEST(OutputGuarantees, SimulationRowsBeyondTheLimitAreRefused) {
+  const fs::path dir = scratch("rows");
+  const CommandResult r =
+      vcontact("simulate \"" + kAssets + "/scenarios/ball_drop.json\" --output-rate 1e9 --out " +
+                   quoted(dir / "out"),
+               dir);
+  // 0.3 s · 1e9 Hz + 1 output times, 2 bodies + 1 pair each
+  expectBadOutput(r, "--output-rate", "would write 900000003 CSV rows");
+  EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+// ---- stopped simulations -------------------------------------------------------------------
+
+// A steel ball 0.5 mm above a plate; the contact model's stiffness kv (N/m³) and the
+// scenario's `extra` keys are the test's.
+std::string ballScenario(const std::string& kv, const std::string& extra) {
+  return R"({"format": "vcontact.scenario/1", "duration": 0.05, "output_rate": 1000, )" + extra +
+         R"(
+    "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
+               {"name": "ball", "shape": "sphere:0.01", "density": 7900, "pose": "0,0,0.0105"}],
+    "pairs": [{"a": "ball", "b": "plate", "method": "analytic",
+               "model": {"format": "vcontact.model/1", "effects": {"stiffness": {"kv": )" +
+         kv + "}}}}]}";
+}
+
+// Every line of `csv` has as many fields as its header, each a finite number (the body name
+// column of bodies.csv excepted); returns the last row's time.
+double lastCompleteTime(const fs::path& csv) {
+  std::istringstream lines(readAll(csv));
+  std::string line;
+  std::getline(lines, line);
+  const auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+  const long columns = fields(line);
+  double t = -1.0;
+  while (std::getline(lines, line)) {
+    EXPECT_EQ(fields(line), columns) << csv << ": " << line;
+    std::istringstream row(line);
+    std::string cell;
+    for (int c = 0; std::getline(row, cell, ','); ++c) {
+      if (csv.filename() == "bodies.csv" && c == 1) continue;
+      std::size_t used = 0;
+      const double x = std::stod(cell, &used);
+      EXPECT_EQ(used, cell.size()) << csv << ": " << cell;
+      EXPECT_TRUE(std::isfinite(x)) << csv << ": " << line;
+      if (c == 0) t = x;
+    }
+  }
+  return t;
+}
+
+// Runs the scenario, expects exit 3 and the summary's stop: cause, time after the last row.
+void expectStopped(const std::string& name, const std::string& scenario, const std::string& cause) {
+  const fs::path dir = scratch(name);
+  std::ofstream(dir / "s.json") << scenario;
+  const CommandResult r =
+      vcontact("simulate " + quoted(dir / "s.json") + " --out " + quoted(dir / "out"), dir);
+  EXPECT_EQ(r.exitCode, 3) << r.err;
+  EXPECT_NE(r.err.find("simulation stopped: t = "), std::string::npos) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(readAll(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary.at("stop_cause"), cause) << summary.dump();
+  const double stopped = summary.at("stopped_at_s").get<double>();
+  EXPECT_GT(stopped, 0.0);
+  EXPECT_EQ(summary.at("simulated_time_s").get<double>(), stopped);
+  for (const char* csv : {"bodies.csv", "pair_ball-plate.csv"}) {
+    const double last = lastCompleteTime(dir / "out" / csv);
+    // The ball falls 0.5 mm, touching at sqrt(2 · 0.5 mm / g) = 10.1 ms: rows until then.
+    EXPECT_GE(last, 0.010) << csv;
+    EXPECT_LE(last, stopped) << csv;
+  }
+  EXPECT_EQ(leftovers(dir / "out", {}),
+            (std::vector<std::string>{"bodies.csv", "pair_ball-plate.csv", "summary.json"}));
+  fs::remove_all(dir);
+}
+
+// kv = 1e3 N/m³ cannot hold 32 g: the ball sinks beyond a tenth of its size.
+TEST(OutputGuarantees, PenetrationBeyondBoundKeepsCompleteCsvs) {
+  expectStopped("penetration", ballScenario("1e3", ""), "penetration_beyond_bound");
+}
+
+// kv = 1e15 N/m³ (a few hundred times steel's) with a minimum step of 10 µs: the impact needs
+// steps of a few µs, so the step size collapses at the touch.
+TEST(OutputGuarantees, StepCollapseFromAbsurdStiffnessKeepsCompleteCsvs) {
+  expectStopped("collapse",
+                ballScenario("1e15", R"("tolerances": {"min_step": 1e-5, "initial_step": 1e-5},)"),
+                "step_size_collapse");
+}
+
+}  // namespace
