@@ -12,6 +12,7 @@
 #include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
+#include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "report/report_html.hpp"
 #include "report/validation_output.hpp"
@@ -185,7 +186,16 @@ void runSynth(const SynthOptions& o) {
   if (!out.parent_path().empty() && !fs::is_directory(out.parent_path())) {
     throw InputError("--out", out.parent_path().string() + " is not a directory");
   }
-  if (!(o.noiseScale >= 0.0)) throw InputError("--noise-scale", "expected a number >= 0");
+  // A thousand times the profile's noise already buries every force in it.
+  if (!(o.noiseScale >= 0.0 && o.noiseScale <= 1e3)) {
+    throw InputError("--noise-scale",
+                     "expected a number in [0, 1000], got " + std::to_string(o.noiseScale));
+  }
+  if (o.samples < io::kMinSamples || o.samples > io::kMaxSamples) {
+    throw InputError("--samples", "expected a sample count in [" + std::to_string(io::kMinSamples) +
+                                      ", " + std::to_string(io::kMaxSamples) + "], got " +
+                                      std::to_string(o.samples));
+  }
   const dynamics::Model truth = formats::readModelFile(o.model);
   validation::Dataset d =
       namingOptions({{"rig profile", "--profile"}, {"sample count", "--samples"}},

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/shape_json.hpp"
 
@@ -51,6 +52,33 @@ std::vector<std::string> splitFields(const std::string& line) {
   return fields;
 }
 
+// The largest magnitude a column may hold (io/input_ranges.hpp) and its unit; a column of
+// another name (a quaternion part, an extra column) is only checked finite.
+std::pair<double, const char*> columnLimit(const std::string& name) {
+  if (name == "t") return {io::kMaxTime, "s"};
+  if (name == "x" || name == "y" || name == "z") return {io::kMaxPosition, "m"};
+  if (name == "vx" || name == "vy" || name == "vz") return {io::kMaxSpeed, "m/s"};
+  if (name == "wx" || name == "wy" || name == "wz") return {io::kMaxAngularSpeed, "rad/s"};
+  if (name == "fx" || name == "fy" || name == "fz") return {io::kMaxForce, "N"};
+  if (name == "tx" || name == "ty" || name == "tz") return {io::kMaxTorque, "N m"};
+  return {HUGE_VAL, ""};
+}
+
+// A header that a spreadsheet in a decimal-comma locale or a UTF-8 editor wrote: named as
+// such, since the generic "missing column" would not say why.
+void checkHeader(const std::string& line, const std::string& path) {
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) {
+    throw InputError(path,
+                     "line 1: starts with a UTF-8 byte order mark; expected plain text (save "
+                     "the CSV as UTF-8 without BOM)");
+  }
+  if (line.find(';') != std::string::npos && line.find(',') == std::string::npos) {
+    throw InputError(path,
+                     "line 1: columns are separated by ';'; expected ',' and numbers with a "
+                     "decimal point (a CSV written with decimal commas is not read)");
+  }
+}
+
 struct Table {
   std::vector<std::string> names;
   std::vector<std::vector<double>> rows;
@@ -67,6 +95,7 @@ Table readCsv(const std::string& path) {
     ++lineNo;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     if (table.names.empty()) {
+      checkHeader(line, path);
       table.names = splitFields(line);
       std::set<std::string> seen;
       for (const auto& n : table.names) {
@@ -93,6 +122,13 @@ Table readCsv(const std::string& path) {
         throw InputError(path, where + ": '" + f + "' is not a number");
       }
       if (!std::isfinite(row[c])) throw InputError(path, where + ": '" + f + "' is not finite");
+      const auto [limit, unit] = columnLimit(table.names[c]);
+      if (std::abs(row[c]) > limit) {
+        std::ostringstream os;
+        os << where << ": " << f << " is beyond +-" << limit << " " << unit
+           << " (io/input_ranges.hpp)";
+        throw InputError(path, os.str());
+      }
     }
     table.rows.push_back(std::move(row));
     table.lineOf.push_back(lineNo);
@@ -152,6 +188,12 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
       std::ostringstream os;
       os << where << ", column 't': time " << s.t << " is not after the previous sample's "
          << d.samples[i - 1].t << " (time must increase strictly)";
+      throw InputError(path, os.str());
+    }
+    if (i > 0 && s.t - d.samples[i - 1].t < io::kMinSampleInterval) {
+      std::ostringstream os;
+      os << where << ", column 't': time step " << s.t - d.samples[i - 1].t << " s is below "
+         << io::kMinSampleInterval << " s (a 1 GHz sampling rate)";
       throw InputError(path, os.str());
     }
     const Eigen::Vector4d q(r[col("qw")], r[col("qx")], r[col("qy")], r[col("qz")]);
