@@ -30,6 +30,21 @@ int exitCode(const CLI::App& app, const CLI::ParseError& e) {
   }
 }
 
+/// A first word that is no command (a typo such as "simulat") gets CLI11's "A subcommand is
+/// required", which does not name it; this names it and the commands there are.
+bool unknownCommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  const std::string word = argv[1];
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == word) return false;
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  std::cerr << "vcontact: error: '" << word << "' is not a command; expected one of: " << names
+            << "\n";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -51,6 +66,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (unknownCommand(app, argc, argv)) return kBadInputExitCode;
     return exitCode(app, e);
   } catch (const vcontact::InputError& e) {
     std::cerr << "vcontact: error: " << e.what() << '\n';

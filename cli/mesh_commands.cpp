@@ -9,6 +9,7 @@
 #include "geometry/mass_properties.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/input_ranges.hpp"
 #include "io/mesh_io.hpp"
 #include "io/shape_spec.hpp"
 
@@ -98,6 +99,11 @@ void printMeshInfo(const io::ParsedShape& s, const geometry::MassProperties& p, 
 }
 
 void runMeshInfo(const MeshInfoOptions& o) {
+  // 0 asks for the volume alone (warned below); any other density is a material's.
+  if (o.density != 0.0) {
+    const std::string why = io::outOfRange(o.density, io::kDensityRange, "a density");
+    if (!why.empty()) throw InputError("--density", why + " (or 0 for the volume alone)");
+  }
   const io::ParsedShape s =
       io::parseShape(o.shape, o.shape, meshReadOptions(o.repair, o.fillHoles));
   std::vector<std::string> warnings = s.warnings;

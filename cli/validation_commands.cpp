@@ -16,6 +16,7 @@
 #include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
+#include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/shape_json.hpp"
 #include "io/output_file.hpp"
@@ -219,10 +220,6 @@ void runDiagnose(const ValidationOptions& o) {
   writeReport(o.out, report);
 }
 
-/// The most samples `synth` makes: 10 million rows are about 3 GB of CSV and as much memory
-/// while the measurement is synthesised; the bundled datasets have a few thousand.
-constexpr std::size_t kMaxSynthSamples = 10'000'000;
-
 struct SynthOptions {
   std::string profile, model, out;
   std::size_t samples = 2000;
@@ -270,18 +267,22 @@ void runSynth(const SynthOptions& o) {
   if (!out.parent_path().empty() && !fs::is_directory(out.parent_path())) {
     throw InputError("--out", out.parent_path().string() + " is not a directory");
   }
-  if (!(o.noiseScale >= 0.0)) throw InputError("--noise-scale", "expected a number >= 0");
+  // A thousand times the profile's noise already buries every force in it.
+  if (!(o.noiseScale >= 0.0 && o.noiseScale <= 1e3)) {
+    throw InputError("--noise-scale",
+                     "expected a number in [0, 1000], got " + std::to_string(o.noiseScale));
+  }
+  if (o.samples < io::kMinSamples || o.samples > io::kMaxSamples) {
+    throw InputError("--samples", "expected a sample count in [" + std::to_string(io::kMinSamples) +
+                                      ", " + std::to_string(io::kMaxSamples) + "], got " +
+                                      std::to_string(o.samples));
+  }
   if (!o.motion.empty() && fs::exists(o.motion) &&
       fs::equivalent(o.motion, fs::path(out).replace_extension(".csv"))) {
     throw InputError("--motion", o.motion + " is the CSV that --out would overwrite; name another");
   }
   if (!o.payloadScale.empty() && o.payload.empty())
     throw InputError("--payload-scale", "needs --payload (the mesh it scales)");
-  if (o.samples > kMaxSynthSamples) {
-    throw InputError("--samples", std::to_string(o.samples) +
-                                      " samples asked, more than the limit of " +
-                                      std::to_string(kMaxSynthSamples));
-  }
   const dynamics::Model truth = formats::readModelFile(o.model);
   validation::Dataset d =
       namingOptions({{"rig profile", "--profile"}, {"sample count", "--samples"}},

@@ -13,6 +13,7 @@
 
 #include "geometry/error.hpp"
 #include "io/csv_table.hpp"
+#include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
 #include "io/shape_json.hpp"
@@ -40,6 +41,32 @@ std::string requireString(const json& j, const std::string& key, const std::stri
 }
 
 using Table = io::CsvTable;
+
+// The largest magnitude a column may hold (io/input_ranges.hpp) and its unit; a column of
+// another name (a quaternion part, an extra column) is only checked finite.
+std::pair<double, const char*> columnLimit(const std::string& name) {
+  if (name == "t") return {io::kMaxTime, "s"};
+  if (name == "x" || name == "y" || name == "z") return {io::kMaxPosition, "m"};
+  if (name == "vx" || name == "vy" || name == "vz") return {io::kMaxSpeed, "m/s"};
+  if (name == "wx" || name == "wy" || name == "wz") return {io::kMaxAngularSpeed, "rad/s"};
+  if (name == "fx" || name == "fy" || name == "fz") return {io::kMaxForce, "N"};
+  if (name == "tx" || name == "ty" || name == "tz") return {io::kMaxTorque, "N m"};
+  return {HUGE_VAL, ""};
+}
+
+// Every value of the table within its column's limit (columnLimit).
+void checkRanges(const Table& t, const std::string& path) {
+  for (std::size_t c = 0; c < t.names.size(); ++c) {
+    const auto [limit, unit] = columnLimit(t.names[c]);
+    for (std::size_t i = 0; i < t.rowCount(); ++i) {
+      if (!(std::abs(t.columns[c][i]) > limit)) continue;
+      std::ostringstream os;
+      os << "line " << t.lineOf[i] << ", column '" << t.names[c] << "': " << t.columns[c][i]
+         << " is beyond +-" << limit << " " << unit << " (io/input_ranges.hpp)";
+      throw InputError(path, os.str());
+    }
+  }
+}
 
 std::size_t columnIndex(const Table& t, const std::string& name) {
   return static_cast<std::size_t>(std::find(t.names.begin(), t.names.end(), name) -
@@ -84,6 +111,7 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
     throw InputError(path, "only " + std::to_string(t.rowCount()) + " samples; at least " +
                                std::to_string(kMinimumSamples) + " are needed");
   }
+  checkRanges(t, path);
   const bool hasV = hasTriple(t, path, {"vx", "vy", "vz"});
   const bool hasW = hasTriple(t, path, {"wx", "wy", "wz"});
   for (std::size_t c = 0; c < t.names.size(); ++c) {
@@ -109,6 +137,12 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
       std::ostringstream os;
       os << where() << ", column 't': time " << s.t << " is not after the previous sample's "
          << d.samples[i - 1].t << " (time must increase strictly)";
+      throw InputError(path, os.str());
+    }
+    if (i > 0 && s.t - d.samples[i - 1].t < io::kMinSampleInterval) {
+      std::ostringstream os;
+      os << where() << ", column 't': time step " << s.t - d.samples[i - 1].t << " s is below "
+         << io::kMinSampleInterval << " s (a 1 GHz sampling rate)";
       throw InputError(path, os.str());
     }
     const Eigen::Vector4d q(qw[i], qx[i], qy[i], qz[i]);

@@ -1,5 +1,6 @@
 #include "formats/scenario_file.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -8,6 +9,7 @@
 
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
+#include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/mesh_io.hpp"
 #include "io/shape_spec.hpp"
@@ -83,6 +85,25 @@ class Reader {
     if (v.size() != 3) fail(key, "expected an array of 3 numbers");
     return {v[0], v[1], v[2]};
   }
+  /// A vector each of whose components is within +-limit (io/input_ranges.hpp).
+  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback, double limit,
+                          const char* unit) const {
+    const Eigen::Vector3d v = vector3(key, fallback);
+    if (v.cwiseAbs().maxCoeff() > limit) {
+      std::ostringstream s;
+      s << "expected components within +-" << limit << " " << unit << ", got [" << v.x() << ", "
+        << v.y() << ", " << v.z() << "]";
+      fail(key, s.str());
+    }
+    return v;
+  }
+  double inRange(const std::string& key, double fallback, const io::Range& range) const {
+    if (has(key) && !j_[key].is_number()) fail(key, "expected a number");
+    const double v = has(key) ? j_[key].get<double>() : fallback;
+    const std::string why = io::outOfRange(v, range, "a number");
+    if (!why.empty()) fail(key, why);
+    return v;
+  }
   bool flag(const std::string& key, bool fallback) const {
     if (!has(key)) return fallback;
     if (!j_[key].is_boolean()) fail(key, "expected true or false");
@@ -138,13 +159,34 @@ Eigen::Matrix3d readInertia(const Reader& r) {
   return I;
 }
 
+// A rigid body's inertia about its centre of mass is positive definite, and its principal
+// moments obey the triangle inequality I1 + I2 >= I3 (equality for a flat plate). The
+// tolerance, 1e-9 of the trace, lets a plate's moments computed in double pass.
+void checkInertia(const Reader& r, const Eigen::Matrix3d& I) {
+  const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+  std::ostringstream s;
+  s.precision(6);
+  if (!(m.minCoeff() > 0.0)) {
+    s << "expected a positive definite tensor (kg m^2), principal moments are " << m.x() << ", "
+      << m.y() << ", " << m.z();
+    r.fail("inertia", s.str());
+  }
+  const double slack = 1e-9 * m.sum();
+  if (m.x() + m.y() < m.z() - slack) {
+    s << "principal moments " << m.x() << ", " << m.y() << ", " << m.z()
+      << " violate the triangle inequality (the two smaller must add up to the largest); no "
+         "rigid body has them";
+    r.fail("inertia", s.str());
+  }
+}
+
 dynamics::PrescribedMotion readPrescribed(const Reader& r) {
   r.allowOnly({"velocity", "angular_velocity", "amplitude", "frequency"});
   dynamics::PrescribedMotion m;
-  m.v_W = r.vector3("velocity", Eigen::Vector3d::Zero());
-  m.w_W = r.vector3("angular_velocity", Eigen::Vector3d::Zero());
-  m.amplitude_W = r.vector3("amplitude", Eigen::Vector3d::Zero());
-  m.frequency_hz = r.number("frequency", 0.0, 0.0, 1e9);
+  m.v_W = r.vector3("velocity", Eigen::Vector3d::Zero(), io::kMaxSpeed, "m/s");
+  m.w_W = r.vector3("angular_velocity", Eigen::Vector3d::Zero(), io::kMaxAngularSpeed, "rad/s");
+  m.amplitude_W = r.vector3("amplitude", Eigen::Vector3d::Zero(), io::kMaxPosition, "m");
+  m.frequency_hz = r.number("frequency", 0.0, 0.0, io::kRateRange.upper);
   return m;
 }
 
@@ -154,15 +196,16 @@ void readMass(const Reader& r, dynamics::RigidBody& body) {
   }
   if (r.has("density")) {
     try {
-      dynamics::setMassFromDensity(body, r.positive("density", 0.0));
+      dynamics::setMassFromDensity(body, r.inRange("density", 0.0, io::kDensityRange));
     } catch (const InputError& e) {
       r.fail("density", e.message());
     }
     return;
   }
   if (!r.has("inertia")) r.fail("inertia", "expected with \"mass\"");
-  body.mass = r.positive("mass", 0.0);
+  body.mass = r.inRange("mass", 0.0, io::kMassRange);
   body.I_BBcm_B = readInertia(r);
+  checkInertia(r, body.I_BBcm_B);
   body.p_BBcm = r.vector3("com", Eigen::Vector3d::Zero());
 }
 
@@ -176,6 +219,19 @@ void warnIfLight(const Reader& r, const dynamics::RigidBody& body,
   if (w) warnings.push_back(body.name + ": " + *w);
 }
 
+// A mesh file's own error names the file; the scenario's key is added, so that a missing or
+// broken mesh is found in the scenario too (issue 20).
+io::ParsedShape readShape(const Reader& r, const std::string& shape,
+                          const io::MeshReadOptions& mesh) {
+  const std::string source = r.source() + ": " + r.at("shape");
+  try {
+    return io::parseShape(shape, source, mesh);
+  } catch (const InputError& e) {
+    if (e.source() == source) throw;
+    r.fail("shape", e.what());
+  }
+}
+
 dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
                              std::vector<std::string>& warnings) {
   r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density", "mass",
@@ -186,7 +242,7 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
   if (!isPrimitive(shape)) shape = resolve(shape, base_dir);
   io::MeshReadOptions mesh;
   mesh.repair = r.flag("repair", false);
-  io::ParsedShape parsed = io::parseShape(shape, r.source() + ": " + r.at("shape"), mesh);
+  io::ParsedShape parsed = readShape(r, shape, mesh);
   body.shape = std::move(parsed.shape);
   for (const auto& w : parsed.warnings) warnings.push_back(body.name + ": " + w);
   body.X_WB0 = readPose(r, "pose");
@@ -200,9 +256,11 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
     body.motion = dynamics::BodyMotion::kFree;
     readMass(r, body);
     warnIfLight(r, body, warnings);
-    body.w_WB0 = r.vector3("angular_velocity", Eigen::Vector3d::Zero());
+    body.w_WB0 =
+        r.vector3("angular_velocity", Eigen::Vector3d::Zero(), io::kMaxAngularSpeed, "rad/s");
     // "velocity" is that of the body frame origin; store that of the centre of mass.
-    const Eigen::Vector3d v_WBo = r.vector3("velocity", Eigen::Vector3d::Zero());
+    const Eigen::Vector3d v_WBo =
+        r.vector3("velocity", Eigen::Vector3d::Zero(), io::kMaxSpeed, "m/s");
     body.v_WBcm0 = v_WBo + body.w_WB0.cross(body.X_WB0.linear() * body.p_BBcm);
   } else {
     r.fail("motion", "expected \"free\", \"fixed\" or \"prescribed\"");
@@ -235,8 +293,8 @@ std::size_t bodyIndex(const Reader& r, const std::string& key,
 
 dynamics::SimulationSettings readSettings(const Reader& r) {
   dynamics::SimulationSettings s;
-  s.duration = r.positive("duration", s.duration);
-  s.output_rate_hz = r.positive("output_rate", s.output_rate_hz);
+  s.duration = r.inRange("duration", s.duration, io::kDurationRange);
+  s.output_rate_hz = r.inRange("output_rate", s.output_rate_hz, io::kRateRange);
   if (r.has("integrator")) {
     const std::string name = r.text("integrator");
     if (name == "dopri5") {
@@ -401,7 +459,10 @@ void readBodies(const Reader& r, const std::string& source, const std::string& b
     const Reader b(r["bodies"][i], source, "bodies[" + std::to_string(i) + "]");
     bodies.push_back(readBody(b, base_dir, file.warnings));
     for (std::size_t k = 0; k < i; ++k) {
-      if (bodies[k].name == bodies[i].name) b.fail("name", "repeats an earlier body's name");
+      if (bodies[k].name == bodies[i].name) {
+        b.fail("name", "'" + bodies[i].name + "' is the name of bodies[" + std::to_string(k) +
+                           "] already; expected a name of its own");
+      }
     }
   }
 }
@@ -479,7 +540,10 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   ScenarioFile file;
   dynamics::Scenario& sc = file.scenario;
   sc.settings = readSettings(r);
-  sc.gravity_W = r.vector3("gravity", sc.gravity_W);
+  if (r.has("description") && !r["description"].is_string()) {
+    r.fail("description", "expected a string");
+  }
+  sc.gravity_W = r.vector3("gravity", sc.gravity_W, io::kMaxAcceleration, "m/s^2");
   readBodies(r, source, base_dir, file);
   const std::map<std::string, dynamics::Model> models = readModels(r, source, base_dir);
   if (r.has("pairs") ? !r["pairs"].is_array() : !r.has("contacts")) {

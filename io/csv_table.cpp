@@ -46,7 +46,19 @@ class TableBuilder {
   }
 
  private:
+  // A header that a spreadsheet in a decimal-comma locale or a UTF-8 editor wrote is named as
+  // such, since the generic "missing column" would not say why.
   void header(std::string_view text) {
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") {
+      throw InputError(path_,
+                       "line 1: starts with a UTF-8 byte order mark; expected plain text (save "
+                       "the CSV as UTF-8 without BOM)");
+    }
+    if (text.find(';') != text.npos && text.find(',') == text.npos) {
+      throw InputError(path_,
+                       "line 1: columns are separated by ';'; expected ',' and numbers with a "
+                       "decimal point (a CSV written with decimal commas is not read)");
+    }
     std::set<std::string> seen;
     std::size_t start = 0;
     while (true) {

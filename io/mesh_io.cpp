@@ -20,6 +20,7 @@
 #include "geometry/mass_properties.hpp"
 #include "geometry/mesh_check.hpp"
 #include "io/output_file.hpp"
+#include "io/input_ranges.hpp"
 
 namespace vcontact::io {
 namespace {
@@ -116,15 +117,72 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+// A PLY header ends with an "end_header" line within its first kPlyHeaderLimit bytes; CGAL's
+// reader is handed only a file whose header does (one that never ends hung a reader, issue
+// 20), and whose every "property" follows an "element" (CGAL 5.5 reads the last element of
+// an empty list otherwise: undefined behaviour, found by tests/fuzz). 64 KiB holds thousands
+// of comment and property lines.
+constexpr std::size_t kPlyHeaderLimit = 1 << 16;
+
+void checkPlyHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::size_t read = 0;
+  bool element = false;
+  for (std::size_t n = 1; read < kPlyHeaderLimit && std::getline(in, line); ++n) {
+    read += line.size() + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line == "end_header") return;
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (n == 1 && keyword != "ply") {
+      throw InputError("", "cannot read mesh: line 1 is not \"ply\"; expected a PLY file");
+    }
+    element = element || keyword == "element";
+    if (keyword == "property" && !element) {
+      throw InputError("", "cannot read mesh: PLY header line " + std::to_string(n) +
+                               ": a property before any element; expected \"element NAME "
+                               "COUNT\" first");
+    }
+  }
+  throw InputError("", "cannot read mesh: the PLY header has no \"end_header\" line in its first " +
+                           std::to_string(kPlyHeaderLimit) + " bytes");
+}
+
+// CGAL's text readers refuse "nan" and "inf" without saying so; a file they refused is
+// searched for such a word, so that the message names the line (binary files hold none).
+void refuseNonFiniteToken(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line, word;
+  for (std::size_t n = 1; std::getline(in, line); ++n) {
+    std::istringstream words(line);
+    while (words >> word) {
+      std::string w;
+      for (const char c : word) w += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (!w.empty() && (w[0] == '-' || w[0] == '+')) w.erase(0, 1);
+      if (w == "nan" || w == "inf" || w == "infinity") {
+        throw InputError(
+            "", "line " + std::to_string(n) + ": '" + word +
+                    "': a vertex with a NaN or infinite coordinate; expected a finite number");
+      }
+    }
+  }
+}
+
+// STL, OBJ, OFF and PLY are read by CGAL, which fails cleanly on a broken file; only the
+// formats CGAL does not read go to assimp (which aborted the process on a crafted PLY file).
 FileMesh readFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
   const bool cgalFormat = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
   if (!cgalFormat) return readAssimp(path);
+  if (ext == ".ply") checkPlyHeader(path);
   FileMesh out;
   if (ext == ".stl" ? readStl(path, out) : readSoup(path, ext, out)) return out;
-  out = readAssimp(path);
-  out.notes.push_back("the double-precision reader refused the file; read in single precision");
-  return out;
+  refuseNonFiniteToken(path);
+  throw InputError("", "cannot read mesh: not a valid " + ext.substr(1) +
+                           " file (CGAL's reader refused it; is it truncated or of another "
+                           "format?)");
 }
 
 void checkPolygonIndices(const FileMesh& file) {
@@ -203,6 +261,17 @@ std::optional<std::string> largePartWarning(const geometry::TriangleMesh& mesh) 
   return os.str();
 }
 
+// The part's extent in metres within kLengthRange (io/input_ranges.hpp): beyond it a scale
+// or the coordinates are absurd, and the face checks would report the rounding instead.
+void checkExtent(const geometry::TriangleMesh& mesh, double scale) {
+  const double size = geometry::bounds(mesh).size().maxCoeff();
+  const std::string why = outOfRange(size, kLengthRange, "the part's extent");
+  if (why.empty()) return;
+  std::ostringstream os;
+  os << why << " (coordinates times the scale " << scale << ")";
+  throw InputError("", os.str());
+}
+
 }  // namespace
 
 std::optional<double> unitScale(const std::string& name) {
@@ -228,6 +297,9 @@ MeshReadResult readMesh(const std::string& path, double scale, const MeshReadOpt
     throw InputError(path, "scale must be a finite positive number, got " + std::to_string(scale));
   }
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path, "is a folder; expected a mesh file");
+  }
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "no such file");
   MeshReadResult result;
   try {
@@ -239,6 +311,7 @@ MeshReadResult readMesh(const std::string& path, double scale, const MeshReadOpt
     result.report.precision = file.precision;
     result.report.doubts = file.notes;
     result.mesh = weld(raw, scale);
+    checkExtent(result.mesh, scale);
     if (options.repair) {
       geometry::RepairResult repaired = geometry::repairMesh(result.mesh, options.repairOptions);
       result.mesh = std::move(repaired.mesh);

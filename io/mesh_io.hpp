@@ -4,12 +4,15 @@
 // Reading: STL, OBJ, OFF and PLY through CGAL's polygon-soup readers, which keep the
 // precision the file has: ASCII STL, OBJ, OFF and PLY with double properties arrive in double
 // precision; binary STL is single precision on disk, and so is PLY with float properties.
-// Every other format (glTF 2 .gltf/.glb, COLLADA .dae, 3MF, ...) goes through assimp, which as
-// packaged by Debian stores coordinates in single precision (about 7 significant digits), as
-// does a file that CGAL's reader refuses (a warning says so). Polygons are split into
-// triangles, coordinates are checked finite before anything else, vertices at equal positions
-// are welded, the coordinates scaled into metres, optionally repaired
-// (geometry/mesh_repair.hpp), and the result checked (geometry/mesh_check.hpp).
+// A file of these formats that CGAL's reader refuses is refused (it is never handed to
+// assimp, which can abort the process on a crafted file), and so is a PLY file whose header
+// does not end within 64 KiB. Every other format (glTF 2 .gltf/.glb, COLLADA .dae, 3MF, ...)
+// goes through assimp, which as packaged by Debian stores coordinates in single precision
+// (about 7 significant digits). Polygons are split into triangles, coordinates are checked
+// finite before anything else, vertices at equal positions are welded, the coordinates scaled
+// into metres and the part's extent checked against io/input_ranges.hpp (1e-6 to 1e3 m),
+// optionally repaired (geometry/mesh_repair.hpp), and the result checked
+// (geometry/mesh_check.hpp).
 
 #include <optional>
 #include <string>

@@ -9,6 +9,7 @@
 
 #include "geometry/error.hpp"
 #include "io/mesh_io.hpp"
+#include "io/shape_spec.hpp"
 
 namespace vcontact::io {
 
@@ -83,6 +84,7 @@ JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
                                 "\"; expected sphere, cylinder, box, halfspace, or a \"mesh\"");
   }
   geometry::validate(out.shape, where);
+  checkShapeLengths(out.shape, where);
   return out;
 }
 

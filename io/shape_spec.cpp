@@ -1,10 +1,12 @@
 #include "io/shape_spec.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "io/input_ranges.hpp"
 #include "io/mesh_io.hpp"
 
 namespace vcontact::io {
@@ -20,28 +22,54 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
+// Positions within the workspace, roll, pitch and yaw within one turn (io/input_ranges.hpp).
+void checkPoseRanges(const std::vector<double>& v, const std::string& source) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const bool angle = v.size() == 6 && i >= 3;
+    const double limit = i < 3 ? kMaxPosition : (angle ? kMaxAngleDegrees : HUGE_VAL);
+    if (std::abs(v[i]) <= limit) continue;
+    static const char* const kNames[] = {"x", "y", "z", "roll", "pitch", "yaw"};
+    std::ostringstream os;
+    os << kNames[i] << " = " << v[i] << " is beyond +-" << limit
+       << (angle ? " degrees (one turn)" : " m (the workspace)");
+    throw InputError(source, os.str());
+  }
+}
+
 }  // namespace
+
+void checkShapeLengths(const geometry::Shape& shape, const std::string& source) {
+  auto check = [&](double value, const char* name) {
+    const std::string why = outOfRange(value, kLengthRange, name);
+    if (!why.empty()) throw InputError(source, why);
+  };
+  if (const auto* s = std::get_if<geometry::Sphere>(&shape)) check(s->radius, "the radius");
+  if (const auto* c = std::get_if<geometry::Cylinder>(&shape)) {
+    check(c->radius, "the radius");
+    check(c->length, "the length");
+  }
+  if (const auto* b = std::get_if<geometry::Box>(&shape)) {
+    for (int k = 0; k < 3; ++k) check(b->size[k], "a box edge");
+  }
+}
 
 std::vector<double> parseNumberList(const std::string& text, const std::string& source) {
   std::vector<double> values;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const std::string t = trim(item);
-    std::size_t used = 0;
+  std::size_t begin = 0;
+  // Every comma separates two numbers: "1,2," and ",1" hold an empty one and are refused.
+  while (true) {
+    const std::size_t comma = text.find(',', begin);
+    const std::string t =
+        trim(text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
     double v = 0.0;
-    try {
-      v = std::stod(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
+    std::string why;
+    if (!parseDecimal(t, v, why)) {
+      throw InputError(source, "'" + t + "' in '" + text + "' is " + why);
     }
-    if (t.empty() || used != t.size()) {
-      throw InputError(source, "'" + t + "' is not a number (in '" + text + "')");
-    }
-    if (!std::isfinite(v)) throw InputError(source, "'" + t + "' is not finite");
     values.push_back(v);
+    if (comma == std::string::npos) return values;
+    begin = comma + 1;
   }
-  return values;
 }
 
 Eigen::Isometry3d poseFromRpyDegrees(const Eigen::Vector3d& t, const Eigen::Vector3d& rpy) {
@@ -72,6 +100,7 @@ Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& t, const Eigen::Vect
 
 Eigen::Isometry3d parsePose(const std::string& text, const std::string& source) {
   const std::vector<double> v = parseNumberList(text, source);
+  checkPoseRanges(v, source);
   const Eigen::Vector3d t =
       v.size() >= 3 ? Eigen::Vector3d(v[0], v[1], v[2]) : Eigen::Vector3d::Zero();
   switch (v.size()) {
@@ -95,20 +124,24 @@ Eigen::Isometry3d parsePose(const std::string& text, const std::string& source) 
 std::pair<std::string, double> splitMeshScale(const std::string& text) {
   const auto at = text.rfind('@');
   if (at == std::string::npos) return {text, 1.0};
+  // A file of that very name is a path, whatever follows its '@'.
+  std::error_code ec;
+  if (std::filesystem::exists(text, ec)) return {text, 1.0};
   const std::string suffix = text.substr(at + 1);
   if (const auto unit = unitScale(suffix)) return {text.substr(0, at), *unit};
-  std::size_t used = 0;
-  try {
-    const double scale = std::stod(suffix, &used);
-    if (used == suffix.size()) return {text.substr(0, at), scale};
-  } catch (const std::exception&) {
-    // Not a number: the '@' belongs to the path.
-  }
-  return {text, 1.0};
+  double scale = 0.0;
+  std::string why;
+  if (parseDecimal(suffix, scale, why)) return {text.substr(0, at), scale};
+  return {text, 1.0};  // not a scale: the '@' belongs to the path
 }
 
 ParsedShape parseShape(const std::string& text, const std::string& source,
                        const MeshReadOptions& mesh) {
+  if (trim(text).empty()) {
+    throw InputError(source,
+                     "expected a shape (sphere:R, cylinder:R,L, box:X,Y,Z, halfspace or a mesh "
+                     "file), got an empty text");
+  }
   const auto colon = text.find(':');
   const std::string kind = text.substr(0, colon);
   const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
@@ -139,6 +172,7 @@ ParsedShape parseShape(const std::string& text, const std::string& source,
         geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)), path};
   }
   geometry::validate(out.shape, source);
+  checkShapeLengths(out.shape, source);
   return out;
 }
 

@@ -32,6 +32,10 @@ struct ParsedShape {
 ParsedShape parseShape(const std::string& text, const std::string& source,
                        const MeshReadOptions& mesh = {});
 
+/// Refuses a sphere, cylinder or box with a length outside io::kLengthRange (1e-6 to 1e3 m).
+/// @throws InputError naming `source`, the length and the range
+void checkShapeLengths(const geometry::Shape& shape, const std::string& source);
+
 /// A mesh file's text PATH[@SCALE] split into the path and the scale into metres.
 std::pair<std::string, double> splitMeshScale(const std::string& text);
 Eigen::Isometry3d parsePose(const std::string& text, const std::string& source);

@@ -22,6 +22,11 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang-format
 )
+# The libFuzzer harnesses (tests/fuzz, -DVCONTACT_FUZZ=ON) need clang and its fuzzer and
+# sanitizer runtimes; a normal build does not.
+if [ "${VCONTACT_FUZZ:-0}" = 1 ]; then
+  PACKAGES+=(clang-14 libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

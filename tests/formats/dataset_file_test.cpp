@@ -124,6 +124,24 @@ TEST_F(DatasetFiles, EachCsvDefectHasItsMessage) {
        "line 1: no wrench column"},
       {"half a velocity", [](std::string s) { return replaceFirst(s, "vy,", "vq,"); },
        "columns vx, vy, vz come together"},
+      // Issue 20: named causes, physical ranges (io/input_ranges.hpp), a time step that made
+      // fit and diagnose die on a signal.
+      {"byte order mark", [](std::string s) { return "\xEF\xBB\xBF" + s; },
+       "line 1: starts with a UTF-8 byte order mark"},
+      {"decimal commas",
+       [](std::string s) {
+         for (char& c : s) c = c == ',' ? ';' : (c == '.' ? ',' : c);
+         return s;
+       },
+       "line 1: columns are separated by ';'; expected ',' and numbers with a decimal point"},
+      {"position beyond the workspace",
+       [](std::string s) { return replaceFirst(s, "\n0,0,0,", "\n0,1e308,0,"); },
+       "line 2, column 'x': 1e308 is beyond +-1000 m"},
+      {"force beyond range", [](std::string s) { return replaceFirst(s, ",10,", ",1e300,"); },
+       "line 2, column 'fz': 1e300 is beyond +-1e+09 N"},
+      {"time step below a nanosecond",
+       [](std::string s) { return replaceFirst(s, "\n0.01,", "\n1e-12,"); },
+       "line 3, column 't': time step 1e-12 s is below 1e-09 s"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);

@@ -91,6 +91,19 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
        "pairs[0].model.effects.stiffness.kv: stiffness.kv = -5 is outside"},
       {"/tolerances", nlohmann::json{{"rel", 0.0}}, "tolerances.rel: expected a positive number"},
       {"/integrator", "euler", "s.json: integrator: expected \"dopri5\" or \"bdf\""},
+      // Physical ranges (io/input_ranges.hpp) and types the issue 20 catalogue found accepted.
+      {"/bodies/1/density", -7900.0,
+       "bodies[1].density: expected a number in [0.1, 100000] kg/m^3, got -7900"},
+      {"/bodies/1/density", 1e9, "bodies[1].density: expected a number in [0.1, 100000]"},
+      {"/bodies/1/velocity", nlohmann::json::array({0, 0, 2e3}),
+       "bodies[1].velocity: expected components within +-1000 m/s"},
+      {"/bodies/1/angular_velocity", nlohmann::json::array({1e5, 0, 0}),
+       "bodies[1].angular_velocity: expected components within +-10000 rad/s"},
+      {"/bodies/1/pose", "0,0,0.015,", "bodies[1].pose: '' in '0,0,0.015,' is not a number"},
+      {"/gravity", nlohmann::json::array({0, 0, -1e4}), "gravity: expected components within"},
+      {"/duration", 1e7, "duration: expected a number in [1e-09, 1e+06] s, got 1e+07"},
+      {"/output_rate", 1e9, "output_rate: expected a number in [1e-06, 1e+06] Hz"},
+      {"/description", nlohmann::json{{"a", 1}}, "s.json: description: expected a string"},
   };
   for (const auto& c : cases) {
     nlohmann::json j = ballOnPlate();
@@ -103,6 +116,33 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
   mass_only["bodies"][1].erase("density");
   EXPECT_NE(errorOf(mass_only).find("bodies[1]: a free body needs either \"density\""),
             std::string::npos);
+}
+
+// Issue 20: the mesh file's error alone did not say which body of the scenario named it.
+TEST(ScenarioFile, MissingMeshNamesTheScenarioKeyAndTheFile) {
+  nlohmann::json j = ballOnPlate();
+  j["bodies"][1]["shape"] = "meshes/nowhere.stl";
+  const std::string message = errorOf(j);
+  EXPECT_EQ(message.rfind("s.json: bodies[1].shape: ", 0), 0u) << message;
+  EXPECT_NE(message.find("meshes/nowhere.stl: no such file"), std::string::npos) << message;
+}
+
+// A body given by mass and inertia: the tensor must be one a rigid body can have.
+TEST(ScenarioFile, InertiaMustBePositiveDefiniteAndObeyTheTriangleInequality) {
+  auto withInertia = [](const nlohmann::json& inertia) {
+    nlohmann::json j = ballOnPlate();
+    j["bodies"][1].erase("density");
+    j["bodies"][1]["mass"] = 0.05;
+    j["bodies"][1]["inertia"] = inertia;
+    return errorOf(j);
+  };
+  EXPECT_NE(withInertia({1e-6, 1e-6, 5e-6}).find("violate the triangle inequality"),
+            std::string::npos);
+  EXPECT_NE(withInertia({1, 0, 0, 0, 1, 2, 0, 2, 1}).find("expected a positive definite tensor"),
+            std::string::npos);
+  EXPECT_NE(withInertia({-1e-6, 1e-6, 1e-6}).find("positive definite"), std::string::npos);
+  // A thin plate: Izz = Ixx + Iyy exactly, allowed.
+  EXPECT_EQ(withInertia({1e-6, 2e-6, 3e-6}), "");
 }
 
 // "friction": "distributed" (DISTRIBUTED_FRICTION.md): the method defaults to columns and may

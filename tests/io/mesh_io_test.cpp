@@ -339,5 +339,51 @@ TEST_F(MeshFiles, DegenerateFaceInFile) {
   EXPECT_NE(msg.find("degenerate"), std::string::npos) << msg;
 }
 
+// Issue 20: a PLY header without "end_header" hung the reader; now it is refused at once.
+TEST_F(MeshFiles, PlyHeaderThatNeverEnds) {
+  std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\n";
+  for (int i = 0; i < 5000; ++i) header += "comment no end in sight\n";
+  const std::string msg = rejection(write("endless.ply", header));
+  EXPECT_EQ(msg, path("endless.ply") +
+                     ": cannot read mesh: the PLY header has no \"end_header\" line in its "
+                     "first 65536 bytes");
+}
+
+// Found by tests/fuzz/mesh_reader_fuzz: CGAL 5.5's PLY reader took the last element of an
+// empty list on a property before any element (undefined behaviour under UBSan).
+TEST_F(MeshFiles, PlyPropertyBeforeAnyElement) {
+  const std::string msg = rejection(write(
+      "early.ply", "ply\nformat ascii 1.0\nproperty double x\nelement vertex 1\nend_header\n0\n"));
+  EXPECT_EQ(msg, path("early.ply") +
+                     ": cannot read mesh: PLY header line 3: a property before any element; "
+                     "expected \"element NAME COUNT\" first");
+}
+
+// A broken file of a CGAL format is refused by CGAL's reader, not handed on to assimp (which
+// aborted the process on a crafted PLY file).
+TEST_F(MeshFiles, BrokenCgalFormatIsRefusedWithoutAssimp) {
+  for (const char* name : {"cut.off", "cut.ply"}) {
+    const std::string msg = rejection(write(name, "OFF\n8 12 0\n0 0 0\n"));
+    EXPECT_EQ(msg.rfind(path(name) + ": cannot read mesh: ", 0), 0u) << msg;
+    EXPECT_EQ(msg.find("single precision"), std::string::npos) << msg;
+  }
+}
+
+TEST_F(MeshFiles, FolderIsNotAMeshFile) {
+  fs::create_directories(dir_ / "part.stl");
+  EXPECT_EQ(rejection(path("part.stl")), path("part.stl") + ": is a folder; expected a mesh file");
+}
+
+// io/input_ranges.hpp: the extent in metres within [1e-6, 1e3]; at 1e300 the face checks
+// reported "degenerate faces" (issue 20), at 1e-300 a volume of zero.
+TEST_F(MeshFiles, ExtentOutsideThePhysicalRangeIsNamed) {
+  writeStl(box_, path("box.stl"));
+  for (const double scale : {1e300, 1e5, 1e-6}) {
+    const std::string msg = rejection(path("box.stl"), scale);
+    EXPECT_NE(msg.find("expected the part's extent in [1e-06, 1000] m"), std::string::npos) << msg;
+  }
+  EXPECT_EQ(rejection(path("box.stl"), 1e4), "");  // 700 m across: the limit allows it
+}
+
 }  // namespace
 }  // namespace vcontact::io

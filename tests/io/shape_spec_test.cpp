@@ -31,8 +31,37 @@ TEST(ShapeSpec, BadShapesNameTheSourceAndTheExpectedForm) {
             "A: sphere radius must be a finite positive length in metres, got -1");
   EXPECT_EQ(rejection([] { parseShape("cylinder:1", "B"); }),
             "B: expected cylinder:R,L, got 'cylinder:1'");
-  EXPECT_EQ(rejection([] { parseShape("box:1,x,3", "A"); }), "A: 'x' is not a number (in '1,x,3')");
-  EXPECT_EQ(rejection([] { parseShape("sphere:nan", "A"); }), "A: 'nan' is not finite");
+  EXPECT_EQ(rejection([] { parseShape("box:1,x,3", "A"); }),
+            "A: 'x' in '1,x,3' is not a number (expected a decimal such as 0.01 or 1e-3)");
+  EXPECT_EQ(rejection([] { parseShape("sphere:nan", "A"); }),
+            "A: 'nan' in 'nan' is not a number (expected a decimal such as 0.01 or 1e-3)");
+}
+
+// Issue 20: hex, trailing text, an empty item (a trailing comma), nan and inf were read.
+TEST(ShapeSpec, NumbersAreDecimalsWithNothingAround) {
+  for (const char* text : {"0x1p-4", "0x10", "0.01m", "1,", ",1", "1,,2", "nan", "inf", "-inf",
+                           "1e", "e3", ".", "+-1", "1 2", "1e+", "0.5.5", "", "1;2"}) {
+    EXPECT_NE(rejection([&] { parseNumberList(text, "--x"); }).find("is not a number"),
+              std::string::npos)
+        << text;
+  }
+  EXPECT_NE(rejection([] { parseNumberList("1e400", "--x"); }).find("beyond the range of a double"),
+            std::string::npos);
+  EXPECT_EQ(parseNumberList(" +1.5e-3 , -2 ,.5, 3.", "--x"),
+            (std::vector<double>{1.5e-3, -2.0, 0.5, 3.0}));
+  EXPECT_EQ(parseNumberList("1e-400", "--x"), std::vector<double>{0.0});  // underflow is zero
+}
+
+// io/input_ranges.hpp: lengths in [1e-6, 1e3] m; 1e-300 gave a volume of 0, 1e300 infinity.
+TEST(ShapeSpec, LengthsOutsideThePhysicalRangeAreRefused) {
+  for (const char* text :
+       {"sphere:1e-300", "sphere:1e300", "sphere:2e3", "cylinder:0.01,5e-7", "box:1,1,1001"}) {
+    EXPECT_NE(rejection([&] { parseShape(text, "A"); }).find("in [1e-06, 1000] m"),
+              std::string::npos)
+        << text;
+  }
+  EXPECT_NO_THROW(parseShape("sphere:1e-6", "A"));
+  EXPECT_NO_THROW(parseShape("box:1000,1e-6,1", "A"));
 }
 
 TEST(Pose, TranslationRpyAndQuaternionForms) {
@@ -56,8 +85,18 @@ TEST(Pose, BadPoses) {
               parsePose("0,0,0,1,1,0,0", "--pose-b");
             }).find("quaternion (w, x, y, z) must be unit length"),
             std::string::npos);
-  EXPECT_NE(rejection([] { parsePose("0,0,inf", "--pose-b"); }).find("not finite"),
+  EXPECT_NE(rejection([] { parsePose("0,0,inf", "--pose-b"); }).find("not a number"),
             std::string::npos);
+}
+
+// Positions within +-1000 m and angles within one turn (io/input_ranges.hpp).
+TEST(Pose, ValuesBeyondTheWorkspaceOrATurnAreRefused) {
+  EXPECT_EQ(rejection([] { parsePose("0,1e4,0", "--pose-a"); }),
+            "--pose-a: y = 10000 is beyond +-1000 m (the workspace)");
+  EXPECT_EQ(rejection([] { parsePose("0,0,0,0,0,-361", "--pose-a"); }),
+            "--pose-a: yaw = -361 is beyond +-360 degrees (one turn)");
+  EXPECT_NO_THROW(parsePose("-1000,1000,0,360,-360,0", "--pose-a"));
+  EXPECT_NO_THROW(parsePose("0,0,0,1,0,0,0", "--pose-a"));
 }
 
 class MeshText : public testing::Test {
@@ -97,6 +136,16 @@ TEST_F(MeshText, AtSignInAFolderNameIsPartOfThePath) {
   EXPECT_EQ(splitMeshScale(inFolder + "@mm"), std::make_pair(inFolder, 0.001));
   EXPECT_EQ(std::get<geometry::Mesh>(parseShape(inFolder + "@mm", "A").shape).mesh->vertexCount(),
             8);
+}
+
+// A file whose own name ends in what reads as a scale is that file (issue 20).
+TEST_F(MeshText, AnExistingFileIsAPathWhateverFollowsItsAtSign) {
+  const std::string named = (dir_ / "part.obj@2").string();
+  std::filesystem::copy_file(dir_ / "part.obj", named);
+  EXPECT_EQ(splitMeshScale(named), std::make_pair(named, 1.0));
+  const std::string other = (dir_ / "part.obj@mm").string();
+  EXPECT_EQ(splitMeshScale(other), std::make_pair((dir_ / "part.obj").string(), 0.001));
+  EXPECT_EQ(splitMeshScale((dir_ / "part.obj@0x2").string()).second, 1.0);  // not a scale
 }
 
 TEST_F(MeshText, UnknownSuffixIsReadAsAPath) {
