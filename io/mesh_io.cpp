@@ -19,8 +19,8 @@
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/mesh_check.hpp"
-#include "io/output_file.hpp"
 #include "io/input_ranges.hpp"
+#include "io/output_file.hpp"
 
 namespace vcontact::io {
 namespace {

@@ -297,8 +297,9 @@ std::string reportHtml(const ReportInput& in) {
 }
 
 void writeReportHtml(const ReportInput& input, const std::string& path) {
-  const std::string html = reportHtml(input);
-  io::writeFile(path, [&](std::ostream& out) { out << html; });
+  io::OutputFile file(path);  // opened first: nothing is built for a file that cannot be written
+  file.stream() << reportHtml(input);
+  file.commit();
 }
 
 }  // namespace vcontact::report

@@ -131,7 +131,8 @@ struct DiagnoseOptions {
   CandidateSet candidates = CandidateSet::library();
 };
 
-/// The candidates for `model`: each effect of options.candidates that the model lacks, with the effects it requires. @throws InputError on an unknown id
+/// The candidates for `model`: each effect of options.candidates that the model lacks, with the
+/// effects it requires. @throws InputError on an unknown id
 std::vector<Candidate> candidateList(const dynamics::Model& model, const DiagnoseOptions& options);
 
 struct Diagnosis {

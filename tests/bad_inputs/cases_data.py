@@ -108,7 +108,7 @@ DATASET_CASES += [
     dataset_case("header_only", ["impacts.csv", "samples"], csv=lambda l: l[:1]),
     dataset_case("two_rows", ["impacts.csv", "samples"], csv=lambda l: l[:3]),
     dataset_case("empty_csv", ["impacts.csv", "empty"], csv=lambda l: ""),
-    dataset_case("binary_csv", ["impacts.csv", "line 2", "fields"],
+    dataset_case("binary_csv", ["impacts.csv", "line 2", "not a number"],
                  csv=lambda l: bytes(range(1, 256))),
     dataset_case("sidecar_format", ["rig.json", "format"],
                  sidecar=lambda s: s.update(format="vcontact.dataset/2")),
