@@ -1,8 +1,10 @@
 // vcontact simulate SCENARIO --out DIR: integrates a scenario and writes CSV output.
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "dynamics/simulator.hpp"
@@ -47,8 +49,10 @@ class Progress {
 };
 
 void writeSummary(const std::string& dir, const dynamics::SimulationSummary& s,
-                  const std::string& status) {
-  io::writeJson(report::simulationSummaryJson(s, status), dir + "/summary.json");
+                  const std::string& status, const std::string& scenario) {
+  nlohmann::json j = report::simulationSummaryJson(s, status);
+  j["scenario"] = std::filesystem::absolute(scenario).string();  // for `vcontact view`
+  io::writeJson(j, dir + "/summary.json");
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
             << s.rejected_steps << " rejected), " << s.contact_evaluations
@@ -70,13 +74,13 @@ void runSimulate(const SimulateOptions& o) {
   } catch (const dynamics::SimulationError& e) {
     writer.flush();
     progress.done();
-    writeSummary(o.out, summary, e.what());
+    writeSummary(o.out, summary, e.what(), o.scenario);
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()
               << "; output up to then is in " << o.out << '\n';
     throw CLI::RuntimeError(kSimulationFailedExitCode);
   }
   progress.done();
-  writeSummary(o.out, summary, "completed");
+  writeSummary(o.out, summary, "completed", o.scenario);
 }
 
 }  // namespace

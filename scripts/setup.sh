@@ -19,6 +19,10 @@ PACKAGES=(
   libceres-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang-format
+  # The Python package (python/, docs/PYTHON.md): bindings, NumPy arrays, its pytest suite.
+  pybind11-dev python3-dev python3-numpy python3-pytest
+  # three.js, inlined into the page `vcontact view` writes (docs/VIEWER.md).
+  libjs-three
 )
 
 missing=()
