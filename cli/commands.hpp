@@ -19,6 +19,8 @@ void addSimulateCommand(CLI::App& app);
 void addValidationCommands(CLI::App& app);
 /// friction-map: lumped vs distributed friction over v/(omega R) (issue 4).
 void addFrictionMapCommand(CLI::App& app);
+/// view: a 3D playback page of a simulation output folder (issue 19).
+void addViewCommand(CLI::App& app);
 
 /// Prints warnings to standard error, one per line, prefixed "vcontact: warning: ".
 void printWarnings(const std::vector<std::string>& warnings);

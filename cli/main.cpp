@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   vcontact::cli::addSimulateCommand(app);
   vcontact::cli::addValidationCommands(app);
   vcontact::cli::addFrictionMapCommand(app);
+  vcontact::cli::addViewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

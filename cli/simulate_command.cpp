@@ -1,6 +1,8 @@
 // vcontact simulate SCENARIO --out DIR: integrates a scenario and writes CSV output.
 
+#include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
@@ -24,6 +26,12 @@ struct SimulateOptions {
   std::optional<double> outputRate;  ///< Hz; the scenario's output_rate when not given
   bool quiet = false;
 };
+
+// summary.json, with the scenario file's absolute path (for `vcontact view`).
+void writeSummary(const std::string& dir, nlohmann::json j, const std::string& scenario) {
+  j["scenario"] = std::filesystem::absolute(scenario).string();
+  io::writeJson(j, dir + "/summary.json");
+}
 
 void printSummary(const dynamics::SimulationSummary& s) {
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
@@ -61,15 +69,14 @@ void runSimulate(const SimulateOptions& o) {
   report::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
   io::Progress progress("simulate", file.scenario.settings.duration, "s", o.quiet);
   dynamics::SimulationSummary summary;
-  const std::string summaryPath = o.out + "/summary.json";
   try {
     sim.run([&](const dynamics::Snapshot& s) { writer.write(s); },
             [&](double t) { progress.update(t); }, summary);
   } catch (const dynamics::SimulationError& e) {
     progress.finish();
     writer.commit();
-    io::writeJson(report::simulationSummaryJson(summary, e.what(), report::StopInfo{e}),
-                  summaryPath);
+    writeSummary(o.out, report::simulationSummaryJson(summary, e.what(), report::StopInfo{e}),
+                 o.scenario);
     printSummary(summary);
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()
               << "; output up to then is in " << o.out << '\n';
@@ -77,7 +84,7 @@ void runSimulate(const SimulateOptions& o) {
   }
   progress.finish();
   writer.commit();
-  io::writeJson(report::simulationSummaryJson(summary, "completed"), summaryPath);
+  writeSummary(o.out, report::simulationSummaryJson(summary, "completed"), o.scenario);
   printSummary(summary);
 }
 

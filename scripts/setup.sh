@@ -21,6 +21,10 @@ PACKAGES=(
   libmuparser-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang-format
+  # The Python package (python/, docs/PYTHON.md): bindings, NumPy arrays, its pytest suite.
+  pybind11-dev python3-dev python3-numpy python3-pytest
+  # three.js, inlined into the page `vcontact view` writes (docs/VIEWER.md).
+  libjs-three
 )
 # The libFuzzer harnesses (tests/fuzz, -DVCONTACT_FUZZ=ON) need clang and its fuzzer and
 # sanitizer runtimes; a normal build does not.

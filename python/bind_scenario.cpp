@@ -1,0 +1,166 @@
+// vcontact.Scenario: a scenario file (dynamics/SCENARIO.md) loaded, run, and its body and pair
+// series handed over as NumPy arrays.
+
+#include <filesystem>
+
+#include "dynamics/simulator.hpp"
+#include "formats/scenario_file.hpp"
+#include "geometry/error.hpp"
+#include "io/json_file.hpp"
+#include "python/bindings.hpp"
+#include "report/simulation_csv.hpp"
+#include "report/simulation_summary.hpp"
+#include "report/view_html.hpp"
+
+namespace vcontact::python {
+namespace {
+
+struct LoadedScenario {
+  formats::ScenarioFile file;
+  std::string path;
+};
+
+// A growing table of doubles that becomes a NumPy array without a copy (the array owns it).
+struct Series {
+  std::vector<double> values;
+  int width = 1;
+  void add(const Eigen::Ref<const Eigen::VectorXd>& v) {
+    values.insert(values.end(), v.data(), v.data() + v.size());
+  }
+  py::array release() {
+    auto* owned = new std::vector<double>(std::move(values));
+    py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    const auto rows = static_cast<py::ssize_t>(owned->size() / static_cast<std::size_t>(width));
+    std::vector<py::ssize_t> shape{rows};
+    if (width > 1) shape.push_back(width);
+    return py::array_t<double>(shape, owned->data(), owner);
+  }
+};
+
+using Columns = std::vector<std::pair<std::string, Series>>;
+
+py::dict released(Columns& columns) {
+  py::dict d;
+  for (auto& [name, s] : columns) d[py::str(name)] = s.release();
+  return d;
+}
+
+Columns bodyColumns() {
+  return {{"t", {{}, 1}}, {"p", {{}, 3}}, {"q", {{}, 4}}, {"v", {{}, 3}}, {"w", {{}, 3}}};
+}
+
+Columns pairColumns() {
+  return {{"t", {{}, 1}},      {"V", {{}, 1}},        {"depth", {{}, 1}},  {"area", {{}, 1}},
+          {"r_gyr", {{}, 1}},  {"centroid", {{}, 3}}, {"normal", {{}, 3}}, {"force", {{}, 3}},
+          {"torque", {{}, 3}}, {"f_n", {{}, 1}},      {"s", {{}, 1}},      {"mu_max", {{}, 1}}};
+}
+
+void record(const dynamics::Snapshot& s, std::vector<Columns>& bodies,
+            std::vector<Columns>& pairs) {
+  const Eigen::Matrix<double, 1, 1> t(s.t);
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const auto& k = s.bodies[i];
+    const Eigen::Quaterniond q(k.X_WB.linear());
+    const Eigen::Vector4d wxyz(q.w(), q.x(), q.y(), q.z());
+    const Eigen::Vector3d p = k.X_WB.translation();
+    const Eigen::Vector3d v = k.pointVelocity(p);
+    auto& c = bodies[i];
+    c[0].second.add(t);
+    c[1].second.add(p);
+    c[2].second.add(wxyz);
+    c[3].second.add(v);
+    c[4].second.add(k.w_WB);
+  }
+  for (std::size_t k = 0; k < s.pairs.size(); ++k) {
+    const auto& p = s.pairs[k];
+    auto& c = pairs[k];
+    const double scalars[] = {s.t, p.cv.volume, p.cv.depth, p.cv.area, p.cv.r_gyr};
+    for (int j = 0; j < 5; ++j) c[j].second.values.push_back(scalars[j]);
+    c[5].second.add(p.cv.p_WC);
+    c[6].second.add(p.cv.n_W);
+    c[7].second.add(p.result.wrench.f_W);
+    c[8].second.add(p.result.wrench.tau_W);
+    c[9].second.values.push_back(p.result.f_n);
+    c[10].second.values.push_back(p.result.s);
+    c[11].second.values.push_back(p.result.mu_max);
+  }
+}
+
+// Runs the scenario; with `out`, also writes what `vcontact simulate --out` writes there.
+py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
+  dynamics::Simulator sim(s.file.scenario);
+  std::vector<Columns> bodies(sim.scenario().bodies.size(), bodyColumns());
+  std::vector<Columns> pairs(sim.scenario().pairs.size(), pairColumns());
+  std::unique_ptr<report::SimulationCsvWriter> writer;
+  if (out)
+    writer = std::make_unique<report::SimulationCsvWriter>(*out, sim.scenario(), s.file.outputs);
+  dynamics::SimulationSummary summary;
+  std::string status = "completed";
+  {
+    py::gil_scoped_release release;
+    try {
+      sim.run(
+          [&](const dynamics::Snapshot& snap) {
+            record(snap, bodies, pairs);
+            if (writer) writer->write(snap);
+          },
+          [](double) {}, summary);
+    } catch (const dynamics::SimulationError& e) {
+      status = e.what();
+    }
+  }
+  nlohmann::json j = report::simulationSummaryJson(summary, status);
+  j["scenario"] = std::filesystem::absolute(s.path).string();
+  if (writer) {
+    writer->flush();
+    io::writeJson(j, *out + "/summary.json");
+  }
+  py::dict result, b, p;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    b[py::str(sim.scenario().bodies[i].name)] = released(bodies[i]);
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    p[py::str(sim.scenario().pairs[k].name)] = released(pairs[k]);
+  result["bodies"] = b;
+  result["pairs"] = p;
+  result["summary"] = toPython(j);
+  return result;
+}
+
+LoadedScenario load(const std::string& path) { return {formats::readScenarioFile(path), path}; }
+
+std::vector<std::string> view(const std::string& outDir, const std::string& html,
+                              const std::string& scenario) {
+  std::vector<std::string> warnings;
+  report::ViewOptions o;
+  o.out_dir = outDir;
+  o.scenario = scenario;
+  report::writeViewHtml(o, html, warnings);
+  return warnings;
+}
+
+}  // namespace
+
+void bindScenario(py::module_& m) {
+  py::class_<LoadedScenario>(m, "Scenario", "A scenario file (dynamics/SCENARIO.md), loaded.")
+      .def_static("load", &load, py::arg("path"))
+      .def_readonly("path", &LoadedScenario::path)
+      .def_property_readonly("warnings", [](const LoadedScenario& s) { return s.file.warnings; })
+      .def_property_readonly("bodies",
+                             [](const LoadedScenario& s) {
+                               std::vector<std::string> names;
+                               for (const auto& b : s.file.scenario.bodies) names.push_back(b.name);
+                               return names;
+                             })
+      .def_property_readonly("pairs",
+                             [](const LoadedScenario& s) {
+                               std::vector<std::string> names;
+                               for (const auto& p : s.file.scenario.pairs) names.push_back(p.name);
+                               return names;
+                             })
+      .def_property_readonly(
+          "duration", [](const LoadedScenario& s) { return s.file.scenario.settings.duration; })
+      .def("run", &run, py::arg("out") = py::none());
+  m.def("view", &view, py::arg("out_dir"), py::arg("html"), py::arg("scenario") = "");
+}
+
+}  // namespace vcontact::python

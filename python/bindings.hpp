@@ -1,0 +1,15 @@
+#pragma once
+// The binding files of the extension module (module.cpp defines it).
+
+#include "python/convert.hpp"
+
+namespace vcontact::python {
+
+/// Model: from a file or a dict, parameters, wrench for a contact and relative motion.
+void bindModel(py::module_& m);
+/// Scenario: load, run, body and pair series as arrays.
+void bindScenario(py::module_& m);
+/// Dataset: load, columns; compare, fit and diagnose returning their JSON files' content.
+void bindDataset(py::module_& m);
+
+}  // namespace vcontact::python

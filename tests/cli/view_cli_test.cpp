@@ -1,0 +1,134 @@
+// `vcontact view`: the page it writes for a simulation folder, loaded in headless Chromium.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "support/run_command.hpp"
+
+namespace vcontact {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CommandResult;
+using test::runCommand;
+
+const fs::path kChromium = "/usr/bin/chromium";
+const fs::path kThreeJs = "/usr/share/javascript/three/three.min.js";
+
+std::string readText(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+class ViewCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vcontact_view_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  CommandResult vcontact(const std::string& args) {
+    return runCommand(std::string("\"") + VCONTACT_BINARY + "\" " + args, dir_ / "stderr.txt");
+  }
+  // Chromium with a fresh profile and no network; WebGL through its software rasteriser.
+  CommandResult chromium(const std::string& args, const std::string& page) {
+    const std::string cmd = "timeout 120 " + kChromium.string() +
+                            " --headless --no-sandbox --disable-background-networking"
+                            " --disable-component-update --disable-sync --no-first-run"
+                            " --use-angle=swiftshader --enable-unsafe-swiftshader"
+                            " --enable-logging=stderr --v=0 --window-size=900,700"
+                            " --user-data-dir=" +
+                            (dir_ / "profile").string() + ' ' + args + " \"file://" +
+                            (dir_ / "view.html").string() + page + '"';
+    return runCommand(cmd, dir_ / "chromium.txt");
+  }
+  // The page's data-NAME attribute on <body>, as --dump-dom prints it.
+  static std::string attribute(const std::string& dom, const std::string& name) {
+    std::smatch m;
+    if (!std::regex_search(dom, m, std::regex("data-" + name + "=\"([^\"]*)\""))) return "";
+    return m[1];
+  }
+  fs::path dir_;
+};
+
+TEST_F(ViewCli, BallDropPlaysInHeadlessChromium) {
+  if (!fs::exists(kChromium) || !fs::exists(kThreeJs))
+    GTEST_SKIP() << "chromium or libjs-three is not installed (scripts/setup.sh installs both)";
+  const std::string scenario = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/ball_drop.json";
+  ASSERT_EQ(
+      vcontact("simulate " + scenario + " --out " + (dir_ / "out").string() + " --quiet").exitCode,
+      0);
+  const CommandResult v =
+      vcontact("view " + (dir_ / "out").string() + " --out " + (dir_ / "view.html").string());
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  const std::string html = readText(dir_ / "view.html");
+  EXPECT_EQ(html.find("<script src"), std::string::npos);  // everything inlined: no server
+  EXPECT_NE(html.find("REVISION"), std::string::npos);     // three.js is in the page
+
+  // Paused at t = 0, at the first impact (t = 0.032 s, the only contact until 0.085 s: the
+  // ball bounces) and past the end (the last output is shown).
+  const CommandResult start = chromium("--virtual-time-budget=3000 --dump-dom", "#t=0");
+  ASSERT_EQ(start.exitCode, 0) << start.err;
+  const CommandResult impact = chromium("--virtual-time-budget=3000 --dump-dom", "#t=0.032");
+  ASSERT_EQ(impact.exitCode, 0) << impact.err;
+  const CommandResult end = chromium("--virtual-time-budget=3000 --dump-dom", "#t=1");
+  ASSERT_EQ(end.exitCode, 0) << end.err;
+  for (const auto* r : {&start, &impact, &end}) {
+    EXPECT_EQ(attribute(r->out, "ready"), "1") << r->out.substr(0, 400);
+    EXPECT_EQ(attribute(r->out, "errors"), "0") << attribute(r->out, "error-text");
+    EXPECT_EQ(attribute(r->out, "body-meshes"), "2");  // the plate and the ball
+    // Chromium prints an uncaught exception or console.error of the page on its log.
+    EXPECT_EQ(r->err.find("Uncaught"), std::string::npos) << r->err;
+  }
+  EXPECT_EQ(attribute(start.out, "markers"), "0");   // 5 mm above the plate
+  EXPECT_EQ(attribute(impact.out, "markers"), "1");  // one patch
+  EXPECT_EQ(attribute(impact.out, "frame"), "64");   // 0.032 s at 2000 outputs a second
+  EXPECT_EQ(attribute(end.out, "frames"), "601");    // t = 0 included
+  EXPECT_EQ(attribute(end.out, "frame"), "600");
+
+  // The ball's centre on the screen moved down by its 5 mm fall (the plate stays put).
+  std::smatch a, b;
+  const std::regex ball("\\[\\[(-?\\d+),(-?\\d+)\\],\\[(-?\\d+),(-?\\d+)\\]\\]");
+  const std::string screenStart = attribute(start.out, "screen");
+  const std::string screenEnd = attribute(impact.out, "screen");
+  ASSERT_TRUE(std::regex_search(screenStart, a, std::regex(ball))) << screenStart;
+  ASSERT_TRUE(std::regex_search(screenEnd, b, std::regex(ball))) << screenEnd;
+  EXPECT_EQ(a[1], b[1]);  // the plate
+  EXPECT_EQ(a[2], b[2]);
+  EXPECT_GT(std::stoi(b[4]) - std::stoi(a[4]), 20) << screenStart << " -> " << screenEnd;
+
+  // Screenshots at the two times differ.
+  ASSERT_EQ(
+      chromium("--virtual-time-budget=3000 --screenshot=" + (dir_ / "t0.png").string(), "#t=0")
+          .exitCode,
+      0);
+  ASSERT_EQ(
+      chromium("--virtual-time-budget=3000 --screenshot=" + (dir_ / "t1.png").string(), "#t=0.032")
+          .exitCode,
+      0);
+  const std::string png0 = readText(dir_ / "t0.png"), png1 = readText(dir_ / "t1.png");
+  EXPECT_GT(png0.size(), 1000u);
+  EXPECT_NE(png0, png1);
+}
+
+TEST_F(ViewCli, RefusesAFolderWithoutASimulation) {
+  const CommandResult r =
+      vcontact("view " + dir_.string() + " --out " + (dir_ / "view.html").string());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("no summary.json"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "view.html"));
+}
+
+}  // namespace
+}  // namespace vcontact
