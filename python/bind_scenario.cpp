@@ -2,6 +2,7 @@
 // series handed over as NumPy arrays.
 
 #include <filesystem>
+#include <optional>
 
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
@@ -96,6 +97,7 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
     writer = std::make_unique<report::SimulationCsvWriter>(*out, sim.scenario(), s.file.outputs);
   dynamics::SimulationSummary summary;
   std::string status = "completed";
+  std::optional<report::StopInfo> stop;
   {
     py::gil_scoped_release release;
     try {
@@ -107,12 +109,13 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
           [](double) {}, summary);
     } catch (const dynamics::SimulationError& e) {
       status = e.what();
+      stop = report::StopInfo{e};
     }
   }
-  nlohmann::json j = report::simulationSummaryJson(summary, status);
+  nlohmann::json j = report::simulationSummaryJson(summary, status, stop);
   j["scenario"] = std::filesystem::absolute(s.path).string();
   if (writer) {
-    writer->flush();
+    writer->commit();  // a stopped run keeps its output, as `vcontact simulate` does
     io::writeJson(j, *out + "/summary.json");
   }
   py::dict result, b, p;

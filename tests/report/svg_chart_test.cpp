@@ -27,6 +27,13 @@ TEST(SvgChart, NiceTicksAreRoundAndCoverTheRange) {
   EXPECT_NEAR(t.back(), 7e-6, 1e-18);
 }
 
+// Two stages whose log10 chi agree to the last bits (diagnose of drive from the bare model):
+// the multiples of the step lie beyond 2^53, where counting them never ended.
+TEST(SvgChart, NiceTicksOfARangeNarrowAgainstItsMagnitudeAreItsEnds) {
+  const double lo = 2.1875, hi = std::nextafter(std::nextafter(lo, 3.0), 3.0);
+  EXPECT_EQ(niceTicks(lo, hi), (std::vector<double>{lo, hi}));
+}
+
 TEST(SvgChart, EscapesText) {
   EXPECT_EQ(escapeXml("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;");
 }
