@@ -36,7 +36,9 @@ class Reader {
   const nlohmann::json& operator[](const std::string& key) const { return j_.at(key); }
 
   void allowOnly(std::initializer_list<const char*> keys) const {
-    for (const auto& [key, value] : j_.items()) {
+    for (const auto& item : j_.items()) {
+      // a plain variable, not a structured binding: clang 14 (the fuzz build) cannot capture one
+      const std::string key = item.key();
       if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) !=
           keys.end()) {
         continue;
