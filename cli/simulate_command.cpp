@@ -1,8 +1,6 @@
 // vcontact simulate SCENARIO --out DIR: integrates a scenario and writes CSV output.
 
-#include <filesystem>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
@@ -10,7 +8,6 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
-#include "io/json_file.hpp"
 #include "io/progress.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
@@ -27,12 +24,7 @@ struct SimulateOptions {
   bool quiet = false;
 };
 
-// summary.json, with the scenario file's absolute path (for `vcontact view`).
-void writeSummary(const std::string& dir, nlohmann::json j, const std::string& scenario) {
-  j["scenario"] = std::filesystem::absolute(scenario).string();
-  io::writeJson(j, dir + "/summary.json");
-}
-
+// The run's figures on standard error, for a person at a terminal.
 void printSummary(const dynamics::SimulationSummary& s) {
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
@@ -74,17 +66,14 @@ void runSimulate(const SimulateOptions& o) {
             [&](double t) { progress.update(t); }, summary);
   } catch (const dynamics::SimulationError& e) {
     progress.finish();
-    writer.commit();
-    writeSummary(o.out, report::simulationSummaryJson(summary, e.what(), report::StopInfo{e}),
-                 o.scenario);
+    report::finishSimulationOutput(writer, o.out, summary, o.scenario, report::StopInfo{e});
     printSummary(summary);
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()
               << "; output up to then is in " << o.out << '\n';
     throw CLI::RuntimeError(kSimulationFailedExitCode);
   }
   progress.finish();
-  writer.commit();
-  writeSummary(o.out, report::simulationSummaryJson(summary, "completed"), o.scenario);
+  report::finishSimulationOutput(writer, o.out, summary, o.scenario, std::nullopt);
   printSummary(summary);
 }
 

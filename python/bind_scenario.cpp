@@ -1,13 +1,11 @@
 // vcontact.Scenario: a scenario file (dynamics/SCENARIO.md) loaded, run, and its body and pair
 // series handed over as NumPy arrays.
 
-#include <filesystem>
 #include <optional>
 
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
-#include "io/json_file.hpp"
 #include "python/bindings.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
@@ -96,7 +94,6 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
   if (out)
     writer = std::make_unique<report::SimulationCsvWriter>(*out, sim.scenario(), s.file.outputs);
   dynamics::SimulationSummary summary;
-  std::string status = "completed";
   std::optional<report::StopInfo> stop;
   {
     py::gil_scoped_release release;
@@ -108,16 +105,13 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
           },
           [](double) {}, summary);
     } catch (const dynamics::SimulationError& e) {
-      status = e.what();
       stop = report::StopInfo{e};
     }
   }
-  nlohmann::json j = report::simulationSummaryJson(summary, status, stop);
-  j["scenario"] = std::filesystem::absolute(s.path).string();
-  if (writer) {
-    writer->commit();  // a stopped run keeps its output, as `vcontact simulate` does
-    io::writeJson(j, *out + "/summary.json");
-  }
+  // A stopped run keeps its output and reports the stop in its summary, as `vcontact simulate`.
+  const nlohmann::json j =
+      writer ? report::finishSimulationOutput(*writer, *out, summary, s.path, stop)
+             : report::simulationSummaryJson(summary, s.path, stop);
   py::dict result, b, p;
   for (std::size_t i = 0; i < bodies.size(); ++i)
     b[py::str(sim.scenario().bodies[i].name)] = released(bodies[i]);

@@ -186,8 +186,13 @@ std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
                              const formats::OutputSelection& outputs) {
   const dynamics::SimulationSettings& set = scenario.settings;
   const double times = std::floor(set.duration * set.output_rate_hz) + 1.0;
-  const double per_time = (outputs.bodies ? static_cast<double>(scenario.bodies.size()) : 0.0) +
-                          (outputs.pairs ? static_cast<double>(scenario.pairs.size()) : 0.0);
+  double per_time = outputs.bodies ? static_cast<double>(scenario.bodies.size()) : 0.0;
+  if (outputs.pairs) {
+    for (const dynamics::ContactPair& pair : scenario.pairs) {
+      const int slots = dynamics::patchSlots(scenario, pair);
+      per_time += 1.0 + (slots < 2 ? 0.0 : static_cast<double>(slots));
+    }
+  }
   const double rows = times * per_time;
   constexpr double kBeyond = 1e19;  // beyond any limit; keeps the cast defined
   return static_cast<std::uint64_t>(std::min(rows, kBeyond));

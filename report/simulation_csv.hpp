@@ -49,7 +49,9 @@ class SimulationCsvWriter {
   std::vector<std::string> files_;
 };
 
-/// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs).
+/// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs + the
+/// patch files' rows, counted as one per state slot: a pair touching in more patches than it
+/// has slots writes more, so this is the count of a run whose patches fill their slots).
 std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
                              const formats::OutputSelection& outputs);
 

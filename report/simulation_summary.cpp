@@ -1,13 +1,17 @@
 #include "report/simulation_summary.hpp"
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
+
+#include "io/json_file.hpp"
+#include "report/simulation_csv.hpp"
 
 namespace vcontact::report {
 
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
-                                     const std::string& status,
+                                     const std::string& scenario_path,
                                      const std::optional<StopInfo>& stop) {
-  nlohmann::json j = {{"status", status},
+  nlohmann::json j = {{"status", stop ? stop->message : std::string("completed")},
                       {"simulated_time_s", s.simulated_time},
                       {"wall_time_s", s.wall_time},
                       {"real_time_factor", s.realTimeFactor()},
@@ -24,6 +28,17 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
     j["stopped_at_s"] = stop->time;
     j["stop_cause"] = dynamics::stopCauseName(stop->cause);
   }
+  j["scenario"] = std::filesystem::absolute(scenario_path).string();
+  return j;
+}
+
+nlohmann::json finishSimulationOutput(SimulationCsvWriter& writer, const std::string& dir,
+                                      const dynamics::SimulationSummary& summary,
+                                      const std::string& scenario_path,
+                                      const std::optional<StopInfo>& stop) {
+  writer.commit();
+  nlohmann::json j = simulationSummaryJson(summary, scenario_path, stop);
+  io::writeJson(j, dir + "/summary.json");
   return j;
 }
 

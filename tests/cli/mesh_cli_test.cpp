@@ -2,7 +2,6 @@
 // the exit code, and the repaired file.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,7 @@
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
 #include "support/run_command.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace vcontact {
 namespace {
@@ -23,20 +23,15 @@ namespace fs = std::filesystem;
 class MeshCli : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vcontact_mesh_cli_" +
-            std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(getpid()));
-    fs::create_directories(dir_);
     io::writeObj(test::cadBox(), path("box.obj"));
     io::writeObj(test::withSeam(test::cadBox(), 3, 1e-10), path("seam.obj"));
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   test::CommandResult run(const std::string& args) const {
     return test::runCommand(std::string(VCONTACT_BINARY) + " " + args, dir_ / "stderr.txt");
   }
-  fs::path dir_;
+  test::ScratchDir scratch_{"mesh_cli"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(MeshCli, SeamIsRejectedNamingTheRepair) {

@@ -4,7 +4,6 @@
 // --noise-scale 0 writes an exact record; a bad formula exits 2 naming file, key and character.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
 #include "support/run_command.hpp"
+#include "support/scratch_dir.hpp"
 #include "validation/load_varying_drive.hpp"
 
 namespace vcontact {
@@ -35,15 +35,7 @@ std::string muLoadEntry(const std::string& b) {
 
 class SynthCli : public ::testing::Test {
  public:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vcontact_synth_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    write("truth.model.json", kTruth);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  void SetUp() override { write("truth.model.json", kTruth); }
 
   void write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
@@ -71,7 +63,8 @@ class SynthCli : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
+  test::ScratchDir scratch_{"synth_cli"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(SynthCli, NoiseScaleZeroWritesAnExactRecord) {

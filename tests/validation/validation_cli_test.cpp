@@ -3,7 +3,6 @@
 // every chart in headless Chromium.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -17,6 +16,7 @@
 #include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
 #include "support/run_command.hpp"
+#include "support/scratch_dir.hpp"
 #include "validation/effect_cases.hpp"
 
 namespace vcontact {
@@ -37,11 +37,7 @@ void writeText(const fs::path& p, const std::string& text) { std::ofstream(p) <<
 class ValidationCli : public ::testing::Test {
  public:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vcontact_validation_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    scratch_.reset();
     const auto truth = test::trueModel({"stiffness", "coulomb", "viscous"});
     formats::writeDataset(test::syntheticDataset("drive", 200, truth, 3),
                           (dir_ / "drive.json").string());
@@ -49,7 +45,6 @@ class ValidationCli : public ::testing::Test {
               R"({"format": "vcontact.model/1", "effects": {"stiffness": {}, "coulomb": {}},
                   "fixed": ["coulomb.v_s"]})");
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   CommandResult run(const std::string& args) const {
     return runCommand(std::string(VCONTACT_BINARY) + " " + args, dir_ / "stderr.txt");
@@ -93,7 +88,8 @@ class ValidationCli : public ::testing::Test {
                                           header.begin())];
   }
 
-  fs::path dir_;
+  test::ScratchDir scratch_{"validation_cli"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(ValidationCli, CompareFitAndDiagnoseWriteTheirFiles) {
