@@ -115,13 +115,12 @@ std::vector<Candidate> detectCandidates(const SamplePoints& samples, const std::
   CGAL::get_default_random() = CGAL::Random(set.seed);
   Ransac ransac;
   ransac.set_input(points);
-  ransac.add_shape_factory<Plane>();
-  if (!set.planes_only) {
-    ransac.add_shape_factory<Sphere>();
-    ransac.add_shape_factory<Cylinder>();
-    ransac.add_shape_factory<Cone>();
-    ransac.add_shape_factory<Torus>();
-  }
+  const auto wanted = [&](SurfaceKind k) { return (set.kinds >> static_cast<int>(k)) & 1u; };
+  if (wanted(SurfaceKind::kPlane)) ransac.add_shape_factory<Plane>();
+  if (wanted(SurfaceKind::kSphere)) ransac.add_shape_factory<Sphere>();
+  if (wanted(SurfaceKind::kCylinder)) ransac.add_shape_factory<Cylinder>();
+  if (wanted(SurfaceKind::kCone)) ransac.add_shape_factory<Cone>();
+  if (wanted(SurfaceKind::kTorus)) ransac.add_shape_factory<Torus>();
   Ransac::Parameters parameters;
   parameters.probability = 0.001;  // chance of missing the best candidate in a round
   parameters.min_points = 4;  // a box face has 4 corner samples; smaller shapes are not worth it

@@ -3,10 +3,12 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "geometry/surface_recognition_internal.hpp"
@@ -104,6 +106,27 @@ RecognisedSurface similar(RecognisedSurface s, const Eigen::Vector3d& shift, dou
   return s;
 }
 
+// True when the points fix the surface: the fit's Jacobian has full rank but for the kind's
+// gauge freedoms (a plane's normal and an axis direction are free in length, a cylinder's
+// axis point slides along it). Points on two circles fix one cone but a whole family of tori,
+// so a frustum is a cone, not some torus through its rims.
+bool determined(ceres::Problem& problem, SurfaceKind kind) {
+  ceres::CRSMatrix crs;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r)
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) J(r, crs.cols[k]) = crs.values[k];
+  const Eigen::VectorXd sigma =
+      Eigen::JacobiSVD<Eigen::MatrixXd>(J.transpose() * J).singularValues();
+  constexpr double kRankTolerance = 1e-12;  // of the largest, on JᵀJ (squares of J's: 1e-6)
+  const int rank = static_cast<int>((sigma.array() > kRankTolerance * sigma(0)).count());
+  int gauge = 0;
+  if (kind == SurfaceKind::kPlane || kind == SurfaceKind::kCone || kind == SurfaceKind::kTorus)
+    gauge = 1;
+  if (kind == SurfaceKind::kCylinder) gauge = 2;
+  return sigma.size() > 0 && rank >= crs.num_cols - gauge;
+}
+
 }  // namespace
 
 const char* surfaceKindName(SurfaceKind kind) {
@@ -181,9 +204,9 @@ std::string describe(const RecognisedSurface& s) {
 
 namespace detail {
 
-RecognisedSurface polishSurface(const RecognisedSurface& start,
-                                const std::vector<Eigen::Vector3d>& points) {
-  if (points.empty()) return start;
+std::optional<RecognisedSurface> polishSurface(const RecognisedSurface& start,
+                                               const std::vector<Eigen::Vector3d>& points) {
+  if (points.empty()) return std::nullopt;
   // In coordinates centred on the points and scaled to their spread, so the parameters are of
   // order one and the solver's tolerances mean the same for a bearing ball and a hull.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -191,7 +214,7 @@ RecognisedSurface polishSurface(const RecognisedSurface& start,
   centroid /= static_cast<double>(points.size());
   double spread = 0.0;
   for (const Eigen::Vector3d& p : points) spread = std::max(spread, (p - centroid).norm());
-  if (!(spread > 0.0)) return start;
+  if (!(spread > 0.0)) return std::nullopt;
   const double scale = 1.0 / spread;
   std::array<double, kParameters> q = pack(similar(start, -centroid, scale));
   ceres::Problem problem;
@@ -217,7 +240,9 @@ RecognisedSurface polishSurface(const RecognisedSurface& start,
               centroid, 1.0);
   const bool finite = fitted.point.allFinite() && fitted.axis.allFinite() &&
                       std::isfinite(fitted.radius + fitted.minor_radius + fitted.angle);
-  return summary.IsSolutionUsable() && finite ? fitted : start;
+  if (!summary.IsSolutionUsable() || !finite || !determined(problem, start.kind))
+    return std::nullopt;
+  return fitted;
 }
 
 }  // namespace detail

@@ -38,17 +38,43 @@ int root(std::vector<int>& parent, int i) {
   return i;
 }
 
-// Four samples inside each face with a normal at all three corners: the centroid and the
-// points at (4, 1, 1)/6 of the way to each corner, normals interpolated linearly.
-void addFaceSamples(const TriangleMesh& mesh, const std::vector<int>& corner_sample,
-                    SamplePoints& out) {
+// The smooth regions of the mesh: faces joined across every edge that is not a crease.
+std::vector<int> smoothRegions(const TriangleMesh& mesh, const MeshTopology& topology,
+                               const std::vector<Eigen::Vector3d>& face_normals,
+                               double cos_crease) {
+  std::vector<int> parent(static_cast<std::size_t>(mesh.triangleCount()));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const MeshEdge& e : topology.edges())
+    if (face_normals[e.tri[0]].dot(face_normals[e.tri[1]]) >= cos_crease)
+      parent[root(parent, e.tri[0])] = root(parent, e.tri[1]);
+  for (std::size_t f = 0; f < parent.size(); ++f) parent[f] = root(parent, static_cast<int>(f));
+  return parent;
+}
+
+// Four samples inside each face of a smooth region with fewer than kFewSamples corner
+// samples (a box face has 4; CGAL accepts no shape of fewer than 10 points): the centroid and
+// the points at (4, 1, 1)/6 of the way to each corner, normals interpolated linearly. Larger
+// regions get none, since RANSAC's time grows with the samples and their vertices suffice.
+void addFaceSamples(const TriangleMesh& mesh, const std::vector<int>& region,
+                    const std::vector<int>& corner_sample, SamplePoints& out) {
+  constexpr std::size_t kFewSamples = 16;
+  std::vector<std::vector<int>> corners(region.size());
+  for (std::size_t f = 0; f < region.size(); ++f)
+    for (int k = 0; k < 3; ++k) corners[region[f]].push_back(corner_sample[3 * f + k]);
+  std::vector<char> few(region.size(), 0);
+  for (std::size_t r = 0; r < corners.size(); ++r) {
+    if (corners[r].empty()) continue;
+    std::sort(corners[r].begin(), corners[r].end());
+    few[r] = std::unique(corners[r].begin(), corners[r].end()) - corners[r].begin() <
+             static_cast<std::ptrdiff_t>(kFewSamples);
+  }
   static constexpr double kWeights[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
                                             {4.0 / 6, 1.0 / 6, 1.0 / 6},
                                             {1.0 / 6, 4.0 / 6, 1.0 / 6},
                                             {1.0 / 6, 1.0 / 6, 4.0 / 6}};
   for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
     const int* c = &corner_sample[3 * static_cast<std::size_t>(f)];
-    if (c[0] < 0 || c[1] < 0 || c[2] < 0) continue;
+    if (!few[region[f]] || c[0] < 0 || c[1] < 0 || c[2] < 0) continue;
     for (const auto& w : kWeights) {
       Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
       for (int k = 0; k < 3; ++k) {
@@ -106,7 +132,7 @@ SamplePoints samplePoints(const TriangleMesh& mesh, const MeshTopology& topology
       corner_sample[3 * static_cast<std::size_t>(faces[i]) + k] = side_sample[root(parent, i)];
     }
   }
-  addFaceSamples(mesh, corner_sample, out);
+  addFaceSamples(mesh, smoothRegions(mesh, topology, face_normals, cos_crease), corner_sample, out);
   return out;
 }
 
@@ -118,11 +144,15 @@ namespace {
 constexpr double kRansacEpsilon = 1e-3;
 // Samples more than 1.5 longest edges apart are not one connected surface.
 constexpr double kClusterEdges = 1.5;
-// RANSAC keeps the shape that takes the most samples, and near a corner of a box a wide cone
-// takes more than a face's plane; a rejected candidate's samples are then lost to that run.
-// So the faces left free by a run over every kind are searched again for planes alone, then
-// once more for every kind (a surface whose samples a rejected candidate had taken).
-constexpr bool kPasses[] = {false, true, false};
+// RANSAC keeps the shape that takes the most samples, and a rejected candidate's samples are
+// lost to that run: near a corner of a box a wide cone takes more than a face's plane, and the
+// rims of a frustum are matched by a torus that they do not fix (polishSurface refuses it).
+// So the faces a run leaves free are searched again: with every kind but the torus (the most
+// parameters), then for planes alone, then with every kind once more.
+constexpr unsigned kAllKinds = 0x1f;
+constexpr unsigned kPasses[] = {kAllKinds,
+                                kAllKinds & ~(1u << static_cast<int>(SurfaceKind::kTorus)),
+                                1u << static_cast<int>(SurfaceKind::kPlane), kAllKinds};
 
 struct RecognitionInput {
   const TriangleMesh& mesh;
@@ -174,16 +204,18 @@ std::vector<Eigen::Vector3d> positions(const TriangleMesh& mesh, const std::vect
 
 // RANSAC's rough surface polished to its vertices, then again to those of them that lie on
 // it (RANSAC's loose distance lets in neighbours of other surfaces).
-RecognisedSurface polishCandidate(const detail::Candidate& c, const detail::SamplePoints& samples,
-                                  const RecognitionInput& in) {
+std::optional<RecognisedSurface> polishCandidate(const detail::Candidate& c,
+                                                 const detail::SamplePoints& samples,
+                                                 const RecognitionInput& in) {
   std::vector<int> vertices;
   for (int i : c.samples)
     if (samples.vertex[static_cast<std::size_t>(i)] >= 0) vertices.push_back(samples.vertex[i]);
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   std::vector<Eigen::Vector3d> points = positions(in.mesh, vertices);
-  if (points.empty()) return c.surface;
-  RecognisedSurface s = detail::polishSurface(c.surface, points);
+  const std::optional<RecognisedSurface> first = detail::polishSurface(c.surface, points);
+  if (!first) return std::nullopt;
+  const RecognisedSurface& s = *first;
   std::vector<double> d;
   for (const Eigen::Vector3d& p : points) d.push_back(std::abs(signedDistance(s, p)));
   std::vector<double> sorted = d;
@@ -238,12 +270,14 @@ SurfaceRecognition recogniseSurfaces(const TriangleMesh& mesh, const Recognition
   out.tolerance = in.tolerance;
   out.face_surface.assign(static_cast<std::size_t>(mesh.triangleCount()), -1);
   std::vector<RecognisedSurface> found;
-  for (bool planes_only : kPasses) {
+  for (unsigned kinds : kPasses) {
     std::vector<char> use(samples.face.size());
     for (std::size_t i = 0; i < use.size(); ++i) use[i] = out.face_surface[samples.face[i]] < 0;
-    settings.planes_only = planes_only;
+    settings.kinds = kinds;
     for (const detail::Candidate& c : detail::detectCandidates(samples, use, settings)) {
-      RecognisedSurface s = polishCandidate(c, samples, in);
+      std::optional<RecognisedSurface> polished = polishCandidate(c, samples, in);
+      if (!polished) continue;
+      RecognisedSurface& s = *polished;
       s.faces = facesOn(s, in, out.face_surface);
       if (s.faces.empty()) continue;
       measure(s, mesh);

@@ -4,6 +4,7 @@
 // Ceres polish (surface_fit.cpp).
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "geometry/mesh_topology.hpp"
@@ -12,10 +13,10 @@
 namespace vcontact::geometry::detail {
 
 /// The points RANSAC sees. First each vertex seen from each side of the creases through it:
-/// its position and the angle-weighted normal of the faces on that side. Then four points
-/// inside each face (its centroid, and a point nearer each corner) with the normal
-/// interpolated from its corners' normals: CGAL accepts no shape of fewer than 10 points, and
-/// a box face has only 4 corners.
+/// its position and the angle-weighted normal of the faces on that side. Then, in a smooth
+/// region with few vertices, four points inside each face (its centroid, and a point nearer
+/// each corner) with the normal interpolated from its corners' normals: CGAL accepts no shape
+/// of fewer than 10 points, and a box face has only 4 corners.
 struct SamplePoints {
   std::vector<Eigen::Vector3d> position;
   std::vector<Eigen::Vector3d> normal;
@@ -40,7 +41,7 @@ struct DetectionSettings {
   double cluster_epsilon;   ///< samples farther apart than this are not one connected surface, m
   double normal_threshold;  ///< cosine: a sample's normal must agree this well
   unsigned seed;
-  bool planes_only = false;  ///< else all five kinds
+  unsigned kinds = 0;  ///< bits 1 << SurfaceKind of the kinds to look for
 };
 
 /// CGAL's efficient RANSAC over the samples with `use[i]` set, in the order it extracted the
@@ -49,8 +50,9 @@ std::vector<Candidate> detectCandidates(const SamplePoints& samples, const std::
                                         const DetectionSettings& s);
 
 /// The surface whose parameters minimise the squared distances of `points` (Ceres,
-/// Levenberg–Marquardt from `start`); kind and convexity are kept.
-RecognisedSurface polishSurface(const RecognisedSurface& start,
-                                const std::vector<Eigen::Vector3d>& points);
+/// Levenberg–Marquardt from `start`); kind and convexity are kept. None when the solve fails
+/// or the points do not fix the surface (points on two circles and a torus).
+std::optional<RecognisedSurface> polishSurface(const RecognisedSurface& start,
+                                               const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace vcontact::geometry::detail
