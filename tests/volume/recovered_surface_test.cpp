@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "geometry/tessellate.hpp"
+#include "io/mesh_io.hpp"
 #include "support/test_support.hpp"
 #include "volume/halfspace_clip.hpp"
 
@@ -122,6 +123,35 @@ TEST(RecoveredSurface, ClearOfThePlaneIsNoContact) {
   const RecoveredContact r =
       recoveredHalfspaceContact(m, recogniseSurfaces(m), X, Eigen::Isometry3d::Identity());
   EXPECT_FALSE(r.cv.inContact());
+}
+
+// The bundled peg and bored block (scripts/peg_hole_meshes.py, binary STL in single
+// precision): files the recognition was not written for. The STL's floats carry the radii to
+// 2^-24 of 5 mm (3e-10 m); 1e-8 m leaves a factor 30.
+TEST(RecoveredSurface, BundledPegAndBoreAreCylinders) {
+  const std::string dir = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/";
+  const geometry::TriangleMesh peg = io::readMesh(dir + "peg_d10.stl").mesh;
+  const geometry::SurfaceRecognition p = recogniseSurfaces(peg);
+  ASSERT_FALSE(p.surfaces.empty());
+  EXPECT_EQ(p.surfaces[0].kind, geometry::SurfaceKind::kCylinder) << describe(p.surfaces[0]);
+  EXPECT_TRUE(p.surfaces[0].convex);
+  EXPECT_NEAR(p.surfaces[0].radius, 0.005, 1e-8);
+  EXPECT_EQ(p.surfaces.size(), 3u);  // and its two flat ends
+  EXPECT_EQ(p.free_form_faces, 0);
+
+  const geometry::TriangleMesh block = io::readMesh(dir + "block_hole_d10.stl").mesh;
+  const geometry::SurfaceRecognition b = recogniseSurfaces(block);
+  int bores = 0, planes = 0;
+  for (const geometry::RecognisedSurface& s : b.surfaces) {
+    if (s.kind == geometry::SurfaceKind::kPlane) ++planes;
+    if (s.kind != geometry::SurfaceKind::kCylinder) continue;
+    ++bores;
+    EXPECT_FALSE(s.convex) << describe(s);  // the solid is outside the bore
+    EXPECT_NEAR(s.radius, 0.0051, 1e-8);
+  }
+  EXPECT_EQ(bores, 1);
+  EXPECT_EQ(planes, 6);
+  EXPECT_EQ(b.free_form_faces, 0);
 }
 
 }  // namespace
