@@ -67,7 +67,7 @@ bool isEndCap(const RecognisedSurface& p, const RecognisedSurface& c,
   return std::abs(t - ends.first) <= tolerance || std::abs(t - ends.second) <= tolerance;
 }
 
-RecoveredContact onSurface(ContactVolume cv, const char* kind, const RecognisedSurface& s) {
+RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, const RecognisedSurface& s) {
   RecoveredContact r{cv, kind, "", 0.0};
   const double method_error = std::isfinite(cv.relative_error) ? cv.relative_error : 1e-12;
   r.volume_error_bound = cv.area * s.max_residual + cv.volume * method_error;
@@ -77,7 +77,7 @@ RecoveredContact onSurface(ContactVolume cv, const char* kind, const RecognisedS
 RecoveredContact sphereContact(const RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
                                const Eigen::Isometry3d& X_WH) {
   const Eigen::Isometry3d X_WS = X_WM * Eigen::Translation3d(s.point);
-  return onSurface(sphereHalfspace(s.radius, X_WS, X_WH), "sphere", s);
+  return fromClosedForm(sphereHalfspace(s.radius, X_WS, X_WH), "sphere", s);
 }
 
 RecoveredContact cylinderContact(const TriangleMesh& mesh, const RecognisedSurface& c,
@@ -87,7 +87,7 @@ RecoveredContact cylinderContact(const TriangleMesh& mesh, const RecognisedSurfa
   X_MC.linear() =
       Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), c.axis).toRotationMatrix();
   X_MC.translation() = c.point + c.axis * (0.5 * (lo + hi));
-  return onSurface(cylinderHalfspace(c.radius, hi - lo, X_WM * X_MC, X_WH), "cylinder", c);
+  return fromClosedForm(cylinderHalfspace(c.radius, hi - lo, X_WM * X_MC, X_WH), "cylinder", c);
 }
 
 RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
@@ -99,59 +99,93 @@ RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
 
 }  // namespace
 
-RecoveredContact recoveredHalfspaceContact(const TriangleMesh& mesh,
-                                           const geometry::SurfaceRecognition& recognition,
-                                           const Eigen::Isometry3d& X_WM,
-                                           const Eigen::Isometry3d& X_WH) {
+RecoveredBody::RecoveredBody(const TriangleMesh& mesh,
+                             const geometry::SurfaceRecognition& recognition)
+    : mesh_(mesh), recognition_(recognition), gap_(recognition.surfaces.size(), 0.0) {
   // How far outside its faces the true surface may lie: the largest chord gap of any
   // recognised face (free-form faces are their own surface, gap 0).
-  std::vector<double> gap(recognition.surfaces.size(), 0.0);
   for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
     const int s = recognition.face_surface[f];
-    if (s >= 0) gap[s] = std::max(gap[s], chordGap(mesh, f, recognition.surfaces[s]));
+    if (s >= 0) gap_[s] = std::max(gap_[s], chordGap(mesh, f, recognition.surfaces[s]));
   }
-  const double margin = gap.empty() ? 0.0 : *std::max_element(gap.begin(), gap.end());
-  const std::vector<int> reaching =
-      reachingFaces(mesh, heights(mesh, X_WH.inverse() * X_WM), margin);
-  std::set<int> touched;
-  for (int f : reaching) touched.insert(recognition.face_surface[f]);
-  double reach_gap = 0.0;
-  for (int s : touched) reach_gap = std::max(reach_gap, s >= 0 ? gap[s] : 0.0);
-  if (touched.empty()) return onMesh(mesh, X_WM, X_WH, "no face reaches the plane", 0.0);
-  if (touched.count(-1))
-    return onMesh(mesh, X_WM, X_WH, "free-form faces reach the plane",
-                  std::numeric_limits<double>::quiet_NaN());
+  margin_ = gap_.empty() ? 0.0 : *std::max_element(gap_.begin(), gap_.end());
+  if (recognition.free_form_faces > 0) return;
+  std::set<int> all;
+  for (int s = 0; s < static_cast<int>(recognition.surfaces.size()); ++s) all.insert(s);
+  std::string reason;
+  whole_ = closedFormSurface(all, reason);
+}
 
+const RecognisedSurface* RecoveredBody::closedFormSurface(const std::set<int>& touched,
+                                                          std::string& reason) const {
+  if (touched.count(-1)) {
+    reason = "free-form faces reach the plane";
+    return nullptr;
+  }
   // One convex sphere, or one convex cylinder with the flat ends that close it.
   const RecognisedSurface* curved = nullptr;
   for (int s : touched) {
-    const RecognisedSurface& surface = recognition.surfaces[s];
+    const RecognisedSurface& surface = recognition_.surfaces[s];
     if (surface.kind == SurfaceKind::kPlane) continue;
     if (curved || !surface.convex ||
         (surface.kind != SurfaceKind::kSphere && surface.kind != SurfaceKind::kCylinder)) {
       std::ostringstream why;
       why << "the faces that reach the plane lie on";
       for (int t : touched)
-        why << ' ' << (recognition.surfaces[t].convex ? "" : "concave ")
-            << geometry::surfaceKindName(recognition.surfaces[t].kind);
+        why << ' ' << (recognition_.surfaces[t].convex ? "" : "concave ")
+            << geometry::surfaceKindName(recognition_.surfaces[t].kind);
       why << ", which has no closed form against a plane";
-      return onMesh(mesh, X_WM, X_WH, why.str(), reach_gap);
+      reason = why.str();
+      return nullptr;
     }
     curved = &surface;
   }
-  if (!curved) return onMesh(mesh, X_WM, X_WH, "only planes reach the plane (exact already)", 0.0);
-  if (curved->kind == SurfaceKind::kSphere && touched.size() == 1)
-    return sphereContact(*curved, X_WM, X_WH);
-  if (curved->kind == SurfaceKind::kCylinder) {
-    const auto ends = axialExtent(mesh, *curved);
-    const bool capped = std::all_of(touched.begin(), touched.end(), [&](int s) {
-      const RecognisedSurface& t = recognition.surfaces[s];
-      return &t == curved || isEndCap(t, *curved, ends, recognition.tolerance);
-    });
-    if (capped) return cylinderContact(mesh, *curved, X_WM, X_WH);
+  if (!curved) {
+    reason = "only planes reach the plane (exact already)";
+    return nullptr;
   }
-  return onMesh(mesh, X_WM, X_WH,
-                "a curved surface and planes that do not close it reach the plane", reach_gap);
+  if (curved->kind == SurfaceKind::kSphere && touched.size() == 1) return curved;
+  if (curved->kind == SurfaceKind::kCylinder) {
+    const auto ends = axialExtent(mesh_, *curved);
+    const bool capped = std::all_of(touched.begin(), touched.end(), [&](int s) {
+      const RecognisedSurface& t = recognition_.surfaces[s];
+      return &t == curved || isEndCap(t, *curved, ends, recognition_.tolerance);
+    });
+    if (capped) return curved;
+  }
+  reason = "a curved surface and planes that do not close it reach the plane";
+  return nullptr;
+}
+
+RecoveredContact RecoveredBody::onSurface(const RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
+                                          const Eigen::Isometry3d& X_WH) const {
+  return s.kind == SurfaceKind::kSphere ? sphereContact(s, X_WM, X_WH)
+                                        : cylinderContact(mesh_, s, X_WM, X_WH);
+}
+
+RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
+                                                 const Eigen::Isometry3d& X_WH) const {
+  if (whole_) return onSurface(*whole_, X_WM, X_WH);  // the body is one closed form
+  const std::vector<int> reaching =
+      reachingFaces(mesh_, heights(mesh_, X_WH.inverse() * X_WM), margin_);
+  std::set<int> touched;
+  for (int f : reaching) touched.insert(recognition_.face_surface[f]);
+  if (touched.empty()) return onMesh(mesh_, X_WM, X_WH, "no face reaches the plane", 0.0);
+  std::string reason;
+  if (const RecognisedSurface* s = closedFormSurface(touched, reason))
+    return onSurface(*s, X_WM, X_WH);
+  double gap = 0.0;  // a plane's faces have none; unknown (NaN) on free-form faces
+  for (int s : touched)
+    if (s >= 0) gap = std::max(gap, gap_[s]);
+  if (touched.count(-1)) gap = std::numeric_limits<double>::quiet_NaN();
+  return onMesh(mesh_, X_WM, X_WH, reason, gap);
+}
+
+RecoveredContact recoveredHalfspaceContact(const TriangleMesh& mesh,
+                                           const geometry::SurfaceRecognition& recognition,
+                                           const Eigen::Isometry3d& X_WM,
+                                           const Eigen::Isometry3d& X_WH) {
+  return RecoveredBody(mesh, recognition).halfspaceContact(X_WM, X_WH);
 }
 
 }  // namespace vcontact::volume

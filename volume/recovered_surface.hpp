@@ -11,7 +11,9 @@
 // closed form against a plane yet) the result is the polyhedral one, and says so.
 
 #include <Eigen/Geometry>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "geometry/surface_recognition.hpp"
 #include "geometry/triangle_mesh.hpp"
@@ -33,9 +35,36 @@ struct RecoveredContact {
   double volume_error_bound = 0.0;
 };
 
-/// @param mesh         the body's mesh, frame M
-/// @param recognition  recogniseSurfaces(mesh)
-/// @param X_WM, X_WH   poses of the mesh and of the half-space (solid z ≤ 0 of H)
+/// A mesh body with its recognised surfaces, prepared once for many queries: the chord gap
+/// of each surface, and whether the whole body is one sphere or one capped cylinder (then a
+/// query is the closed form alone, with no pass over the mesh).
+class RecoveredBody {
+ public:
+  /// @param recognition  recogniseSurfaces(mesh); both must outlive the body
+  RecoveredBody(const geometry::TriangleMesh& mesh,
+                const geometry::SurfaceRecognition& recognition);
+
+  /// @param X_WM, X_WH  poses of the mesh and of the half-space (solid z ≤ 0 of H)
+  RecoveredContact halfspaceContact(const Eigen::Isometry3d& X_WM,
+                                    const Eigen::Isometry3d& X_WH) const;
+
+ private:
+  /// The surface the contact lies on when the faces in `touched` (surface indices, −1 for
+  /// free-form) reach the plane; null with the reason otherwise.
+  const geometry::RecognisedSurface* closedFormSurface(const std::set<int>& touched,
+                                                       std::string& reason) const;
+  RecoveredContact onSurface(const geometry::RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
+                             const Eigen::Isometry3d& X_WH) const;
+
+  const geometry::TriangleMesh& mesh_;
+  const geometry::SurfaceRecognition& recognition_;
+  std::vector<double> gap_;  ///< per surface: largest chord gap of its faces, m
+  double margin_ = 0.0;      ///< the largest gap
+  /// The body's whole surface when it is one sphere, or one cylinder and its two ends.
+  const geometry::RecognisedSurface* whole_ = nullptr;
+};
+
+/// One query on a body prepared for it alone (RecoveredBody).
 RecoveredContact recoveredHalfspaceContact(const geometry::TriangleMesh& mesh,
                                            const geometry::SurfaceRecognition& recognition,
                                            const Eigen::Isometry3d& X_WM,
