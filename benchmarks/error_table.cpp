@@ -1,5 +1,6 @@
 // Faceting error of tessellated bodies against the closed forms of MODEL.md §5, written as
-// CSV: the error is the mesh's, not the clip's (the clip is exact for the polyhedron).
+// CSV: the error is the mesh's, not the clip's (the clip is exact for the polyhedron); beside
+// it, the error of the same mesh on its recovered surface (docs/SURFACES.md).
 //   usage: vcontact_error_table OUTPUT_DIR
 // writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv.
 
@@ -12,6 +13,7 @@
 #include "geometry/tessellate.hpp"
 #include "volume/analytic.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace {
 
@@ -31,16 +33,23 @@ void writeTable(const std::string& path, const std::string& shape, const int (&r
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
   f.precision(10);
-  f << "shape,triangles,d_over_R,V_mesh_m3,V_exact_m3,V_rel_error,r_gyr_rel_error\n";
+  f << "shape,triangles,d_over_R,V_mesh_m3,V_exact_m3,V_rel_error,r_gyr_rel_error,"
+       "representation,V_recovered_m3,V_recovered_rel_error\n";
   const Isometry3d H = Isometry3d::Identity();
   for (int res : resolutions) {
     const vcontact::geometry::TriangleMesh mesh = tessellate(res);
+    const vcontact::geometry::SurfaceRecognition surfaces =
+        vcontact::geometry::recogniseSurfaces(mesh);
     for (double dR : kDepths) {
       const Isometry3d X = poseAtDepth(dR * kRadius);
       const ContactVolume m = vcontact::volume::meshHalfspaceContact(mesh, X, H);
       const ContactVolume e = exact(X);
+      const vcontact::volume::RecoveredContact r =
+          vcontact::volume::recoveredHalfspaceContact(mesh, surfaces, X, H);
       f << shape << ',' << mesh.triangleCount() << ',' << dR << ',' << m.volume << ',' << e.volume
-        << ',' << (m.volume - e.volume) / e.volume << ',' << (m.r_gyr - e.r_gyr) / e.r_gyr << '\n';
+        << ',' << (m.volume - e.volume) / e.volume << ',' << (m.r_gyr - e.r_gyr) / e.r_gyr << ','
+        << r.representation << ',' << r.cv.volume << ',' << (r.cv.volume - e.volume) / e.volume
+        << '\n';
     }
   }
   std::cout << "wrote " << path << '\n';

@@ -12,6 +12,7 @@ namespace vcontact::cli {
 
 void addVolumeCommand(CLI::App& app);
 void addMeshInfoCommand(CLI::App& app);
+void addSurfacesCommand(CLI::App& app);
 void addMeshRepairCommand(CLI::App& app);
 void addTessellateCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);

@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "vcontact 0.1.0");
   vcontact::cli::addVolumeCommand(app);
   vcontact::cli::addMeshInfoCommand(app);
+  vcontact::cli::addSurfacesCommand(app);
   vcontact::cli::addMeshRepairCommand(app);
   vcontact::cli::addTessellateCommand(app);
   vcontact::cli::addSimulateCommand(app);

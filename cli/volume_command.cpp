@@ -4,12 +4,14 @@
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
+#include "geometry/surface_recognition.hpp"
 #include "io/json_file.hpp"
 #include "io/shape_spec.hpp"
 #include "report/contact_volume_format.hpp"
 #include "report/depth_map_csv.hpp"
 #include "volume/contact.hpp"
 #include "volume/methods.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace vcontact::cli {
 
@@ -27,6 +29,7 @@ struct VolumeOptions {
   bool repair = false;
   std::string out;
   std::string field;
+  std::string surface = "mesh";
 };
 
 /// The table's methods whose `pick` is true, as "a | b | c".
@@ -84,6 +87,32 @@ std::string methodHelp() {
   return help;
 }
 
+/// --surface recovered: the mesh A's recognised surfaces against the half-space B.
+volume::RecoveredContact recoveredContact(const VolumeOptions& o, const io::ParsedShape& a,
+                                          const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
+                                          const Eigen::Isometry3d& X_WB) {
+  const auto* mesh = std::get_if<geometry::Mesh>(&a.shape);
+  if (!mesh || !std::holds_alternative<geometry::HalfSpace>(b.shape) || !o.method.empty() ||
+      !o.field.empty()) {
+    throw InputError("--surface recovered",
+                     "takes a mesh A on a half-space B, without --method or --field (the pair "
+                     "of two meshes is not recovered yet)");
+  }
+  try {
+    return volume::recoveredHalfspaceContact(*mesh->mesh, geometry::recogniseSurfaces(*mesh->mesh),
+                                             X_WA, X_WB);
+  } catch (const InputError& e) {
+    throw e.withSource(o.a);
+  }
+}
+
+nlohmann::json recoveredJson(const volume::RecoveredContact& r) {
+  nlohmann::json j = {{"representation", r.representation},
+                      {"volume_error_bound_m3", r.volume_error_bound}};
+  if (!r.reason.empty()) j["reason"] = r.reason;
+  return j;
+}
+
 void runVolume(const VolumeOptions& o) {
   io::MeshReadOptions mesh;
   mesh.repair = o.repair;
@@ -93,9 +122,13 @@ void runVolume(const VolumeOptions& o) {
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
-  const volume::ContactPatches contact = compute(o, a, X_WA, b, X_WB);
+  std::optional<volume::RecoveredContact> recovered;
+  if (o.surface == "recovered") recovered = recoveredContact(o, a, X_WA, b, X_WB);
+  const volume::ContactPatches contact =
+      recovered ? volume::singlePatch(recovered->cv) : compute(o, a, X_WA, b, X_WB);
 
   nlohmann::json j = report::toJson(contact);
+  if (recovered) j["surface"] = recoveredJson(*recovered);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
   if (!o.out.empty()) io::writeJson(j, o.out);
@@ -105,6 +138,11 @@ void runVolume(const VolumeOptions& o) {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
               << report::toTable(contact);
+    if (recovered) {
+      std::cout << "surface: " << recovered->representation
+                << (recovered->reason.empty() ? "" : " (" + recovered->reason + ")")
+                << ", |V error| <= " << recovered->volume_error_bound << " m^3\n";
+    }
   }
 }
 
@@ -126,6 +164,11 @@ void addVolumeCommand(CLI::App& app) {
                       methodNames([](const auto& row) { return row.fills_depth_field; }) +
                       ", the first that takes the pair unless --method says)");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");
+  cmd->add_option("--surface", opts->surface,
+                  "mesh: the polyhedron; recovered: a mesh A's recognised sphere or capped "
+                  "cylinder against a half-space B, by closed form (docs/SURFACES.md)")
+      ->check(CLI::IsMember({"mesh", "recovered"}))
+      ->capture_default_str();
   cmd->add_flag("--repair", opts->repair, "repair mesh files first (as mesh-repair does)");
   cmd->add_option("--out", opts->out, "also write the JSON to this file");
   cmd->callback([opts] { runVolume(*opts); });

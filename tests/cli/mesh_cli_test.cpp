@@ -150,5 +150,35 @@ TEST_F(MeshCli, ScenarioBodyTakesTheRepairKey) {
       << repaired.err;
 }
 
+TEST_F(MeshCli, SurfacesNamesTheBundledPegsCylinder) {
+  const std::string peg = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/peg_d10.stl";
+  const auto r = run("surfaces " + peg + " --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("surfaces").size(), 3u) << r.out;
+  EXPECT_EQ(j["surfaces"][0].at("kind"), "cylinder");
+  EXPECT_NEAR(j["surfaces"][0].at("radius_m").get<double>(), 0.005, 1e-8);
+  EXPECT_EQ(j.at("free_form_faces"), 0);
+}
+
+TEST_F(MeshCli, RecoveredSphereOnAPlaneIsTheCap) {
+  io::writeObj(geometry::tessellateSphere(0.01, 32, 16), path("ball.obj"));
+  const auto r = run("volume " + path("ball.obj") +
+                     " halfspace --pose-a 0,0,0.00999 --surface recovered --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("surface").at("representation"), "sphere");
+  const double d = 1e-5, R = 0.01, cap = M_PI * d * d * (3 * R - d) / 3;  // OBJ keeps doubles
+  EXPECT_NEAR(j.at("volume").get<double>(), cap, 1e-7 * cap) << r.out;
+}
+
+TEST_F(MeshCli, RecoveredSurfaceNeedsAMeshOnAHalfSpace) {
+  const auto r = run("volume " + path("box.obj") + " box:1,1,1 --surface recovered");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--surface recovered"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("half-space"), std::string::npos) << r.err;
+  EXPECT_EQ(run("volume " + path("box.obj") + " halfspace --surface exact").exitCode, 2);
+}
+
 }  // namespace
 }  // namespace vcontact

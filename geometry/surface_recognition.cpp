@@ -1,0 +1,310 @@
+#include "geometry/surface_recognition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "geometry/error.hpp"
+#include "geometry/surface_recognition_internal.hpp"
+
+namespace vcontact::geometry {
+namespace detail {
+
+std::vector<Eigen::Vector3d> faceNormals(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3d> n(static_cast<std::size_t>(mesh.triangleCount()));
+  for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f) {
+    const Eigen::Vector3d c =
+        (mesh.corner(f, 1) - mesh.corner(f, 0)).cross(mesh.corner(f, 2) - mesh.corner(f, 0));
+    n[static_cast<std::size_t>(f)] = c.norm() > 0.0 ? c.normalized() : Eigen::Vector3d::Zero();
+  }
+  return n;
+}
+
+namespace {
+
+// The angle of face f at its corner on vertex v.
+double cornerAngle(const TriangleMesh& mesh, int f, int v) {
+  int k = 0;
+  while (mesh.triangles(f, k) != v) ++k;
+  const Eigen::Vector3d p = mesh.corner(f, k);
+  const Eigen::Vector3d a = mesh.corner(f, (k + 1) % 3) - p;
+  const Eigen::Vector3d b = mesh.corner(f, (k + 2) % 3) - p;
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// Union–find root over the few faces around one vertex.
+int root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The smooth regions of the mesh: faces joined across every edge that is not a crease.
+std::vector<int> smoothRegions(const TriangleMesh& mesh, const MeshTopology& topology,
+                               const std::vector<Eigen::Vector3d>& face_normals,
+                               double cos_crease) {
+  std::vector<int> parent(static_cast<std::size_t>(mesh.triangleCount()));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const MeshEdge& e : topology.edges())
+    if (face_normals[e.tri[0]].dot(face_normals[e.tri[1]]) >= cos_crease)
+      parent[root(parent, e.tri[0])] = root(parent, e.tri[1]);
+  for (std::size_t f = 0; f < parent.size(); ++f) parent[f] = root(parent, static_cast<int>(f));
+  return parent;
+}
+
+// Four samples inside each face of a smooth region with fewer than kFewSamples corner
+// samples (a box face has 4; CGAL accepts no shape of fewer than 10 points): the centroid and
+// the points at (4, 1, 1)/6 of the way to each corner, normals interpolated linearly. Larger
+// regions get none, since RANSAC's time grows with the samples and their vertices suffice.
+void addFaceSamples(const TriangleMesh& mesh, const std::vector<int>& region,
+                    const std::vector<int>& corner_sample, SamplePoints& out) {
+  constexpr std::size_t kFewSamples = 16;
+  std::vector<std::vector<int>> corners(region.size());
+  for (std::size_t f = 0; f < region.size(); ++f)
+    for (int k = 0; k < 3; ++k) corners[region[f]].push_back(corner_sample[3 * f + k]);
+  std::vector<char> few(region.size(), 0);
+  for (std::size_t r = 0; r < corners.size(); ++r) {
+    if (corners[r].empty()) continue;
+    std::sort(corners[r].begin(), corners[r].end());
+    few[r] = std::unique(corners[r].begin(), corners[r].end()) - corners[r].begin() <
+             static_cast<std::ptrdiff_t>(kFewSamples);
+  }
+  static constexpr double kWeights[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                            {4.0 / 6, 1.0 / 6, 1.0 / 6},
+                                            {1.0 / 6, 4.0 / 6, 1.0 / 6},
+                                            {1.0 / 6, 1.0 / 6, 4.0 / 6}};
+  for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
+    const int* c = &corner_sample[3 * static_cast<std::size_t>(f)];
+    if (!few[region[f]] || c[0] < 0 || c[1] < 0 || c[2] < 0) continue;
+    for (const auto& w : kWeights) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        p += w[k] * mesh.corner(f, k);
+        n += w[k] * out.normal[static_cast<std::size_t>(c[k])];
+      }
+      if (!(n.norm() > 0.0)) continue;
+      out.position.push_back(p);
+      out.normal.push_back(n.normalized());
+      out.vertex.push_back(-1);
+      out.face.push_back(f);
+    }
+  }
+}
+
+}  // namespace
+
+SamplePoints samplePoints(const TriangleMesh& mesh, const MeshTopology& topology,
+                          const std::vector<Eigen::Vector3d>& face_normals, double crease_angle) {
+  const double cos_crease = std::cos(crease_angle);
+  SamplePoints out;
+  std::vector<int> corner_sample(3 * static_cast<std::size_t>(mesh.triangleCount()), -1);
+  std::vector<int> parent;
+  std::vector<Eigen::Vector3d> sum;
+  for (int v = 0; v < static_cast<int>(mesh.vertexCount()); ++v) {
+    const int* faces = topology.facesBegin(v);
+    const int count = static_cast<int>(topology.facesEnd(v) - faces);
+    const auto local = [&](int f) {
+      return static_cast<int>(std::find(faces, faces + count, f) - faces);
+    };
+    parent.resize(static_cast<std::size_t>(count));
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const int* e = topology.edgesBegin(v); e != topology.edgesEnd(v); ++e) {
+      const MeshEdge& edge = topology.edges()[static_cast<std::size_t>(*e)];
+      const Eigen::Vector3d& n0 = face_normals[static_cast<std::size_t>(edge.tri[0])];
+      const Eigen::Vector3d& n1 = face_normals[static_cast<std::size_t>(edge.tri[1])];
+      if (n0.dot(n1) >= cos_crease)
+        parent[root(parent, local(edge.tri[0]))] = root(parent, local(edge.tri[1]));
+    }
+    sum.assign(static_cast<std::size_t>(count), Eigen::Vector3d::Zero());
+    for (int i = 0; i < count; ++i)  // each side's angle-weighted normal
+      sum[root(parent, i)] += cornerAngle(mesh, faces[i], v) * face_normals[faces[i]];
+    std::vector<int> side_sample(static_cast<std::size_t>(count), -1);
+    for (int i = 0; i < count; ++i) {
+      if (root(parent, i) != i || !(sum[i].norm() > 0.0)) continue;
+      side_sample[i] = static_cast<int>(out.position.size());
+      out.position.push_back(mesh.vertex(v));
+      out.normal.push_back(sum[i].normalized());
+      out.vertex.push_back(v);
+      out.face.push_back(faces[i]);
+    }
+    for (int i = 0; i < count; ++i) {
+      int k = 0;
+      while (mesh.triangles(faces[i], k) != v) ++k;
+      corner_sample[3 * static_cast<std::size_t>(faces[i]) + k] = side_sample[root(parent, i)];
+    }
+  }
+  addFaceSamples(mesh, smoothRegions(mesh, topology, face_normals, cos_crease), corner_sample, out);
+  return out;
+}
+
+}  // namespace detail
+
+namespace {
+
+// RANSAC's distance, of the diagonal: RANSAC only proposes, the polish and the tolerance decide.
+constexpr double kRansacEpsilon = 1e-3;
+// Samples more than 1.5 longest edges apart are not one connected surface.
+constexpr double kClusterEdges = 1.5;
+// RANSAC keeps the shape that takes the most samples, and a rejected candidate's samples are
+// lost to that run: near a corner of a box a wide cone takes more than a face's plane, and the
+// rims of a frustum are matched by a torus that they do not fix (polishSurface refuses it).
+// So the faces a run leaves free are searched again: with every kind but the torus (the most
+// parameters), then for planes alone, then with every kind once more.
+constexpr unsigned kAllKinds = 0x1f;
+constexpr unsigned kPasses[] = {kAllKinds,
+                                kAllKinds & ~(1u << static_cast<int>(SurfaceKind::kTorus)),
+                                1u << static_cast<int>(SurfaceKind::kPlane), kAllKinds};
+
+struct RecognitionInput {
+  const TriangleMesh& mesh;
+  std::vector<Eigen::Vector3d> normals;  // per face
+  double tolerance;                      // m
+  double cos_crease;
+};
+
+double faceArea(const TriangleMesh& mesh, int f) {
+  return 0.5 * (mesh.corner(f, 1) - mesh.corner(f, 0))
+                   .cross(mesh.corner(f, 2) - mesh.corner(f, 0))
+                   .norm();
+}
+
+Eigen::Vector3d faceCentroid(const TriangleMesh& mesh, int f) {
+  return (mesh.corner(f, 0) + mesh.corner(f, 1) + mesh.corner(f, 2)) / 3.0;
+}
+
+// The free faces that lie on `s`: their corners within the tolerance and their normal within
+// the crease angle of the surface's.
+std::vector<int> facesOn(const RecognisedSurface& s, const RecognitionInput& in,
+                         const std::vector<int>& face_surface) {
+  std::vector<int> faces;
+  for (int f = 0; f < static_cast<int>(in.mesh.triangleCount()); ++f) {
+    if (face_surface[f] >= 0 || !(in.normals[f].norm() > 0.0)) continue;
+    bool on = in.normals[f].dot(outwardNormal(s, faceCentroid(in.mesh, f))) >= in.cos_crease;
+    for (int k = 0; k < 3 && on; ++k)
+      on = std::abs(signedDistance(s, in.mesh.corner(f, k))) <= in.tolerance;
+    if (on) faces.push_back(f);
+  }
+  return faces;
+}
+
+std::vector<int> verticesOf(const TriangleMesh& mesh, const std::vector<int>& faces) {
+  std::vector<int> v;
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) v.push_back(mesh.triangles(f, k));
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+std::vector<Eigen::Vector3d> positions(const TriangleMesh& mesh, const std::vector<int>& vertices) {
+  std::vector<Eigen::Vector3d> p;
+  p.reserve(vertices.size());
+  for (int v : vertices) p.push_back(mesh.vertex(v));
+  return p;
+}
+
+// RANSAC's rough surface polished to its vertices, then again to those of them that lie on
+// it (RANSAC's loose distance lets in neighbours of other surfaces).
+std::optional<RecognisedSurface> polishCandidate(const detail::Candidate& c,
+                                                 const detail::SamplePoints& samples,
+                                                 const RecognitionInput& in) {
+  std::vector<int> vertices;
+  for (int i : c.samples)
+    if (samples.vertex[static_cast<std::size_t>(i)] >= 0) vertices.push_back(samples.vertex[i]);
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  std::vector<Eigen::Vector3d> points = positions(in.mesh, vertices);
+  const std::optional<RecognisedSurface> first = detail::polishSurface(c.surface, points);
+  if (!first) return std::nullopt;
+  const RecognisedSurface& s = *first;
+  std::vector<double> d;
+  for (const Eigen::Vector3d& p : points) d.push_back(std::abs(signedDistance(s, p)));
+  std::vector<double> sorted = d;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double keep = std::max(in.tolerance, 3.0 * sorted[sorted.size() / 2]);
+  std::vector<Eigen::Vector3d> close;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (d[i] <= keep) close.push_back(points[i]);
+  return detail::polishSurface(s, close);
+}
+
+void measure(RecognisedSurface& s, const TriangleMesh& mesh) {
+  s.area = 0.0;
+  for (int f : s.faces) s.area += faceArea(mesh, f);
+  double sum2 = 0.0;
+  s.max_residual = 0.0;
+  const std::vector<int> vertices = verticesOf(mesh, s.faces);
+  for (int v : vertices) {
+    const double d = std::abs(signedDistance(s, mesh.vertex(v)));
+    sum2 += d * d;
+    s.max_residual = std::max(s.max_residual, d);
+  }
+  s.rms_residual = std::sqrt(sum2 / static_cast<double>(vertices.size()));
+}
+
+void checkOptions(const RecognitionOptions& o) {
+  if (!(o.tolerance > 0.0 && o.tolerance < 1.0))
+    throw InputError("surface recognition",
+                     "the tolerance must be in (0, 1), a fraction of the "
+                     "bounding-box diagonal");
+  if (!(o.crease_angle > 0.0 && o.crease_angle <= M_PI / 2))
+    throw InputError("surface recognition", "the crease angle must be in (0, pi/2] rad");
+}
+
+}  // namespace
+
+SurfaceRecognition recogniseSurfaces(const TriangleMesh& mesh, const RecognitionOptions& options) {
+  checkOptions(options);
+  const MeshTopology topology(mesh);
+  const double diagonal = bounds(mesh).size().norm();
+  RecognitionInput in{mesh, detail::faceNormals(mesh), options.tolerance * diagonal,
+                      std::cos(options.crease_angle)};
+  const detail::SamplePoints samples =
+      detail::samplePoints(mesh, topology, in.normals, options.crease_angle);
+  double longest = 0.0;
+  for (const MeshEdge& e : topology.edges())
+    longest = std::max(longest, (mesh.vertex(e.v1) - mesh.vertex(e.v0)).norm());
+  detail::DetectionSettings settings{kRansacEpsilon * diagonal, kClusterEdges * longest,
+                                     std::cos(options.crease_angle), options.seed};
+
+  SurfaceRecognition out;
+  out.tolerance = in.tolerance;
+  out.face_surface.assign(static_cast<std::size_t>(mesh.triangleCount()), -1);
+  std::vector<RecognisedSurface> found;
+  for (unsigned kinds : kPasses) {
+    std::vector<char> use(samples.face.size());
+    for (std::size_t i = 0; i < use.size(); ++i) use[i] = out.face_surface[samples.face[i]] < 0;
+    settings.kinds = kinds;
+    for (const detail::Candidate& c : detail::detectCandidates(samples, use, settings)) {
+      std::optional<RecognisedSurface> polished = polishCandidate(c, samples, in);
+      if (!polished) continue;
+      RecognisedSurface& s = *polished;
+      s.faces = facesOn(s, in, out.face_surface);
+      if (s.faces.empty()) continue;
+      measure(s, mesh);
+      for (int f : s.faces) out.face_surface[f] = static_cast<int>(found.size());
+      found.push_back(std::move(s));
+    }
+  }
+  // Largest first; ties (by construction rare) keep RANSAC's order.
+  std::vector<int> order(found.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return found[a].area > found[b].area; });
+  std::vector<int> rank(found.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    rank[order[i]] = static_cast<int>(i);
+    out.surfaces.push_back(std::move(found[order[i]]));
+  }
+  for (int& s : out.face_surface) {
+    if (s >= 0) {
+      s = rank[s];
+      continue;
+    }
+    ++out.free_form_faces;
+  }
+  for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f)
+    if (out.face_surface[f] < 0) out.free_form_area += faceArea(mesh, f);
+  return out;
+}
+
+}  // namespace vcontact::geometry

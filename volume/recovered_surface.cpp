@@ -1,0 +1,191 @@
+#include "volume/recovered_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "volume/analytic.hpp"
+#include "volume/halfspace_clip.hpp"
+
+namespace vcontact::volume {
+namespace {
+
+using geometry::RecognisedSurface;
+using geometry::SurfaceKind;
+using geometry::TriangleMesh;
+
+// The largest distance between face f's chord and the surface it lies on, estimated at the
+// centroid and the edge midpoints (for a face inscribed in a convex surface, the gap is
+// largest inside the face, near its circumcentre).
+double chordGap(const TriangleMesh& mesh, int f, const RecognisedSurface& s) {
+  const Eigen::Vector3d a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
+  const Eigen::Vector3d probes[] = {(a + b + c) / 3.0, (a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0};
+  double gap = 0.0;
+  for (const Eigen::Vector3d& p : probes) gap = std::max(gap, std::abs(signedDistance(s, p)));
+  return gap;
+}
+
+// Heights of the vertices above the half-space's boundary, m.
+std::vector<double> heights(const TriangleMesh& mesh, const Eigen::Isometry3d& X_HM) {
+  std::vector<double> h(static_cast<std::size_t>(mesh.vertexCount()));
+  for (Eigen::Index v = 0; v < mesh.vertexCount(); ++v) h[v] = (X_HM * mesh.vertex(v)).z();
+  return h;
+}
+
+// The faces that can reach the plane: the true surface lies within `margin` outside them.
+std::vector<int> reachingFaces(const TriangleMesh& mesh, const std::vector<double>& h,
+                               double margin) {
+  std::vector<int> faces;
+  for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
+    const double low =
+        std::min({h[mesh.triangles(f, 0)], h[mesh.triangles(f, 1)], h[mesh.triangles(f, 2)]});
+    if (low <= margin) faces.push_back(f);
+  }
+  return faces;
+}
+
+// The extent [lo, hi] of a cylinder's vertices along its axis, from its axis point.
+std::pair<double, double> axialExtent(const TriangleMesh& mesh, const RecognisedSurface& c) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int f : c.faces)
+    for (int k = 0; k < 3; ++k) {
+      const double t = c.axis.dot(mesh.corner(f, k) - c.point);
+      lo = std::min(lo, t);
+      hi = std::max(hi, t);
+    }
+  return {lo, hi};
+}
+
+// True when plane p closes cylinder c at one of its ends [lo, hi].
+bool isEndCap(const RecognisedSurface& p, const RecognisedSurface& c,
+              std::pair<double, double> ends, double tolerance) {
+  if (p.kind != SurfaceKind::kPlane || std::abs(std::abs(p.axis.dot(c.axis)) - 1.0) > 1e-9)
+    return false;
+  const double t = c.axis.dot(p.point - c.point);
+  return std::abs(t - ends.first) <= tolerance || std::abs(t - ends.second) <= tolerance;
+}
+
+RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, const RecognisedSurface& s) {
+  RecoveredContact r{cv, kind, "", 0.0};
+  const double method_error = std::isfinite(cv.relative_error) ? cv.relative_error : 1e-12;
+  r.volume_error_bound = cv.area * s.max_residual + cv.volume * method_error;
+  return r;
+}
+
+RecoveredContact sphereContact(const RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
+                               const Eigen::Isometry3d& X_WH) {
+  const Eigen::Isometry3d X_WS = X_WM * Eigen::Translation3d(s.point);
+  return fromClosedForm(sphereHalfspace(s.radius, X_WS, X_WH), "sphere", s);
+}
+
+RecoveredContact cylinderContact(const TriangleMesh& mesh, const RecognisedSurface& c,
+                                 const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH) {
+  const auto [lo, hi] = axialExtent(mesh, c);
+  Eigen::Isometry3d X_MC = Eigen::Isometry3d::Identity();
+  X_MC.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), c.axis).toRotationMatrix();
+  X_MC.translation() = c.point + c.axis * (0.5 * (lo + hi));
+  return fromClosedForm(cylinderHalfspace(c.radius, hi - lo, X_WM * X_MC, X_WH), "cylinder", c);
+}
+
+RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
+                        const Eigen::Isometry3d& X_WH, std::string reason, double gap) {
+  RecoveredContact r{meshHalfspaceContact(mesh, X_WM, X_WH), "mesh", std::move(reason), 0.0};
+  r.volume_error_bound = r.cv.area * gap;
+  return r;
+}
+
+}  // namespace
+
+RecoveredBody::RecoveredBody(const TriangleMesh& mesh,
+                             const geometry::SurfaceRecognition& recognition)
+    : mesh_(mesh), recognition_(recognition), gap_(recognition.surfaces.size(), 0.0) {
+  // How far outside its faces the true surface may lie: the largest chord gap of any
+  // recognised face (free-form faces are their own surface, gap 0).
+  for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
+    const int s = recognition.face_surface[f];
+    if (s >= 0) gap_[s] = std::max(gap_[s], chordGap(mesh, f, recognition.surfaces[s]));
+  }
+  margin_ = gap_.empty() ? 0.0 : *std::max_element(gap_.begin(), gap_.end());
+  if (recognition.free_form_faces > 0) return;
+  std::set<int> all;
+  for (int s = 0; s < static_cast<int>(recognition.surfaces.size()); ++s) all.insert(s);
+  std::string reason;
+  whole_ = closedFormSurface(all, reason);
+}
+
+const RecognisedSurface* RecoveredBody::closedFormSurface(const std::set<int>& touched,
+                                                          std::string& reason) const {
+  if (touched.count(-1)) {
+    reason = "free-form faces reach the plane";
+    return nullptr;
+  }
+  // One convex sphere, or one convex cylinder with the flat ends that close it.
+  const RecognisedSurface* curved = nullptr;
+  for (int s : touched) {
+    const RecognisedSurface& surface = recognition_.surfaces[s];
+    if (surface.kind == SurfaceKind::kPlane) continue;
+    if (curved || !surface.convex ||
+        (surface.kind != SurfaceKind::kSphere && surface.kind != SurfaceKind::kCylinder)) {
+      std::ostringstream why;
+      why << "the faces that reach the plane lie on";
+      for (int t : touched)
+        why << ' ' << (recognition_.surfaces[t].convex ? "" : "concave ")
+            << geometry::surfaceKindName(recognition_.surfaces[t].kind);
+      why << ", which has no closed form against a plane";
+      reason = why.str();
+      return nullptr;
+    }
+    curved = &surface;
+  }
+  if (!curved) {
+    reason = "only planes reach the plane (exact already)";
+    return nullptr;
+  }
+  if (curved->kind == SurfaceKind::kSphere && touched.size() == 1) return curved;
+  if (curved->kind == SurfaceKind::kCylinder) {
+    const auto ends = axialExtent(mesh_, *curved);
+    const bool capped = std::all_of(touched.begin(), touched.end(), [&](int s) {
+      const RecognisedSurface& t = recognition_.surfaces[s];
+      return &t == curved || isEndCap(t, *curved, ends, recognition_.tolerance);
+    });
+    if (capped) return curved;
+  }
+  reason = "a curved surface and planes that do not close it reach the plane";
+  return nullptr;
+}
+
+RecoveredContact RecoveredBody::onSurface(const RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
+                                          const Eigen::Isometry3d& X_WH) const {
+  return s.kind == SurfaceKind::kSphere ? sphereContact(s, X_WM, X_WH)
+                                        : cylinderContact(mesh_, s, X_WM, X_WH);
+}
+
+RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
+                                                 const Eigen::Isometry3d& X_WH) const {
+  if (whole_) return onSurface(*whole_, X_WM, X_WH);  // the body is one closed form
+  const std::vector<int> reaching =
+      reachingFaces(mesh_, heights(mesh_, X_WH.inverse() * X_WM), margin_);
+  std::set<int> touched;
+  for (int f : reaching) touched.insert(recognition_.face_surface[f]);
+  if (touched.empty()) return onMesh(mesh_, X_WM, X_WH, "no face reaches the plane", 0.0);
+  std::string reason;
+  if (const RecognisedSurface* s = closedFormSurface(touched, reason))
+    return onSurface(*s, X_WM, X_WH);
+  double gap = 0.0;  // a plane's faces have none; unknown (NaN) on free-form faces
+  for (int s : touched)
+    if (s >= 0) gap = std::max(gap, gap_[s]);
+  if (touched.count(-1)) gap = std::numeric_limits<double>::quiet_NaN();
+  return onMesh(mesh_, X_WM, X_WH, reason, gap);
+}
+
+RecoveredContact recoveredHalfspaceContact(const TriangleMesh& mesh,
+                                           const geometry::SurfaceRecognition& recognition,
+                                           const Eigen::Isometry3d& X_WM,
+                                           const Eigen::Isometry3d& X_WH) {
+  return RecoveredBody(mesh, recognition).halfspaceContact(X_WM, X_WH);
+}
+
+}  // namespace vcontact::volume

@@ -1,0 +1,73 @@
+#pragma once
+// Contact of a mesh body on its recovered surfaces (geometry/surface_recognition.hpp) against
+// a half-space (docs/SURFACES.md).
+//
+// A tessellation is inscribed in its part: the vertices lie on the true surface and the faces
+// cut chords inside it, so at the micrometre depths of metal contact the polyhedron misses
+// most of the interference (a 10,000-triangle sphere at d/R = 1e-4 by 96 %). Where the part of
+// the body that can reach the plane lies on one recognised sphere, or on one recognised
+// cylinder closed by flat ends, the contact is that of the true solid: the closed forms of
+// the analytic backend. Anywhere else (free-form faces, several surfaces, kinds without a
+// closed form against a plane yet) the result is the polyhedral one, and says so.
+
+#include <Eigen/Geometry>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "geometry/surface_recognition.hpp"
+#include "geometry/triangle_mesh.hpp"
+#include "volume/contact_volume.hpp"
+
+namespace vcontact::volume {
+
+struct RecoveredContact {
+  ContactVolume cv;
+  /// What the contact was computed on: "sphere" or "cylinder" (the recognised surface, by
+  /// closed form), or "mesh" (the polyhedron).
+  std::string representation;
+  /// Why the polyhedron was used, for "mesh"; empty otherwise.
+  std::string reason;
+  /// A bound on |V − V_true|, m³: for a recovered surface the contact area times the largest
+  /// distance of the surface's vertices to it (the fit residual) plus the closed form's own
+  /// error; for the polyhedron, the area times the largest chord gap of the faces that can
+  /// reach the plane (how far the true surface may lie outside the faces).
+  double volume_error_bound = 0.0;
+};
+
+/// A mesh body with its recognised surfaces, prepared once for many queries: the chord gap
+/// of each surface, and whether the whole body is one sphere or one capped cylinder (then a
+/// query is the closed form alone, with no pass over the mesh).
+class RecoveredBody {
+ public:
+  /// @param recognition  recogniseSurfaces(mesh); both must outlive the body
+  RecoveredBody(const geometry::TriangleMesh& mesh,
+                const geometry::SurfaceRecognition& recognition);
+
+  /// @param X_WM, X_WH  poses of the mesh and of the half-space (solid z ≤ 0 of H)
+  RecoveredContact halfspaceContact(const Eigen::Isometry3d& X_WM,
+                                    const Eigen::Isometry3d& X_WH) const;
+
+ private:
+  /// The surface the contact lies on when the faces in `touched` (surface indices, −1 for
+  /// free-form) reach the plane; null with the reason otherwise.
+  const geometry::RecognisedSurface* closedFormSurface(const std::set<int>& touched,
+                                                       std::string& reason) const;
+  RecoveredContact onSurface(const geometry::RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
+                             const Eigen::Isometry3d& X_WH) const;
+
+  const geometry::TriangleMesh& mesh_;
+  const geometry::SurfaceRecognition& recognition_;
+  std::vector<double> gap_;  ///< per surface: largest chord gap of its faces, m
+  double margin_ = 0.0;      ///< the largest gap
+  /// The body's whole surface when it is one sphere, or one cylinder and its two ends.
+  const geometry::RecognisedSurface* whole_ = nullptr;
+};
+
+/// One query on a body prepared for it alone (RecoveredBody).
+RecoveredContact recoveredHalfspaceContact(const geometry::TriangleMesh& mesh,
+                                           const geometry::SurfaceRecognition& recognition,
+                                           const Eigen::Isometry3d& X_WM,
+                                           const Eigen::Isometry3d& X_WH);
+
+}  // namespace vcontact::volume
