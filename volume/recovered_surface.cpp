@@ -27,25 +27,6 @@ double chordGap(const TriangleMesh& mesh, int f, const RecognisedSurface& s) {
   return gap;
 }
 
-// Heights of the vertices above the half-space's boundary, m.
-std::vector<double> heights(const TriangleMesh& mesh, const Eigen::Isometry3d& X_HM) {
-  std::vector<double> h(static_cast<std::size_t>(mesh.vertexCount()));
-  for (Eigen::Index v = 0; v < mesh.vertexCount(); ++v) h[v] = (X_HM * mesh.vertex(v)).z();
-  return h;
-}
-
-// The faces that can reach the plane: the true surface lies within `margin` outside them.
-std::vector<int> reachingFaces(const TriangleMesh& mesh, const std::vector<double>& h,
-                               double margin) {
-  std::vector<int> faces;
-  for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
-    const double low =
-        std::min({h[mesh.triangles(f, 0)], h[mesh.triangles(f, 1)], h[mesh.triangles(f, 2)]});
-    if (low <= margin) faces.push_back(f);
-  }
-  return faces;
-}
-
 // The extent [lo, hi] of a cylinder's vertices along its axis, from its axis point.
 std::pair<double, double> axialExtent(const TriangleMesh& mesh, const RecognisedSurface& c) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -101,7 +82,7 @@ RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
 
 RecoveredBody::RecoveredBody(const TriangleMesh& mesh,
                              const geometry::SurfaceRecognition& recognition)
-    : mesh_(mesh), recognition_(recognition), gap_(recognition.surfaces.size(), 0.0) {
+    : mesh_(mesh), recognition_(recognition), bvh_(mesh), gap_(recognition.surfaces.size(), 0.0) {
   // How far outside its faces the true surface may lie: the largest chord gap of any
   // recognised face (free-form faces are their own surface, gap 0).
   for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
@@ -166,10 +147,7 @@ RecoveredContact RecoveredBody::onSurface(const RecognisedSurface& s, const Eige
 RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
                                                  const Eigen::Isometry3d& X_WH) const {
   if (whole_) return onSurface(*whole_, X_WM, X_WH);  // the body is one closed form
-  const std::vector<int> reaching =
-      reachingFaces(mesh_, heights(mesh_, X_WH.inverse() * X_WM), margin_);
-  std::set<int> touched;
-  for (int f : reaching) touched.insert(recognition_.face_surface[f]);
+  const std::set<int> touched = reachingSurfaces(X_WH.inverse() * X_WM);
   if (touched.empty()) return onMesh(mesh_, X_WM, X_WH, "no face reaches the plane", 0.0);
   std::string reason;
   if (const RecognisedSurface* s = closedFormSurface(touched, reason))
@@ -179,6 +157,32 @@ RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
     if (s >= 0) gap = std::max(gap, gap_[s]);
   if (touched.count(-1)) gap = std::numeric_limits<double>::quiet_NaN();
   return onMesh(mesh_, X_WM, X_WH, reason, gap);
+}
+
+std::set<int> RecoveredBody::reachingSurfaces(const Eigen::Isometry3d& X_HM) const {
+  // Height above the plane of a point p of M: n·p + h0, with n the plane's normal in M.
+  const Eigen::Vector3d n = X_HM.linear().row(2).transpose();
+  const double h0 = X_HM.translation().z();
+  std::set<int> touched;
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const geometry::BvhNode& node = bvh_.nodes()[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    const double lowest = n.dot(node.center) + h0 - n.cwiseAbs().dot(node.halfExtent);
+    if (lowest > margin_) continue;
+    if (!node.isLeaf()) {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+      continue;
+    }
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const int f = bvh_.order()[static_cast<std::size_t>(i)];
+      double low = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) low = std::min(low, n.dot(mesh_.corner(f, k)) + h0);
+      if (low <= margin_) touched.insert(recognition_.face_surface[f]);
+    }
+  }
+  return touched;
 }
 
 RecoveredContact recoveredHalfspaceContact(const TriangleMesh& mesh,

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/bvh.hpp"
 #include "geometry/surface_recognition.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "volume/contact_volume.hpp"
@@ -56,8 +57,13 @@ class RecoveredBody {
   RecoveredContact onSurface(const geometry::RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
                              const Eigen::Isometry3d& X_WH) const;
 
+  /// The surfaces (−1: free-form) of the faces whose lowest vertex is within margin_ of the
+  /// plane or below it, found by descending the tree.
+  std::set<int> reachingSurfaces(const Eigen::Isometry3d& X_HM) const;
+
   const geometry::TriangleMesh& mesh_;
   const geometry::SurfaceRecognition& recognition_;
+  geometry::MeshBvh bvh_;
   std::vector<double> gap_;  ///< per surface: largest chord gap of its faces, m
   double margin_ = 0.0;      ///< the largest gap
   /// The body's whole surface when it is one sphere, or one cylinder and its two ends.
