@@ -10,7 +10,6 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
-#include "io/json_file.hpp"
 #include "io/progress.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
@@ -27,10 +26,12 @@ struct SimulateOptions {
   bool quiet = false;
 };
 
-// summary.json, with the scenario file's absolute path (for `vcontact view`).
-void writeSummary(const std::string& dir, nlohmann::json j, const std::string& scenario) {
+// The CSVs and summary.json, with the scenario file's absolute path (for `vcontact view`),
+// committed together: all appear or none.
+void commitOutput(report::SimulationCsvWriter& writer, const std::string& dir, nlohmann::json j,
+                  const std::string& scenario) {
   j["scenario"] = std::filesystem::absolute(scenario).string();
-  io::writeJson(j, dir + "/summary.json");
+  writer.commit(dir + "/summary.json", j.dump(2) + '\n');
 }
 
 void printSummary(const dynamics::SimulationSummary& s) {
@@ -74,17 +75,15 @@ void runSimulate(const SimulateOptions& o) {
             [&](double t) { progress.update(t); }, summary);
   } catch (const dynamics::SimulationError& e) {
     progress.finish();
-    writer.commit();
-    writeSummary(o.out, report::simulationSummaryJson(summary, e.what(), report::StopInfo{e}),
-                 o.scenario);
+    commitOutput(writer, o.out,
+                 report::simulationSummaryJson(summary, e.what(), report::StopInfo{e}), o.scenario);
     printSummary(summary);
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()
               << "; output up to then is in " << o.out << '\n';
     throw CLI::RuntimeError(kSimulationFailedExitCode);
   }
   progress.finish();
-  writer.commit();
-  writeSummary(o.out, report::simulationSummaryJson(summary, "completed"), o.scenario);
+  commitOutput(writer, o.out, report::simulationSummaryJson(summary, "completed"), o.scenario);
   printSummary(summary);
 }
 

@@ -7,7 +7,6 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
-#include "io/json_file.hpp"
 #include "python/bindings.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
@@ -115,8 +114,8 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
   nlohmann::json j = report::simulationSummaryJson(summary, status, stop);
   j["scenario"] = std::filesystem::absolute(s.path).string();
   if (writer) {
-    writer->commit();  // a stopped run keeps its output, as `vcontact simulate` does
-    io::writeJson(j, *out + "/summary.json");
+    // a stopped run keeps its output, as `vcontact simulate` does; CSVs and summary together
+    writer->commit(*out + "/summary.json", j.dump(2) + '\n');
   }
   py::dict result, b, p;
   for (std::size_t i = 0; i < bodies.size(); ++i)
