@@ -57,6 +57,13 @@ namespace previous {
 
 using vcontact::io::CsvTable;
 
+// Its errors as the project's: the file, then the message.
+struct InputError : std::runtime_error {
+  InputError(const std::string& path, const std::string& what)
+      : std::runtime_error(path + ": " + what) {}
+  explicit InputError(const std::string& what) : std::runtime_error(what) {}
+};
+
 constexpr std::size_t kBlockBytes = std::size_t{1} << 20;  // read size; lines may span blocks
 
 std::string_view trim(std::string_view s) {
@@ -83,7 +90,7 @@ class TableBuilder {
 
   CsvTable finish() {
     if (table_.names.empty()) {
-      throw std::runtime_error("empty file: expected a header line of column names");
+      throw InputError("empty file: expected a header line of column names");
     }
     return std::move(table_);
   }
@@ -93,25 +100,23 @@ class TableBuilder {
   // such, since the generic "missing column" would not say why.
   void header(std::string_view text) {
     if (text.substr(0, 3) == "\xEF\xBB\xBF") {
-      throw std::runtime_error(
-          path_,
-          "line 1: starts with a UTF-8 byte order mark; expected plain text (save "
-          "the CSV as UTF-8 without BOM)");
+      throw InputError(path_,
+                       "line 1: starts with a UTF-8 byte order mark; expected plain text (save "
+                       "the CSV as UTF-8 without BOM)");
     }
     if (text.find(';') != text.npos && text.find(',') == text.npos) {
-      throw std::runtime_error(
-          path_,
-          "line 1: columns are separated by ';'; expected ',' and numbers with a "
-          "decimal point (a CSV written with decimal commas is not read)");
+      throw InputError(path_,
+                       "line 1: columns are separated by ';'; expected ',' and numbers with a "
+                       "decimal point (a CSV written with decimal commas is not read)");
     }
     std::set<std::string> seen;
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = text.find(',', start);
       const std::string name(trim(text.substr(start, comma - start)));
-      if (name.empty()) throw std::runtime_error("line 1: empty column name");
+      if (name.empty()) throw InputError("line 1: empty column name");
       if (!seen.insert(name).second) {
-        throw std::runtime_error("line 1: column '" + name + "' appears twice");
+        throw InputError("line 1: column '" + name + "' appears twice");
       }
       table_.names.push_back(name);
       if (comma == text.npos) break;
@@ -133,7 +138,7 @@ class TableBuilder {
     if (c != n) {
       std::ostringstream os;
       os << "line " << lineNo_ << ": " << c << " fields, but the header names " << n << " columns";
-      throw std::runtime_error(os.str());
+      throw InputError(os.str());
     }
     table_.lineOf.push_back(lineNo_);
   }
@@ -142,10 +147,10 @@ class TableBuilder {
     double x = 0.0;
     const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
     if (f.empty() || ec != std::errc() || end != f.data() + f.size()) {
-      throw std::runtime_error(where(c) + ": '" + std::string(f) + "' is not a number");
+      throw InputError(where(c) + ": '" + std::string(f) + "' is not a number");
     }
     if (!std::isfinite(x)) {
-      throw std::runtime_error(where(c) + ": '" + std::string(f) + "' is not finite");
+      throw InputError(where(c) + ": '" + std::string(f) + "' is not finite");
     }
     table_.columns[c].push_back(x);
   }
@@ -161,7 +166,7 @@ class TableBuilder {
 
 CsvTable readBlockReader(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot be read");
+  if (!in) throw InputError("cannot be read");
   TableBuilder builder(path);
   std::string buffer;  // the unfinished line of the previous block, then this block
   std::vector<char> block(kBlockBytes);
@@ -180,7 +185,7 @@ CsvTable readBlockReader(const std::string& path) {
     read += static_cast<double>(got) / 1e6;
   }
   if (in.bad())
-    throw std::runtime_error("cannot be read (a read error after " + std::to_string(read) + " MB)");
+    throw InputError("cannot be read (a read error after " + std::to_string(read) + " MB)");
   if (!buffer.empty()) builder.line(buffer);
   return builder.finish();
 }
@@ -190,7 +195,7 @@ void checkRanges(const CsvTable& t, const vcontact::io::ColumnLimits& limits) {
   for (std::size_t c = 0; c < t.names.size(); ++c) {
     const double limit = limits(t.names[c]).magnitude;
     for (double x : t.columns[c]) {
-      if (std::abs(x) > limit) throw std::runtime_error("beyond the limit");
+      if (std::abs(x) > limit) throw InputError("beyond the limit");
     }
   }
 }
