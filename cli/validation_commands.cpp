@@ -93,8 +93,19 @@ std::string label(const std::vector<std::string>& effects) {
   return effects.empty() ? std::string("(no effects)") : joined(effects, " + ");
 }
 
-void writeReport(const std::string& dir, const report::ReportInput& report) {
-  report::writeReportHtml(report, dir + "/report.html");
+// A command's files in its --out folder: all of them or none (io::OutputSet), each built only
+// once the ones before it were written.
+void addJson(io::OutputSet& files, const std::string& path, const nlohmann::json& j) {
+  files.add(path, [&](std::ostream& out) { io::putJson(j, out); });
+}
+
+void addResiduals(io::OutputSet& files, const std::string& dir, const validation::Dataset& d,
+                  const validation::Comparison& c) {
+  files.add(dir + "/residuals.csv", [&](std::ostream& out) { report::putResidualsCsv(d, c, out); });
+}
+
+void addReport(io::OutputSet& files, const std::string& dir, const report::ReportInput& report) {
+  files.add(dir + "/report.html", [&](std::ostream& out) { out << report::reportHtml(report); });
 }
 
 // Every parameter held: the model exactly as given.
@@ -112,15 +123,17 @@ void runCompare(const ValidationOptions& o) {
   const validation::FitResult r = asGiven(replayer, noise, in.model);
   printNoise(noise);
   printComparison("model", r.comparison);
-  io::makeOutputFolder(o.out);
-  report::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
-  io::writeJson(report::comparisonJson(r.comparison, noise), o.out + "/compare.json");
-  writeReport(o.out, {"compare",
-                      &d,
-                      noise,
-                      {{label(in.model.effectIds()), &r}},
-                      validation::failureWindows(d, r.comparison, r.prediction),
-                      nullptr});
+  io::OutputSet files(o.out);
+  addResiduals(files, o.out, d, r.comparison);
+  addJson(files, o.out + "/compare.json", report::comparisonJson(r.comparison, noise));
+  addReport(files, o.out,
+            {"compare",
+             &d,
+             noise,
+             {{label(in.model.effectIds()), &r}},
+             validation::failureWindows(d, r.comparison, r.prediction),
+             nullptr});
+  files.commit();
 }
 
 void runFit(const ValidationOptions& o) {
@@ -139,16 +152,18 @@ void runFit(const ValidationOptions& o) {
       std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << '\n';
   }
   printWarnings(r.warnings);
-  io::makeOutputFolder(o.out);
-  io::writeJson(formats::modelToJson(r.model), o.out + "/model.json");
-  io::writeJson(report::fitJson(r, noise, in.loss), o.out + "/fit.json");
-  report::writeResidualsCsv(d, r.comparison, o.out + "/residuals.csv");
-  writeReport(o.out, {"fit",
-                      &d,
-                      noise,
-                      {{"as given", &before}, {"fitted", &r}},
-                      validation::failureWindows(d, r.comparison, r.prediction),
-                      nullptr});
+  io::OutputSet files(o.out);
+  addJson(files, o.out + "/model.json", formats::modelToJson(r.model));
+  addJson(files, o.out + "/fit.json", report::fitJson(r, noise, in.loss));
+  addResiduals(files, o.out, d, r.comparison);
+  addReport(files, o.out,
+            {"fit",
+             &d,
+             noise,
+             {{"as given", &before}, {"fitted", &r}},
+             validation::failureWindows(d, r.comparison, r.prediction),
+             nullptr});
+  files.commit();
 }
 
 // One stage's chi (fitted and held out), its verdict and why.
@@ -213,11 +228,12 @@ void runDiagnose(const ValidationOptions& o) {
               << ", " << w.regime << '\n';
   }
   std::cout << "diagnose took " << seconds << " s\n";
-  io::makeOutputFolder(o.out);
-  io::writeJson(report::diagnosisJson(diag, noise), o.out + "/diagnosis.json");
-  io::writeJson(formats::modelToJson(diag.final().model), o.out + "/model.json");
-  report::writeResidualsCsv(d, diag.final().comparison, o.out + "/residuals.csv");
-  writeReport(o.out, report);
+  io::OutputSet files(o.out);
+  addJson(files, o.out + "/diagnosis.json", report::diagnosisJson(diag, noise));
+  addJson(files, o.out + "/model.json", formats::modelToJson(diag.final().model));
+  addResiduals(files, o.out, d, diag.final().comparison);
+  addReport(files, o.out, report);
+  files.commit();
 }
 
 struct SynthOptions {

@@ -6,6 +6,7 @@
 #include "geometry/error.hpp"
 #include "geometry/surface_recognition.hpp"
 #include "io/json_file.hpp"
+#include "io/output_file.hpp"
 #include "io/shape_spec.hpp"
 #include "report/contact_volume_format.hpp"
 #include "report/depth_map_csv.hpp"
@@ -56,10 +57,10 @@ std::optional<volume::Method> chosenMethod(const VolumeOptions& o, const io::Par
 }
 
 /// The contact by the chosen method; with --field, by a method that samples the δ map (by
-/// default the first the pair allows) and the map.
+/// default the first the pair allows) and the map in `field`.
 volume::ContactPatches compute(const VolumeOptions& o, const io::ParsedShape& a,
                                const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
-                               const Eigen::Isometry3d& X_WB) {
+                               const Eigen::Isometry3d& X_WB, volume::DepthField& field) {
   const volume::QueryOptions query{chosenMethod(o, a, b)};
   if (o.field.empty()) return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query);
   if (query.method && !volume::fillsDepthField(*query.method)) {
@@ -67,11 +68,7 @@ volume::ContactPatches compute(const VolumeOptions& o, const io::ParsedShape& a,
                      "the δ map comes from a method that samples it; use --method " +
                          methodNames([](const auto& row) { return row.fills_depth_field; }));
   }
-  volume::DepthField field;
-  volume::ContactPatches contact =
-      volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
-  report::writeDepthMapCsv(field, o.field);
-  return contact;
+  return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query, &field);
 }
 
 /// --method's help, from the method table.
@@ -122,16 +119,22 @@ void runVolume(const VolumeOptions& o) {
   printWarnings(b.warnings);
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
+  volume::DepthField field;
   std::optional<volume::RecoveredContact> recovered;
   if (o.surface == "recovered") recovered = recoveredContact(o, a, X_WA, b, X_WB);
   const volume::ContactPatches contact =
-      recovered ? volume::singlePatch(recovered->cv) : compute(o, a, X_WA, b, X_WB);
+      recovered ? volume::singlePatch(recovered->cv) : compute(o, a, X_WA, b, X_WB, field);
 
   nlohmann::json j = report::toJson(contact);
   if (recovered) j["surface"] = recoveredJson(*recovered);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
-  if (!o.out.empty()) io::writeJson(j, o.out);
+  io::OutputSet files;  // --field and --out: both files or neither
+  if (!o.field.empty()) {
+    files.add(o.field, [&](std::ostream& out) { report::putDepthMapCsv(field, out); });
+  }
+  if (!o.out.empty()) files.add(o.out, [&](std::ostream& out) { io::putJson(j, out); });
+  files.commit();
   if (o.json) {
     std::cout << j.dump(2) << '\n';
   } else {

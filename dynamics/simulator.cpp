@@ -215,6 +215,7 @@ void Simulator::screenPairs() {
 // ẋ for the bodies (Newton–Euler in W) and the pair states (the models' rates).
 void Simulator::rhs(const State& x, State& dxdt, double t) {
   ++rhs_count_;
+  rhs_t_ = t;
   const std::size_t nb = scenario_.bodies.size();
   for (std::size_t i = 0; i < nb; ++i) {
     kin_[i] = kinematics(x, i, t);
@@ -299,21 +300,31 @@ const char* stopCauseName(StopCause cause) {
       return "step_size_collapse";
     case StopCause::kPenetration:
       return "penetration_beyond_bound";
+    case StopCause::kBlowUp:
+      return "blow_up";
     case StopCause::kIntegratorFailure:
       break;
   }
   return "integrator_failure";
 }
 
-// Failures that stop the run: non-finite state, too deep a penetration.
-void Simulator::check(const State& x, double t) const {
+// The blow-up guard after an accepted step (energy_guard.hpp): O(bodies + pairs).
+void Simulator::checkEnergy(const State& x, double t) {
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
+  const std::string message = energy_guard_->check(guard_kin_, last_pairs_, t);
+  if (!message.empty()) throw SimulationError(t, StopCause::kBlowUp, where(t) + ", " + message);
+}
+
+// Failures that stop the run: non-finite state, too deep a penetration, a blow-up.
+void Simulator::check(const State& x, double t) {
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
     if (offset_[i] < 0) continue;
     for (int j = 0; j < kBodyStates; ++j) {
       if (std::isfinite(x[static_cast<std::size_t>(offset_[i] + j)])) continue;
       throw SimulationError(t, StopCause::kNonFinite,
                             where(t) + ", body '" + scenario_.bodies[i].name +
-                                "': state is not finite (position, attitude or velocity)");
+                                "': state is not finite (position, attitude or velocity)" +
+                                non_finite_effect_);
     }
   }
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
@@ -333,6 +344,7 @@ void Simulator::check(const State& x, double t) const {
       throw SimulationError(t, StopCause::kPenetration, s.str());
     }
   }
+  checkEnergy(x, t);
 }
 
 // ", pair 'name' (normal force F N)" for the pair with the largest normal force at the latest
@@ -410,7 +422,7 @@ SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
   std::ostringstream s;
   if (e.rhsFailed()) {
     s << where(t) << ", " << non_finite_ << ": the rate of change is not finite at every step "
-      << "size tried, down to " << std::abs(e.stepSize()) << " s";
+      << "size tried, down to " << std::abs(e.stepSize()) << " s" << non_finite_effect_;
     return SimulationError(t, StopCause::kNonFinite, s.str());
   }
   s << where(t) << stiffestPair() << ": the implicit (BDF) integrator stopped at step size "
@@ -437,11 +449,15 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     summary.contact_evaluations = contact_count_ - contacts_start;
   };
 
+  non_finite_effect_.clear();
   State x = x0_;
   State dxdt(x.size());
   rhs(x, dxdt, t);
   settle(x, t);
   rhs(x, dxdt, t);
+  guard_kin_.resize(scenario_.bodies.size());
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
+  energy_guard_.emplace(scenario_, guard_kin_, last_pairs_);
   output(snapshot(x, t));
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {

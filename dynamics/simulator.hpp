@@ -18,14 +18,17 @@
 // that moves the payload's pose (misalignment) are always queried.
 //
 // Either run stops with a SimulationError naming time, pair or body and the quantity on: a
-// non-finite state or rate, a mean penetration V/A beyond a set fraction of a body, or a step
-// size below the minimum (or another failure of CVODE, in words).
+// non-finite state or rate, a mean penetration V/A beyond a set fraction of a body, a step
+// size below the minimum (or another failure of CVODE, in words), or kinetic energy far beyond
+// what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "dynamics/energy_guard.hpp"
 #include "dynamics/patch_tracker.hpp"
 #include "dynamics/scenario.hpp"
 #include "geometry/broad_phase.hpp"
@@ -37,13 +40,15 @@ class BdfError;
 
 /// Why a run stopped, for a program reading its summary (the message says it in words).
 enum class StopCause {
-  kNonFinite,         ///< a state or its rate is NaN or infinite
-  kStepCollapse,      ///< the step size fell below SimulationSettings::min_step
-  kPenetration,       ///< a pair's mean penetration exceeds max_penetration_fraction
-  kIntegratorFailure  ///< another failure of the integrator (CVODE), in its words
+  kNonFinite,          ///< a state or its rate is NaN or infinite
+  kStepCollapse,       ///< the step size fell below SimulationSettings::min_step
+  kPenetration,        ///< a pair's mean penetration exceeds max_penetration_fraction
+  kIntegratorFailure,  ///< another failure of the integrator (CVODE), in its words
+  kBlowUp              ///< the free bodies gained energy no input gave them (energy_guard.hpp)
 };
 
-/// "non_finite_state", "step_size_collapse", "penetration_beyond_bound", "integrator_failure".
+/// "non_finite_state", "step_size_collapse", "penetration_beyond_bound", "integrator_failure",
+/// "blow_up".
 const char* stopCauseName(StopCause cause);
 
 class SimulationError : public std::runtime_error {
@@ -139,6 +144,7 @@ class Simulator {
   void evaluatePatches(std::size_t k, const volume::ContactPatches& contact, const State& x,
                        State& dxdt);
   void addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, const Wrench& w);
+  void noteNonFinite(std::size_t k, const volume::ContactVolume& cv, const ContactResult& r);
   void countPatches(const Snapshot& s, SimulationSummary& summary, long& samples,
                     long& total) const;
   void bodyRates(std::size_t i, const State& x, State& dxdt) const;
@@ -149,7 +155,8 @@ class Simulator {
   bool settle(State& x, double t);
   bool settlePairs(State& x, double t);
   double normaliseQuaternions(State& x) const;
-  void check(const State& x, double t) const;
+  void check(const State& x, double t);
+  void checkEnergy(const State& x, double t);
   std::string stiffestPair() const;
   std::string stateOwner(std::size_t index) const;
   SimulationError stepCollapse(double t, double h, const std::string& detail) const;
@@ -170,7 +177,9 @@ class Simulator {
   State last_x_;  ///< the state of the latest right-hand-side evaluation
   // The per-pair contacts of the latest right-hand-side evaluation (at last_x_).
   std::vector<PairOutput> last_pairs_;
-  std::vector<volume::DepthField> fields_;  ///< δ maps of the distributed-friction pairs
+  std::optional<EnergyGuard> energy_guard_;  ///< set by run() from the state at t = 0
+  std::vector<BodyKinematics> guard_kin_;    ///< checkEnergy()'s scratch
+  std::vector<volume::DepthField> fields_;   ///< δ maps of the distributed-friction pairs
   /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
   /// the fast method's leaf pairs while the bodies move less than its reach).
   std::vector<volume::ContactCache> caches_;
@@ -187,6 +196,9 @@ class Simulator {
   bool any_screened_ = false;
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
   std::string non_finite_;  ///< the state whose rate was last found not finite
+  /// The first effect whose wrench was not finite at a finite contact, and when ("" if none).
+  std::string non_finite_effect_;
+  double rhs_t_ = 0.0;  ///< s, the time of the right-hand side being evaluated
   long rhs_count_ = 0;
   long contact_count_ = 0;
 };

@@ -2,6 +2,8 @@
 // bodies and the discrete updates of its patches' states (simulator.hpp).
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 #include "dynamics/simulator.hpp"
 #include "geometry/error.hpp"
@@ -83,6 +85,26 @@ void Simulator::addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, c
   torque_[pair.b] -= w.tau_W + (p_c - kin_[pair.b].p_WBcm).cross(w.f_W);
 }
 
+// The first effect whose wrench is not finite although its contact is (a formula without a
+// value at this state, such as the root of a negative number): named in the message of a
+// non-finite stop, with the time it was first seen, since by the stop every quantity is NaN.
+void Simulator::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
+                              const ContactResult& r) {
+  const auto finite = [](const Wrench& w) { return w.f_W.allFinite() && w.tau_W.allFinite(); };
+  if (!non_finite_effect_.empty() || finite(r.wrench)) return;
+  if (!std::isfinite(cv.volume) || !cv.p_WC.allFinite() || !cv.n_W.allFinite()) return;
+  const std::vector<std::string> ids = scenario_.pairs[k].model.effectIds();
+  std::string effect;
+  for (std::size_t i = 0; i < r.shares.size() && i < ids.size() && effect.empty(); ++i) {
+    if (!finite(r.shares[i])) effect = ", effect '" + ids[i] + "'";
+  }
+  std::ostringstream s;
+  s.precision(9);
+  s << "; first non-finite force: pair '" << scenario_.pairs[k].name << "'" << effect
+    << " at t = " << rhs_t_ << " s with a finite contact (V = " << cv.volume << " m^3)";
+  non_finite_effect_ = s.str();
+}
+
 // Pair k's contact and model: its wrench into force_ and torque_, its state rates into dxdt.
 // A one-slot pair evaluates its single-region contact (the aggregate) with slot 0.
 void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
@@ -104,6 +126,7 @@ void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
   const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], p_c);
   pair.model.evaluate(out.cv, motion, out.state, out.result,
                       distributed && out.cv.inContact() ? &fields_[k] : nullptr);
+  noteNonFinite(k, out.cv, out.result);
   addWrench(pair, p_c, out.result.wrench);
   out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
 }
@@ -131,6 +154,7 @@ void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& con
     p.state = PairState::unpack(&x[base + std::size_t(m.host[i] * size)], size);
     const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], p.cv.p_WC);
     pair.model.evaluate(p.cv, motion, p.state, p.result);
+    noteNonFinite(k, p.cv, p.result);
     addWrench(pair, p.cv.p_WC, p.result.wrench);
     if (p.slot >= 0) p.result.rates.pack(&dxdt[base + std::size_t(p.slot * size)], size);
   }

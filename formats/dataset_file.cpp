@@ -43,30 +43,19 @@ std::string requireString(const json& j, const std::string& key, const std::stri
 using Table = io::CsvTable;
 
 // The largest magnitude a column may hold (io/input_ranges.hpp) and its unit; a column of
-// another name (a quaternion part, an extra column) is only checked finite.
-std::pair<double, const char*> columnLimit(const std::string& name) {
+// another name (a quaternion part, an extra column) is only checked finite. The table reader
+// checks every value as it reads it.
+io::ColumnLimit columnLimit(const std::string& name) {
   if (name == "t") return {io::kMaxTime, "s"};
   if (name == "x" || name == "y" || name == "z") return {io::kMaxPosition, "m"};
   if (name == "vx" || name == "vy" || name == "vz") return {io::kMaxSpeed, "m/s"};
   if (name == "wx" || name == "wy" || name == "wz") return {io::kMaxAngularSpeed, "rad/s"};
   if (name == "fx" || name == "fy" || name == "fz") return {io::kMaxForce, "N"};
   if (name == "tx" || name == "ty" || name == "tz") return {io::kMaxTorque, "N m"};
-  return {HUGE_VAL, ""};
+  return {};
 }
 
-// Every value of the table within its column's limit (columnLimit).
-void checkRanges(const Table& t, const std::string& path) {
-  for (std::size_t c = 0; c < t.names.size(); ++c) {
-    const auto [limit, unit] = columnLimit(t.names[c]);
-    for (std::size_t i = 0; i < t.rowCount(); ++i) {
-      if (!(std::abs(t.columns[c][i]) > limit)) continue;
-      std::ostringstream os;
-      os << "line " << t.lineOf[i] << ", column '" << t.names[c] << "': " << t.columns[c][i]
-         << " is beyond +-" << limit << " " << unit << " (io/input_ranges.hpp)";
-      throw InputError(path, os.str());
-    }
-  }
-}
+io::CsvTable readTable(const std::string& path) { return io::readCsvTable(path, columnLimit); }
 
 std::size_t columnIndex(const Table& t, const std::string& name) {
   return static_cast<std::size_t>(std::find(t.names.begin(), t.names.end(), name) -
@@ -111,7 +100,6 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
     throw InputError(path, "only " + std::to_string(t.rowCount()) + " samples; at least " +
                                std::to_string(kMinimumSamples) + " are needed");
   }
-  checkRanges(t, path);
   const bool hasV = hasTriple(t, path, {"vx", "vy", "vz"});
   const bool hasW = hasTriple(t, path, {"wx", "wy", "wz"});
   for (std::size_t c = 0; c < t.names.size(); ++c) {
@@ -234,7 +222,7 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   if (std::holds_alternative<geometry::HalfSpace>(d.payload)) {
     throw InputError(where + ": payload", "the payload must be a bounded body, not a half-space");
   }
-  fillSamples(io::readCsvTable(d.dataPath), d.dataPath, d);
+  fillSamples(readTable(d.dataPath), d.dataPath, d);
   readOutputsAndNoise(j, where, d.dataPath, d);
   if (d.velocityFromPositions) {
     result.warnings.push_back(d.dataPath +
@@ -253,7 +241,7 @@ MotionReadResult readMotionCsv(const std::string& path) {
   MotionReadResult result;
   validation::Dataset& d = result.dataset;
   d.dataPath = path;
-  fillSamples(io::readCsvTable(path), path, d, /*needWrench=*/false);
+  fillSamples(readTable(path), path, d, /*needWrench=*/false);
   for (const auto& c : validation::kWrenchColumns) d.columns.erase(c);  // a motion measures nothing
   const char* names[] = {"vx", "vy", "vz", "wx", "wy", "wz"};
   for (int k = 0; k < 6; ++k) {
@@ -308,9 +296,11 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
   for (const auto& n : names) {
     if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
   }
-  // The table first: a sidecar is only left behind with a complete table beside it.
-  io::writeFile(csv.string(), [&](std::ostream& out) { putTable(d, names, out); });
-  io::writeJson(j, sidecar.string());
+  // Both files or neither: a sidecar never names a missing or half-written table.
+  io::OutputSet files;
+  files.add(csv.string(), [&](std::ostream& out) { putTable(d, names, out); });
+  files.add(sidecar.string(), [&](std::ostream& out) { io::putJson(j, out); });
+  files.commit();
 }
 
 }  // namespace vcontact::formats

@@ -129,8 +129,10 @@ nlohmann::json readJsonFile(const std::string& path) {
   }
 }
 
+void putJson(const nlohmann::json& j, std::ostream& out) { out << j.dump(2) << '\n'; }
+
 void writeJson(const nlohmann::json& j, const std::string& path) {
-  const std::string text = j.dump(2) + '\n';
+  const std::string text = j.dump(2) + '\n';  // dumped first: nothing opened for a bad value
   writeFile(path, [&](std::ostream& out) { out << text; });
 }
 

@@ -3,6 +3,7 @@
 // same way.
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 
 namespace vcontact::io {
@@ -14,6 +15,9 @@ namespace vcontact::io {
 ///         "is a folder", "not valid JSON (byte N): …", or "KEY.PATH: …" for a repeated key
 ///         or an out-of-range number
 nlohmann::json readJsonFile(const std::string& path);
+
+/// Puts `j` on `out` as writeJson writes it (for a file of an io::OutputSet).
+void putJson(const nlohmann::json& j, std::ostream& out);
 
 /// Writes `j` with two-space indentation and a final newline.
 /// @throws InputError naming `path` when it cannot be opened for writing

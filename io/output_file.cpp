@@ -51,6 +51,7 @@ OutputFile::OutputFile(std::string path, std::ios::openmode mode) : path_(std::m
   std::error_code ec;
   if (fs::is_directory(target, ec)) throw InputError(path_, "is a folder; expected a file path");
   if (isSpecialFile(target)) {
+    in_place_ = true;
     errno = 0;
     out_.open(path_, mode | std::ios::out | std::ios::trunc);
     if (!out_) throw InputError(path_, "cannot open for writing" + reason(errno));
@@ -74,7 +75,8 @@ OutputFile::OutputFile(std::string path, std::ios::openmode mode) : path_(std::m
 OutputFile::OutputFile(OutputFile&& other) noexcept
     : path_(std::move(other.path_)),
       temp_(std::exchange(other.temp_, std::string())),
-      out_(std::move(other.out_)) {}
+      out_(std::move(other.out_)),
+      in_place_(other.in_place_) {}
 
 OutputFile::~OutputFile() { discard(); }
 
@@ -96,7 +98,8 @@ void OutputFile::check() {
   if (!out_) fail("write failed");
 }
 
-void OutputFile::commit() {
+void OutputFile::close() {
+  if (!out_.is_open()) return;
   check();  // a write that failed already: its errno is still the reason
   errno = 0;
   out_.flush();
@@ -104,7 +107,11 @@ void OutputFile::commit() {
   errno = 0;
   out_.close();
   if (out_.fail()) fail("write failed on closing the file");
-  if (temp_.empty()) return;  // written in place
+}
+
+void OutputFile::commit() {
+  close();
+  if (temp_.empty()) return;  // written in place, or committed already
   std::error_code ec;
   fs::rename(temp_, path_, ec);
   if (ec) {
@@ -112,6 +119,70 @@ void OutputFile::commit() {
     fail("cannot replace the file with the finished temporary");
   }
   temp_.clear();
+}
+
+OutputSet::OutputSet(const std::string& dir) {
+  std::error_code ec;
+  for (fs::path p(dir); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    created_.insert(created_.begin(), p.string());
+    if (p == p.parent_path()) break;
+  }
+  makeOutputFolder(dir);
+}
+
+// An uncommitted set (a failure, an exception while its content was built) leaves no folder
+// it made; fs::remove takes only empty ones, so a file someone else put there stays.
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  files_.clear();
+  std::error_code ec;
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) fs::remove(*it, ec);
+}
+
+std::ostream& OutputSet::open(const std::string& path, std::ios::openmode mode) {
+  files_.emplace_back(path, mode);
+  return files_.back().stream();
+}
+
+void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& fill,
+                    std::ios::openmode mode) {
+  fill(open(path, mode));
+  check();  // a failed write gives up the set now, not after the rest is built
+}
+
+void OutputSet::check() {
+  for (OutputFile& f : files_) {
+    if (f.stream()) continue;
+    try {
+      f.check();
+    } catch (...) {
+      files_.clear();
+      throw;
+    }
+  }
+}
+
+void OutputSet::commit() {
+  try {
+    for (OutputFile& f : files_) f.close();
+  } catch (...) {
+    files_.clear();  // the temporaries go with them
+    throw;
+  }
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    try {
+      files_[i].commit();
+    } catch (...) {
+      std::error_code ec;
+      for (std::size_t j = 0; j < i; ++j) {
+        if (!files_[j].inPlace()) fs::remove(files_[j].path(), ec);
+      }
+      files_.clear();
+      throw;
+    }
+  }
+  files_.clear();
+  committed_ = true;
 }
 
 void writeFile(const std::string& path, const std::function<void(std::ostream&)>& fill,

@@ -8,10 +8,12 @@
 // A target that exists and is neither a regular file nor a folder (a device such as /dev/null
 // or /dev/full, a pipe) is written in place, still with every write checked.
 
+#include <deque>
 #include <fstream>
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace vcontact::io {
 
@@ -32,10 +34,16 @@ class OutputFile {
   std::ostream& stream() { return out_; }
   /// @throws InputError naming the target when a write so far failed (the temporary is deleted)
   void check();
-  /// Flushes, closes and renames onto the target.
+  /// Flushes and closes the temporary, checking both; the file is then whole but not yet in
+  /// place (commit() renames it). Does nothing when already closed.
+  /// @throws InputError naming the target when a write or the close failed
+  void close();
+  /// close(), then renames onto the target.
   /// @throws InputError naming the target when a write, the close or the rename failed
   void commit();
   const std::string& path() const { return path_; }
+  /// Whether the target is written in place (a device or pipe): no temporary, no rename.
+  bool inPlace() const { return in_place_; }
 
  private:
   [[noreturn]] void fail(const std::string& what);
@@ -44,6 +52,42 @@ class OutputFile {
   std::string path_;  ///< the target
   std::string temp_;  ///< the temporary beside it; empty when writing in place or committed
   std::ofstream out_;
+  bool in_place_ = false;
+};
+
+/// Several files that belong together (a command's outputs): all appear, or none. Each is an
+/// OutputFile; commit() first closes every one, checking its writes, and only when all are
+/// whole renames them onto their names. A failure before the renames deletes every temporary
+/// and leaves every target as it was. A rename that fails after others succeeded (the folder
+/// vanished or changed under the run) deletes the files already renamed, so that no partial
+/// set is left, and throws naming the file that failed.
+class OutputSet {
+ public:
+  OutputSet() = default;
+  /// A set of files in the folder `dir`, created (with its parents) when missing; a set that
+  /// fails removes the folders it created again (those left empty).
+  /// @throws InputError naming `dir` when it cannot be created or is a file
+  explicit OutputSet(const std::string& dir);
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  /// Opens the next file's temporary (OutputFile's constructor and its errors).
+  std::ostream& open(const std::string& path, std::ios::openmode mode = std::ios::out);
+  /// Writes what `fill` puts on a new file's stream.
+  void add(const std::string& path, const std::function<void(std::ostream&)>& fill,
+           std::ios::openmode mode = std::ios::out);
+  /// @throws InputError naming the first file whose write failed so far; the whole set is
+  ///         given up then (every temporary deleted)
+  void check();
+  /// @throws InputError naming the first file whose write, close or rename failed; nothing of
+  ///         the set is left then
+  void commit();
+
+ private:
+  std::deque<OutputFile> files_;      ///< a deque: the streams open() returned stay where they are
+  std::vector<std::string> created_;  ///< folders the constructor made, the deepest last
+  bool committed_ = false;
 };
 
 /// Writes what `fill` puts on the stream to `path` through an OutputFile.

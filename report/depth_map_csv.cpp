@@ -6,9 +6,7 @@
 
 namespace vcontact::report {
 
-namespace {
-
-void putDepthMap(const volume::DepthField& field, std::ostream& f) {
+void putDepthMapCsv(const volume::DepthField& field, std::ostream& f) {
   f.precision(17);
   f << "x_m,y_m,z_m,delta_m\n";
   for (std::size_t i = 0; i < field.depth.size(); ++i) {
@@ -17,10 +15,8 @@ void putDepthMap(const volume::DepthField& field, std::ostream& f) {
   }
 }
 
-}  // namespace
-
 void writeDepthMapCsv(const volume::DepthField& field, const std::string& path) {
-  io::writeFile(path, [&](std::ostream& f) { putDepthMap(field, f); });
+  io::writeFile(path, [&](std::ostream& f) { putDepthMapCsv(field, f); });
 }
 
 }  // namespace vcontact::report

@@ -71,31 +71,23 @@ std::string fileSafe(const std::string& name) {
   return s;
 }
 
-io::OutputFile& SimulationCsvWriter::open(const std::string& path) {
+std::ostream& SimulationCsvWriter::open(const std::string& path) {
   files_.push_back(path);
-  return files_out_.emplace_back(path);
+  return set_.open(path);
 }
 
 SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                                          const formats::OutputSelection& outputs)
-    : scenario_(scenario), outputs_(outputs) {
-  io::makeOutputFolder(dir);
+    : scenario_(scenario), outputs_(outputs), set_(dir) {
   const std::filesystem::path base(dir);
-  // Every OutputFile first, the pointers after: files_out_ does not move once filled.
-  std::size_t count = outputs_.bodies ? 1 : 0;
-  for (const auto& pair : scenario.pairs) {
-    if (outputs_.pairs) count += dynamics::patchSlots(scenario, pair) < 2 ? 1 : 2;
-  }
-  files_out_.reserve(count);
   if (outputs_.bodies) {
     bodies_ = &open((base / "bodies.csv").string());
-    bodies_->stream() << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+    *bodies_ << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
   }
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
     std::ostream& f =
-        pairs_.emplace_back(&open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()))
-            ->stream();
+        *pairs_.emplace_back(&open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
     f << "t";
     putContactHeader(f, pair);
     if (outputs_.shares) {
@@ -108,7 +100,7 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
     patches_.push_back(nullptr);
     if (dynamics::patchSlots(scenario, pair) < 2) continue;
     patches_.back() = &open((base / ("pair_" + fileSafe(pair.name) + "_patches.csv")).string());
-    std::ostream& g = patches_.back()->stream();
+    std::ostream& g = *patches_.back();
     g << "t,patch,slot";
     putContactHeader(g, pair);
     g << '\n';
@@ -127,7 +119,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
       put(row, q.vec());
       put(row, k.pointVelocity(k.X_WB.translation()));
       put(row, k.w_WB);
-      bodies_->stream() << row << '\n';
+      *bodies_ << row << '\n';
     }
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -141,8 +133,8 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
         put(row, share.tau_W);
       }
     }
-    pairs_[k]->stream() << row << '\n';
-    if (patches_[k]) writePatches(s.t, p, state_size, patches_[k]->stream());
+    *pairs_[k] << row << '\n';
+    if (patches_[k]) writePatches(s.t, p, state_size, *patches_[k]);
   }
   checkWrites();
 }
@@ -160,26 +152,21 @@ void SimulationCsvWriter::writePatches(double t, const dynamics::PairOutput& p, 
 }
 
 // On a failed write every file is given up, not only the one that failed: a run's files
-// belong together. Destroying the OutputFiles deletes their temporaries.
+// belong together (io::OutputSet).
 void SimulationCsvWriter::checkWrites() {
-  for (io::OutputFile& f : files_out_) {
-    if (f.stream()) continue;
-    try {
-      f.check();
-    } catch (...) {
-      files_out_.clear();
-      pairs_.clear();
-      patches_.clear();
-      bodies_ = nullptr;
-      throw;
-    }
+  try {
+    set_.check();
+  } catch (...) {
+    pairs_.clear();
+    patches_.clear();
+    bodies_ = nullptr;
+    throw;
   }
 }
 
-void SimulationCsvWriter::commit() {
-  for (io::OutputFile& f : files_out_) f.stream().flush();
-  checkWrites();
-  for (io::OutputFile& f : files_out_) f.commit();
+void SimulationCsvWriter::commit(const std::string& extraPath, const std::string& extraText) {
+  if (!extraPath.empty()) set_.add(extraPath, [&](std::ostream& out) { out << extraText; });
+  set_.commit();
 }
 
 std::uint64_t outputRowCount(const dynamics::Scenario& scenario,

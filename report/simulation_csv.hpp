@@ -19,33 +19,36 @@ namespace vcontact::report {
 class SimulationCsvWriter {
  public:
   /// Creates `dir` if needed and writes the headers to temporaries beside the final files
-  /// (io/output_file.hpp). @throws InputError when a file cannot be created
+  /// (io/output_file.hpp: an io::OutputSet, all files or none). @throws InputError when a
+  /// file cannot be created
   SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                       const formats::OutputSelection& outputs);
 
   /// Appends one row per body and per pair.
   /// @throws InputError naming the file when a write failed (all temporaries are deleted)
   void write(const dynamics::Snapshot& snapshot);
-  /// Completes the files: the rows written so far, under their final names. A run that
-  /// stopped with an error commits too, so its output up to the stop is kept.
-  /// @throws InputError naming the file when a write or the close failed
-  void commit();
+  /// Completes the files: the rows written so far, under their final names, together with
+  /// the file `extraPath` holding `extraText` when one is named (the run's summary.json). A
+  /// run that stopped with an error commits too, so its output up to the stop is kept.
+  /// @throws InputError naming the file when a write, the close or the rename failed; no file
+  ///         of the run is left then
+  void commit(const std::string& extraPath = "", const std::string& extraText = "");
 
   /// The files written, for the summary.
   const std::vector<std::string>& files() const { return files_; }
 
  private:
-  io::OutputFile& open(const std::string& path);
+  std::ostream& open(const std::string& path);
   void checkWrites();
   void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ostream& f);
 
   const dynamics::Scenario& scenario_;
   formats::OutputSelection outputs_;
   /// bodies.csv (when selected) first, then each pair's file and its patch file
-  std::vector<io::OutputFile> files_out_;
-  io::OutputFile* bodies_ = nullptr;
-  std::vector<io::OutputFile*> pairs_;
-  std::vector<io::OutputFile*> patches_;  ///< per pair, its patch file; null when it has none
+  io::OutputSet set_;
+  std::ostream* bodies_ = nullptr;
+  std::vector<std::ostream*> pairs_;
+  std::vector<std::ostream*> patches_;  ///< per pair, its patch file; null when it has none
   std::vector<std::string> files_;
 };
 

@@ -3,7 +3,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "io/json_file.hpp"
 #include "report/simulation_csv.hpp"
 
 namespace vcontact::report {
@@ -36,9 +35,8 @@ nlohmann::json finishSimulationOutput(SimulationCsvWriter& writer, const std::st
                                       const dynamics::SimulationSummary& summary,
                                       const std::string& scenario_path,
                                       const std::optional<StopInfo>& stop) {
-  writer.commit();
   nlohmann::json j = simulationSummaryJson(summary, scenario_path, stop);
-  io::writeJson(j, dir + "/summary.json");
+  writer.commit(dir + "/summary.json", j.dump(2) + '\n');  // all the run's files, or none
   return j;
 }
 

@@ -30,9 +30,9 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& summary,
                                      const std::string& scenario_path,
                                      const std::optional<StopInfo>& stop = std::nullopt);
 
-/// Ends a run's output: commits the CSVs under their final names (a stopped run keeps its rows
-/// up to the stop), then writes `dir`/summary.json. Returns the summary written.
-/// @throws InputError naming the file when a write failed
+/// Ends a run's output: the CSVs and `dir`/summary.json under their final names together (a
+/// stopped run keeps its rows up to the stop). Returns the summary written.
+/// @throws InputError naming the file when a write failed; no file of the run is left then
 nlohmann::json finishSimulationOutput(SimulationCsvWriter& writer, const std::string& dir,
                                       const dynamics::SimulationSummary& summary,
                                       const std::string& scenario_path,

@@ -7,7 +7,6 @@
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
-#include "io/output_file.hpp"
 
 namespace vcontact::report {
 namespace {
@@ -116,7 +115,9 @@ json whereJson(const validation::DiagnosisStage& s) {
   return where;
 }
 
-void putResiduals(const validation::Dataset& d, const Comparison& c, std::ostream& out) {
+}  // namespace
+
+void putResidualsCsv(const validation::Dataset& d, const Comparison& c, std::ostream& out) {
   out.precision(std::numeric_limits<double>::max_digits10);
   out << "t";
   for (const auto& o : c.outputs) {
@@ -133,12 +134,6 @@ void putResiduals(const validation::Dataset& d, const Comparison& c, std::ostrea
     }
     out << '\n';
   }
-}
-
-}  // namespace
-
-void writeResidualsCsv(const validation::Dataset& d, const Comparison& c, const std::string& path) {
-  io::writeFile(path, [&](std::ostream& out) { putResiduals(d, c, out); });
 }
 
 json comparisonJson(const Comparison& c, const validation::NoiseLevels& noise) {

@@ -3,6 +3,7 @@
 // diagnosis.json, fitted model files and synthetic datasets (DATASET.md format).
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 
 #include "validation/diagnose.hpp"
@@ -12,8 +13,8 @@
 namespace vcontact::report {
 
 /// residuals.csv: t, then per output measured, predicted, residual, residual/σ.
-void writeResidualsCsv(const validation::Dataset& dataset, const validation::Comparison& comparison,
-                       const std::string& path);
+void putResidualsCsv(const validation::Dataset& dataset, const validation::Comparison& comparison,
+                     std::ostream& out);
 
 /// {"chi", "rms": {output: …}, "sigma": {output: {"value", "source"}}, "samples", "residuals"}
 nlohmann::json comparisonJson(const validation::Comparison& comparison,

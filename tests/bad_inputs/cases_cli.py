@@ -79,4 +79,26 @@ CASES = [
         ["--field"], outputs=["f.csv"]),
     cli("simulate_out_is_a_file", ["simulate", "{assets}/scenarios/ball_drop.json", "--out",
                                    "taken", "--quiet"], ["taken"], files={"taken": "x"}),
+    # A command's files appear together or not at all (io::OutputSet): the last one cannot be
+    # written, and none of those before it is left.
+    cli("volume_json_to_dev_full", ["volume", "{assets}/meshes/ball_r10mm.stl", "halfspace",
+                                    "--pose-a",
+                                    "0,0,0.0095", "--method", "columns", "--field", "f.csv",
+                                    "--out", "/dev/full"],
+        ["/dev/full", "No space left on device"], outputs=["f.csv"]),
+] + [
+    cli("%s_report_path_is_a_folder" % command,
+        [command, "{assets}/datasets/impacts.json", "--model",
+         "{assets}/datasets/models/impacts-truth.model.json", "--out", "out", "--starts", "0",
+         "--max-iterations", "1"][:6 if command == "compare" else 10],
+        ["out/report.html", "is a folder"], folders=["out/report.html"],
+        outputs=["out/" + f for f in files])
+    for command, files in (("compare", ["residuals.csv", "compare.json"]),
+                           ("fit", ["model.json", "fit.json", "residuals.csv"]),
+                           ("diagnose", ["diagnosis.json", "model.json", "residuals.csv"]))
+] + [
+    cli("synth_sidecar_is_a_folder", ["synth", "--profile", "impacts", "--model",
+                                      "{assets}/datasets/models/impacts-truth.model.json",
+                                      "--samples", "200", "--out", "d.json"],
+        ["d.json", "is a folder"], folders=["d.json"], outputs=["d.csv"]),
 ]

@@ -53,6 +53,18 @@ def deleter(*path):
     return change
 
 
+def stopping_scene(effects, **extra):
+    """A steel ball 0.5 mm above a plate for 50 ms, under the model of `effects`."""
+    s = {"format": "vcontact.scenario/1", "duration": 0.05, "output_rate": 1000,
+         "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
+                    {"name": "ball", "shape": "sphere:0.01", "density": 7900,
+                     "pose": "0,0,0.0105"}],
+         "pairs": [{"a": "ball", "b": "plate", "method": "analytic",
+                    "model": {"format": "vcontact.model/1", "effects": effects}}]}
+    s.update(extra)
+    return s
+
+
 BALL = ("bodies", 1)
 PAIR = ("pairs", 0)
 
@@ -157,4 +169,19 @@ CASES = [
          ["missing.json", "no such file"], outputs=["out"]),
     Case("scenario/folder_given", ["simulate", "scenes", "--out", "out", "--quiet"],
          ["scenes", "folder"], folders=["scenes"], outputs=["out"]),
+] + [
+    # Runs that stop (exit 3) keep their output; the message names the time and the body.
+    Case("scenario/stops_on_nan_from_an_expression",
+         ["simulate", "scene.json", "--out", "out", "--quiet"],
+         ["simulation stopped: t = ", "'ball'", "not finite"], code=3,
+         files=lambda assets: {"scene.json": json.dumps(stopping_scene({
+             "stiffness": {"kv": 5.17e12},
+             "root_damping": {"kind": "expression", "normal": "c*sqrt(ddot)", "parameters": {
+                 "c": {"value": 1, "unit": "N s^0.5/m^0.5", "lower": 0, "upper": 1000}}}}))}),
+    Case("scenario/stops_on_blow_up",
+         ["simulate", "scene.json", "--out", "out", "--quiet"],
+         ["simulation stopped: t = ", "body 'ball'", "kinetic energy"], code=3,
+         files=lambda assets: {"scene.json": json.dumps(stopping_scene(
+             {"stiffness": {"kv": 1e18}}, integrator="bdf",
+             tolerances={"abs": 1e-2, "rel": 1e-2}))}),
 ]

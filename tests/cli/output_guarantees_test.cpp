@@ -212,16 +212,21 @@ TEST(OutputGuarantees, SimulationRowsBeyondTheLimitAreRefused) {
 
 // ---- stopped simulations -------------------------------------------------------------------
 
-// A steel ball 0.5 mm above a plate; the contact model's stiffness kv (N/m³) and the
-// scenario's `extra` keys are the test's.
-std::string ballScenario(const std::string& kv, const std::string& extra) {
+// A steel ball 0.5 mm above a plate; the contact model's `effects` (JSON object members) and
+// the scenario's `extra` keys are the test's.
+std::string ballScenarioWith(const std::string& effects, const std::string& extra) {
   return R"({"format": "vcontact.scenario/1", "duration": 0.05, "output_rate": 1000, )" + extra +
          R"(
     "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
                {"name": "ball", "shape": "sphere:0.01", "density": 7900, "pose": "0,0,0.0105"}],
     "pairs": [{"a": "ball", "b": "plate", "method": "analytic",
-               "model": {"format": "vcontact.model/1", "effects": {"stiffness": {"kv": )" +
-         kv + "}}}}]}";
+               "model": {"format": "vcontact.model/1", "effects": {)" +
+         effects + "}}}]}";
+}
+
+// The same with the stiffness kv (N/m³) alone.
+std::string ballScenario(const std::string& kv, const std::string& extra) {
+  return ballScenarioWith(R"("stiffness": {"kv": )" + kv + "}", extra);
 }
 
 // Every line of `csv` has as many fields as its header, each a finite number (the body name
@@ -249,8 +254,10 @@ double lastCompleteTime(const fs::path& csv) {
   return t;
 }
 
-// Runs the scenario, expects exit 3 and the summary's stop: cause, time after the last row.
-void expectStopped(const std::string& name, const std::string& scenario, const std::string& cause) {
+// Runs the scenario, expects exit 3 and the summary's stop: cause, time after the last row,
+// and the message (standard error and "status") holding each of `named` (the body, pair...).
+void expectStopped(const std::string& name, const std::string& scenario, const std::string& cause,
+                   const std::vector<std::string>& named = {}, double touch = 0.010) {
   const fs::path dir = scratch(name);
   std::ofstream(dir / "s.json") << scenario;
   const CommandResult r =
@@ -262,10 +269,15 @@ void expectStopped(const std::string& name, const std::string& scenario, const s
   const double stopped = summary.at("stopped_at_s").get<double>();
   EXPECT_GT(stopped, 0.0);
   EXPECT_EQ(summary.at("simulated_time_s").get<double>(), stopped);
+  for (const std::string& n : named) {
+    EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
+    EXPECT_NE(summary.at("status").get<std::string>().find(n), std::string::npos) << summary.dump();
+  }
   for (const char* csv : {"bodies.csv", "pair_ball-plate.csv"}) {
     const double last = lastCompleteTime(dir / "out" / csv);
-    // The ball falls 0.5 mm, touching at sqrt(2 · 0.5 mm / g) = 10.1 ms: rows until then.
-    EXPECT_GE(last, 0.010) << csv;
+    // The ball falls 0.5 mm, touching at sqrt(2 · 0.5 mm / g) = 10.1 ms: rows until then
+    // (`touch`, earlier where loose tolerances step into the plate early).
+    EXPECT_GE(last, touch) << csv;
     EXPECT_LE(last, stopped) << csv;
   }
   EXPECT_EQ(leftovers(dir / "out", {}),
@@ -284,6 +296,66 @@ TEST(OutputGuarantees, StepCollapseFromAbsurdStiffnessKeepsCompleteCsvs) {
   expectStopped("collapse",
                 ballScenario("1e15", R"("tolerances": {"min_step": 1e-5, "initial_step": 1e-5},)"),
                 "step_size_collapse");
+}
+
+// An expression effect a user can write: a damping that grows as the root of the closing speed.
+// Its formula has no value once the ball rebounds (sqrt of ddot < 0): NaN in the force, then in
+// the state. The run stops at the rebound (after the touch at 10.1 ms), naming the body whose
+// state or rate is not finite and, since by then every quantity is NaN, the effect whose force
+// had no value first and when.
+TEST(OutputGuarantees, NanFromAnExpressionEffectKeepsCompleteCsvs) {
+  const std::string effects = R"json("stiffness": {"kv": 5.17e12},
+      "root_damping": {"kind": "expression", "normal": "c*sqrt(ddot)",
+                       "parameters": {"c": {"value": 1, "unit": "N s^0.5/m^0.5",
+                                            "lower": 0, "upper": 1000}}})json";
+  for (const char* integrator : {"dopri5", "bdf"}) {
+    SCOPED_TRACE(integrator);
+    expectStopped(std::string("nan_") + integrator,
+                  ballScenarioWith(effects, R"("integrator": ")" + std::string(integrator) + "\","),
+                  "non_finite_state",
+                  {"body 'ball'",
+                   "first non-finite force: pair 'ball-plate', effect 'root_damping' at t = 0.01"});
+  }
+}
+
+// kv = 1e18 N/m³ (the input limit) with tolerances too loose for it: the ball arrives at
+// 0.1 m/s and leaves at metres per second (dynamics/SCENARIO.md, "Stopped runs"), far more
+// than ten times the energy of its 0.5 mm fall. Both integrators; with the default tolerances
+// the same impact finishes (OutputGuarantees.AbsurdStiffnessWithDefaultTolerancesFinishes).
+// The BDF's steps of a millisecond reach the plate at 9.7 ms, so rows up to 9 ms are kept.
+TEST(OutputGuarantees, BlowUpFromAbsurdStiffnessWithLooseTolerancesKeepsCompleteCsvs) {
+  const std::string bdf = R"("integrator": "bdf", "tolerances": {"abs": 1e-2, "rel": 1e-2},)";
+  expectStopped("blowup_bdf", ballScenario("1e18", bdf), "blow_up", {"body 'ball'"}, 0.009);
+  const std::string dopri5 = R"("integrator": "dopri5", "tolerances": {"abs": 1, "rel": 1},)";
+  expectStopped("blowup_dopri5", ballScenario("1e18", dopri5), "blow_up", {"body 'ball'"});
+}
+
+// The same stiffness with the default tolerances: the adaptive step follows the impact and the
+// guard stays silent; with no damping the ball bounces back to the height it fell from,
+// z = 10.5 mm, within 2 µm: an apex falls between two outputs 1 ms apart, and the ball is
+// then at most ½ g (0.5 ms)² = 1.2 µm below it.
+TEST(OutputGuarantees, AbsurdStiffnessWithDefaultTolerancesFinishes) {
+  for (const char* integrator : {"dopri5", "bdf"}) {
+    SCOPED_TRACE(integrator);
+    const fs::path dir = scratch(std::string("stiff_") + integrator);
+    std::ofstream(dir / "s.json") << ballScenario(
+        "1e18", R"("integrator": ")" + std::string(integrator) + "\",");
+    const CommandResult r =
+        vcontact("simulate " + quoted(dir / "s.json") + " --out " + quoted(dir / "out"), dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream lines(readAll(dir / "out" / "bodies.csv"));
+    std::string line;
+    double z_max = 0.0;  // m, after the first impact (10.1 ms)
+    while (std::getline(lines, line)) {
+      if (line.find(",ball,") == std::string::npos || std::stod(line) < 0.012) continue;
+      std::istringstream row(line);
+      std::string cell;
+      for (int c = 0; c <= 4; ++c) std::getline(row, cell, ',');  // t, body, x, y, z
+      z_max = std::max(z_max, std::stod(cell));
+    }
+    EXPECT_NEAR(z_max, 0.0105, 2e-6);
+    fs::remove_all(dir);
+  }
 }
 
 }  // namespace

@@ -129,4 +129,54 @@ TEST(OutputFile, OutputFolderThatIsAFileIsRefused) {
   fs::remove_all(dir);
 }
 
+// ---- OutputSet: a command's files appear together or not at all ----------------------------
+
+TEST(OutputSet, EveryFileAppearsOnCommitAndNoneBefore) {
+  const fs::path dir = scratch("set");
+  vcontact::io::OutputSet set;
+  set.open((dir / "a.txt").string()) << "a\n";
+  set.add((dir / "b.txt").string(), [](std::ostream& out) { out << "b\n"; });
+  EXPECT_FALSE(fs::exists(dir / "a.txt"));
+  EXPECT_FALSE(fs::exists(dir / "b.txt"));
+  set.commit();
+  EXPECT_EQ(readAll(dir / "a.txt"), "a\n");
+  EXPECT_EQ(readAll(dir / "b.txt"), "b\n");
+  EXPECT_EQ(entries(dir), 2u);
+  fs::remove_all(dir);
+}
+
+// /dev/full takes the open and fails the flush on closing (ENOSPC): the files before and after
+// it in the set are given up too, and a.txt keeps its earlier content.
+TEST(OutputSet, OneFailedFileGivesUpTheWholeSet) {
+  const fs::path dir = scratch("set_fail");
+  std::ofstream(dir / "a.txt") << "before";
+  vcontact::io::OutputSet set;
+  set.open((dir / "a.txt").string()) << "new a\n";
+  set.open("/dev/full") << "x\n";
+  set.open((dir / "b.txt").string()) << "b\n";
+  const std::string message = errorOf([&] { set.commit(); });
+  EXPECT_EQ(message.rfind("/dev/full: write failed", 0), 0u) << message;
+  EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+  EXPECT_EQ(readAll(dir / "a.txt"), "before");
+  EXPECT_FALSE(fs::exists(dir / "b.txt"));
+  EXPECT_EQ(entries(dir), 1u);  // a.txt only: no temporary left
+  fs::remove_all(dir);
+}
+
+// A rename that fails after an earlier one succeeded (b.txt became a non-empty folder while
+// the set was written): a.txt, already in place, is removed so that no partial set remains.
+TEST(OutputSet, FailedRenameRemovesTheFilesAlreadyRenamed) {
+  const fs::path dir = scratch("set_rename");
+  vcontact::io::OutputSet set;
+  set.open((dir / "a.txt").string()) << "a\n";
+  set.open((dir / "b.txt").string()) << "b\n";
+  fs::create_directories(dir / "b.txt" / "inside");
+  const std::string message = errorOf([&] { set.commit(); });
+  EXPECT_EQ(message.rfind((dir / "b.txt").string() + ": cannot replace the file", 0), 0u)
+      << message;
+  EXPECT_FALSE(fs::exists(dir / "a.txt"));
+  EXPECT_EQ(entries(dir), 1u);  // the folder b.txt only
+  fs::remove_all(dir);
+}
+
 }  // namespace
