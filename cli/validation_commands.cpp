@@ -19,6 +19,7 @@
 #include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
+#include "io/progress.hpp"
 #include "io/shape_json.hpp"
 #include "report/report_html.hpp"
 #include "report/validation_output.hpp"
@@ -142,8 +143,13 @@ void runFit(const ValidationOptions& o) {
   const auto noise = validation::noiseLevels(d);
   validation::Replayer replayer(d);
   const validation::FitResult before = asGiven(replayer, noise, in.model);
-  const validation::FitResult r =
-      validation::fit(replayer, noise, in.model, fitOptions(o, in.loss));
+  validation::FitOptions options = fitOptions(o, in.loss);
+  io::Progress progress("fit", 0.0, "");  // on a terminal only (io/progress.hpp)
+  options.progress = [&](const std::string& what, int done, int total) {
+    progress.update(what, done, total);
+  };
+  const validation::FitResult r = validation::fit(replayer, noise, in.model, options);
+  progress.finish();
   printNoise(noise);
   printComparison("as given", before.comparison);
   printComparison("fitted", r.comparison);
@@ -209,7 +215,12 @@ void runDiagnose(const ValidationOptions& o) {
   const auto noise = validation::noiseLevels(d);
   printNoise(noise);
   const auto start = std::chrono::steady_clock::now();
+  io::Progress progress("diagnose", 0.0, "");  // on a terminal only (io/progress.hpp)
+  options.progress = [&](const std::string& what, int done, int total) {
+    progress.update(what, done, total);
+  };
   const validation::Diagnosis diag = validation::diagnose(d, noise, in.model, options);
+  progress.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // the failing windows and ranking shown are the final model's (the last stage's baseline)

@@ -95,6 +95,7 @@ struct ContactContext {
   double omega_n = 0.0;                               ///< spin ω·n, rad/s
   Eigen::Vector3d omega_t = Eigen::Vector3d::Zero();  ///< rolling, rad/s
   double r_gyr = 0.0;                                 ///< m
+  double t = 0.0;  ///< time of the evaluation, s (RelativeMotion::t)
 
   // ---- pass 1: configured parameters ----
   double kv = 0.0;      ///< N/m³

@@ -215,6 +215,7 @@ ContactContext Model::makeContext(const volume::ContactVolume& cv, const Relativ
   ctx.omega_n = k.omega_n;
   ctx.omega_t = k.omega_t_W;
   ctx.r_gyr = cv.r_gyr;
+  ctx.t = motion.t;
   for (const auto& e : effects_) e->configure(ctx);
   // v_avg² = |v_t|² + (r_gyr ω_n)²,  s = exp(−v_avg²/v_s²)
   const double spin_speed = ctx.r_gyr * ctx.omega_n;

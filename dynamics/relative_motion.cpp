@@ -13,7 +13,7 @@ namespace {
 
 RelativeMotion relativeMotion(const BodyKinematics& A, const BodyKinematics& B,
                               const Eigen::Vector3d& p_WC) {
-  return {A.pointVelocity(p_WC) - B.pointVelocity(p_WC), A.w_WB - B.w_WB};
+  return {A.pointVelocity(p_WC) - B.pointVelocity(p_WC), A.w_WB - B.w_WB, A.t};
 }
 
 ContactKinematics resolve(const RelativeMotion& motion, const Eigen::Vector3d& n_W) {

@@ -14,6 +14,7 @@ namespace vcontact::dynamics {
 struct RelativeMotion {
   Eigen::Vector3d v_c_W = Eigen::Vector3d::Zero();  ///< m/s
   Eigen::Vector3d w_W = Eigen::Vector3d::Zero();    ///< rad/s
+  double t = 0.0;  ///< time, s: of the simulation, or of the record's sample in a replay
 };
 
 /// The relative motion resolved along the contact normal n (out of body B into body A).
@@ -25,7 +26,7 @@ struct ContactKinematics {
 };
 
 /// v_c = v_A(p_WC) − v_B(p_WC), ω = ω_A − ω_B (MODEL.md §2), where v_X(p) is the velocity of
-/// the material point of body X at p (BodyKinematics::pointVelocity).
+/// the material point of body X at p (BodyKinematics::pointVelocity); t is A's.
 RelativeMotion relativeMotion(const BodyKinematics& A, const BodyKinematics& B,
                               const Eigen::Vector3d& p_WC);
 

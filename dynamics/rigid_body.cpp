@@ -28,6 +28,7 @@ struct SizeOf {
 
 BodyKinematics scheduledKinematics(const RigidBody& body, double t) {
   BodyKinematics k;
+  k.t = t;
   k.X_WB = body.X_WB0;
   if (body.motion == BodyMotion::kPrescribed) {
     const PrescribedMotion& m = body.prescribed;

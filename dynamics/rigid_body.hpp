@@ -40,6 +40,7 @@ struct BodyKinematics {
   Eigen::Vector3d p_WBcm = Eigen::Vector3d::Zero();
   Eigen::Vector3d v_WBcm = Eigen::Vector3d::Zero();
   Eigen::Vector3d w_WB = Eigen::Vector3d::Zero();
+  double t = 0.0;  ///< time of this state, s (expression effects may read it)
 
   /// Velocity of the material point of B at p_W: v_WBcm + w_WB × (p_W − p_WBcm).
   Eigen::Vector3d pointVelocity(const Eigen::Vector3d& p_W) const {

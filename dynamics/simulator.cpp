@@ -190,6 +190,7 @@ BodyKinematics Simulator::kinematics(const State& x, std::size_t i, double t) co
   if (offset_[i] < 0) return scheduledKinematics(body, t);
   const double* s = &x[static_cast<std::size_t>(offset_[i])];
   BodyKinematics k;
+  k.t = t;
   k.p_WBcm = Eigen::Vector3d(s[0], s[1], s[2]);
   k.X_WB.linear() = quaternionAt(s + 3).toRotationMatrix();
   k.X_WB.translation() = k.p_WBcm - k.X_WB.linear() * body.p_BBcm;

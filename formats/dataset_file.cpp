@@ -181,6 +181,72 @@ void readOutputsAndNoise(const json& j, const std::string& where, const std::str
   }
 }
 
+// A JSON number that is finite (and ≥ 0 when nonNegative), or the error naming `key`.
+double finiteNumber(const json& v, const std::string& where, const std::string& key,
+                    bool nonNegative) {
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || (nonNegative && v.get<double>() < 0)) {
+    throw InputError(where, "payload_inertia." + key + " must be a finite" +
+                                (nonNegative ? " non-negative" : "") + " number, got " + v.dump());
+  }
+  return v.get<double>();
+}
+
+Eigen::Matrix3d readInertiaMatrix(const json& v, const std::string& where) {
+  const std::string expect =
+      "payload_inertia.inertia must be [Ixx, Iyy, Izz] or a 3×3 symmetric matrix (kg·m²), got ";
+  if (!v.is_array() || v.size() != 3) throw InputError(where, expect + v.dump());
+  Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+  if (!v[0].is_array()) {
+    for (int k = 0; k < 3; ++k) I(k, k) = finiteNumber(v[k], where, "inertia", true);
+    return I;
+  }
+  for (int r = 0; r < 3; ++r) {
+    if (!v[r].is_array() || v[r].size() != 3) throw InputError(where, expect + v.dump());
+    for (int c = 0; c < 3; ++c) I(r, c) = finiteNumber(v[r][c], where, "inertia", false);
+  }
+  // symmetric to round-off of written digits; a tensor of a body has no negative moment
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * I.cwiseAbs().maxCoeff() ||
+      I.diagonal().minCoeff() < 0.0) {
+    throw InputError(where,
+                     "payload_inertia.inertia is not symmetric with non-negative "
+                     "diagonal: " +
+                         v.dump());
+  }
+  return I;
+}
+
+// The optional "payload_inertia": {"mass": kg, "inertia": [...], "com": [x, y, z]}.
+void readPayloadInertia(const json& j, const std::string& where, validation::Dataset& d) {
+  if (!j.contains("payload_inertia")) return;
+  const json& e = j.at("payload_inertia");
+  if (!e.is_object() || !e.contains("mass") || !e.contains("inertia")) {
+    throw InputError(where,
+                     "payload_inertia must be an object with \"mass\" and \"inertia\" "
+                     "(and optionally \"com\")");
+  }
+  validation::PayloadInertia p;
+  p.mass = finiteNumber(e.at("mass"), where, "mass", true);
+  if (!(p.mass > 0.0)) throw InputError(where, "payload_inertia.mass must be positive (kg)");
+  p.inertia = readInertiaMatrix(e.at("inertia"), where);
+  if (e.contains("com")) {
+    const json& c = e.at("com");
+    if (!c.is_array() || c.size() != 3)
+      throw InputError(where, "payload_inertia.com must be [x, y, z] in metres, got " + c.dump());
+    for (int k = 0; k < 3; ++k) p.com[k] = finiteNumber(c[k], where, "com", false);
+  }
+  for (const auto& [key, value] : e.items()) {
+    if (key != "mass" && key != "inertia" && key != "com")
+      throw InputError(where, "payload_inertia: unknown key \"" + key + "\" (mass, inertia, com)");
+  }
+  d.inertia = p;
+}
+
+json payloadInertiaJson(const validation::PayloadInertia& p) {
+  json rows = json::array();
+  for (int r = 0; r < 3; ++r) rows.push_back({p.inertia(r, 0), p.inertia(r, 1), p.inertia(r, 2)});
+  return {{"mass", p.mass}, {"inertia", rows}, {"com", {p.com.x(), p.com.y(), p.com.z()}}};
+}
+
 }  // namespace
 
 DatasetReadResult readDataset(const std::string& sidecarPath) {
@@ -224,6 +290,7 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   }
   fillSamples(readTable(d.dataPath), d.dataPath, d);
   readOutputsAndNoise(j, where, d.dataPath, d);
+  readPayloadInertia(j, where, d);
   if (d.velocityFromPositions) {
     result.warnings.push_back(d.dataPath +
                               ": no vx, vy, vz columns; velocities differentiated from x, y, z");
@@ -290,6 +357,7 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
             {"outputs", d.outputs},
             {"notes", d.notes}};
   if (!d.noise.empty()) j["noise"] = d.noise;
+  if (d.inertia) j["payload_inertia"] = payloadInertiaJson(*d.inertia);
   std::vector<std::string> names = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
                                     "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
   for (const auto& o : d.outputs) names.push_back(o);

@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <utility>
 
 namespace vcontact::io {
@@ -24,9 +25,36 @@ void Progress::update(double done) {
   const auto now = std::chrono::steady_clock::now();
   if (std::chrono::duration<double>(now - last_).count() < kProgressIntervalS) return;
   last_ = now;
-  std::cerr << "\rvcontact: " << what_ << ": " << done << ' ' << unit_;
-  if (total_ > 0.0) std::cerr << " (" << static_cast<int>(100.0 * done / total_) << "%)";
-  std::cerr << "   " << std::flush;
+  std::ostringstream line;
+  line << "vcontact: " << what_ << ": " << done;
+  if (!unit_.empty()) line << ' ' << unit_;
+  if (total_ > 0.0) line << " (" << static_cast<int>(100.0 * done / total_) << "%)";
+  const std::string text = line.str();
+  std::cerr << '\r' << text << std::string(width_ > text.size() ? width_ - text.size() : 0, ' ')
+            << std::flush;
+  width_ = text.size();
+  printed_ = true;
+}
+
+void Progress::update(const std::string& what, double done, double total) {
+  if (!shown_) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const bool changed = what != what_;
+  what_ = what;
+  total_ = total;
+  if (changed) last_ = {};  // a new part shows at once
+  if (total > 0.0) {
+    update(done);
+    return;
+  }
+  // no amount: "what ..." only
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_).count() < kProgressIntervalS) return;
+  last_ = now;
+  const std::string text = "vcontact: " + what_ + " ...";
+  std::cerr << '\r' << text << std::string(width_ > text.size() ? width_ - text.size() : 0, ' ')
+            << std::flush;
+  width_ = text.size();
   printed_ = true;
 }
 

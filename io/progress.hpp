@@ -5,6 +5,7 @@
 // In a pipe, a log file or CI nothing is printed, so outputs and logs stay the same.
 
 #include <chrono>
+#include <mutex>
 #include <string>
 
 namespace vcontact::io {
@@ -25,6 +26,10 @@ class Progress {
 
   /// Reports `done`; prints when the last line is older than kProgressIntervalS.
   void update(double done);
+  /// The same for a run of several parts (fit, diagnose): `what` names the part now running
+  /// ("diagnose: stage 2: candidates fitted"), `total` its own amount (<= 0: unknown).
+  /// Thread-safe (fits report from worker threads).
+  void update(const std::string& what, double done, double total);
   /// Ends the progress line (a newline), once; also done by the destructor.
   void finish();
 
@@ -36,6 +41,8 @@ class Progress {
   bool shown_;  ///< progress goes to the terminal
   bool printed_ = false;
   std::chrono::steady_clock::time_point last_;
+  std::mutex mutex_;
+  std::size_t width_ = 0;  ///< of the last line, to blank what a shorter one leaves
 };
 
 }  // namespace vcontact::io

@@ -214,7 +214,7 @@ void chiBars(std::ostringstream& h, const ReportInput& in) {
   }
   h << "</table>\n"
     << lineChart({"log10 chi per stage, fitted and predicted on held-out blocks (0 = noise level)",
-                  "stage (table above)", "log10 chi", kPageWidth, 260},
+                  "stage (table above)", "log10 chi", kPageWidth, 260, true},
                  {fitted, held})
     << '\n';
 }

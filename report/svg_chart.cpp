@@ -13,6 +13,13 @@ const char* const kPalette[] = {"#1f5fa8", "#d1495b", "#2e8540", "#e08e0b", "#6a
 
 // Margins leave room for tick labels (left, bottom), the title (top) and the legend.
 constexpr int kLeft = 70, kRight = 20, kTop = 34, kBottom = 46;
+// x ticks are planned this far apart (px), so that labels such as "0.125" never touch;
+// niceTicks' rounding to 1, 2, 5 × 10^k can bring them to about two thirds of it.
+constexpr int kTickSpacing = 70;
+// Legend entries: a swatch and a label per slot, as many slots to a row as fit the plot.
+constexpr int kLegendSlot = 130, kLegendRow = 14;
+// A line series with at most this many points also marks each point (one point draws no line).
+constexpr std::size_t kMarkedLine = 20;
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
@@ -72,7 +79,9 @@ void drawAxes(std::ostringstream& os, const Frame& f, bool xTicks) {
        << "\" text-anchor=\"end\">" << fmt(t) << "</text>\n";
   }
   if (xTicks) {
-    for (double t : niceTicks(f.xr.lo, f.xr.hi, 8)) {
+    const int target = std::clamp((a.width - kLeft - kRight) / kTickSpacing, 2, 8);
+    for (double t : niceTicks(f.xr.lo, f.xr.hi, target)) {
+      if (a.integerX && t != std::round(t)) continue;
       const double x = f.px(t);
       os << "<line x1=\"" << x << "\" x2=\"" << x << "\" y1=\"" << y0 << "\" y2=\"" << y0 + 4
          << "\" stroke=\"#888\"/><text x=\"" << x << "\" y=\"" << y0 + 16
@@ -137,6 +146,11 @@ std::string lineChart(const Axes& axes, const std::vector<Series>& series,
   }
   f.xr.finish();
   f.yr.finish();
+  if (axes.integerX) {  // room at the ends: the few points are marks, not on the frame
+    f.xr.lo -= 0.5, f.xr.hi += 0.5;
+    const double pad = 0.1 * (f.yr.hi - f.yr.lo);
+    f.yr.lo -= pad, f.yr.hi += pad;
+  }
   std::ostringstream os;
   os << std::setprecision(6);
   openSvg(os, axes);
@@ -155,14 +169,17 @@ std::string lineChart(const Axes& axes, const std::vector<Series>& series,
     // Long series are thinned to about two points per horizontal pixel.
     const std::size_t stride =
         std::max<std::size_t>(1, n / (2 * static_cast<std::size_t>(axes.width)));
-    if (s.markers) {
-      os << "<g class=\"series\" fill=\"" << colour << "\" fill-opacity=\"0.6\">";
+    if (s.markers || n <= kMarkedLine) {
+      os << "<g class=\"" << (s.markers ? "series" : "marks") << "\" fill=\"" << colour
+         << "\" fill-opacity=\"" << (s.markers ? 0.6 : 1.0) << "\">";
       for (std::size_t i = 0; i < n; i += stride) {
         if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
-        os << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i]) << "\" r=\"1.8\"/>";
+        os << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i]) << "\" r=\""
+           << (s.markers ? 1.8 : 3.5) << "\"/>";
       }
       os << "</g>\n";
-    } else {
+    }
+    if (!s.markers) {
       os << "<polyline class=\"series\" fill=\"none\" stroke=\"" << colour
          << "\" stroke-width=\"1.3\" points=\"";
       for (std::size_t i = 0; i < n; i += stride) {
@@ -171,10 +188,13 @@ std::string lineChart(const Axes& axes, const std::vector<Series>& series,
       }
       os << "\"/>\n";
     }
-    os << "<rect x=\"" << kLeft + 8 + 130 * k << "\" y=\"" << kTop + 6
+    const std::size_t perRow =
+        static_cast<std::size_t>(std::max(1, (axes.width - kLeft - kRight - 8) / kLegendSlot));
+    const auto col = static_cast<int>(k % perRow), row = static_cast<int>(k / perRow);
+    os << "<rect x=\"" << kLeft + 8 + kLegendSlot * col << "\" y=\"" << kTop + 6 + kLegendRow * row
        << "\" width=\"10\" height=\"10\" fill=\"" << colour << "\"/><text x=\""
-       << kLeft + 22 + 130 * k << "\" y=\"" << kTop + 15 << "\">" << escapeXml(s.label)
-       << "</text>\n";
+       << kLeft + 22 + kLegendSlot * col << "\" y=\"" << kTop + 15 + kLegendRow * row << "\">"
+       << escapeXml(s.label) << "</text>\n";
   }
   os << "</svg>\n";
   return os.str();

@@ -24,6 +24,7 @@ struct Window {
 struct Axes {
   std::string title, xLabel, yLabel;
   int width = 720, height = 300;  ///< px
+  bool integerX = false;          ///< x is a count (stage 1, 2, …): whole-number ticks only
 };
 
 /// Line (or marker) chart of several series against shared axes.

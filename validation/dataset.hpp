@@ -31,6 +31,15 @@ struct Sample {
   Eigen::Vector3d w_BA = Eigen::Vector3d::Zero();  ///< rad/s
 };
 
+/// The payload's mass properties, where the sidecar gives them (`payload_inertia`,
+/// docs/DATASET.md): what the payload's own inertia adds to a measured wrench (rig.hpp).
+struct PayloadInertia {
+  double mass = 0.0;  ///< kg
+  /// Inertia tensor about the centre of mass, in the payload frame, kg·m².
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();  ///< centre of mass in the payload frame, m
+};
+
 struct Dataset {
   std::string name;
   std::string notes;
@@ -38,8 +47,9 @@ struct Dataset {
   std::string dataPath;     ///< the CSV, resolved
   geometry::Shape payload;
   geometry::Shape plate;
-  std::vector<std::string> outputs;     ///< wrench columns to compare, e.g. {"fx", "tz"}
-  std::map<std::string, double> noise;  ///< 1-σ per output where the sidecar gives it
+  std::vector<std::string> outputs;       ///< wrench columns to compare, e.g. {"fx", "tz"}
+  std::map<std::string, double> noise;    ///< 1-σ per output where the sidecar gives it
+  std::optional<PayloadInertia> inertia;  ///< where the sidecar gives it
 
   std::vector<Sample> samples;
   /// Every CSV column by name, kinematic, wrench and extra ones alike (never dropped).

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -58,8 +59,16 @@ std::vector<std::string> addedParameters(const Model& m, const Candidate& c) {
   return out;
 }
 
+void tell(const DiagnoseOptions& options, const std::string& what, int done, int total) {
+  if (options.progress) options.progress(what, done, total);
+}
+
 void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model& baseline,
-                   const DiagnoseOptions& options, std::vector<Candidate>& candidates) {
+                   const DiagnoseOptions& options, const std::string& label,
+                   std::vector<Candidate>& candidates) {
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(candidates.size());
+  tell(options, label + "candidates fitted", 0, total);
   tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
     Candidate& c = candidates[i];
     try {
@@ -71,6 +80,7 @@ void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model
     } catch (const std::exception& e) {
       c.error = e.what();
     }
+    tell(options, label + "candidates fitted", ++done, total);
   });
 }
 
@@ -228,7 +238,7 @@ std::string unphysical(const Candidate& c) {
 
 // Steps 1–3 of the acceptance (see the header); marks the first accepted candidate.
 void accept(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOptions& options,
-            DiagnosisStage& stage) {
+            const std::string& label, DiagnosisStage& stage) {
   std::size_t validated = 0;
   for (auto& c : stage.ranking) {
     if (!c.error.empty() || !c.redundantWith.empty()) continue;
@@ -239,6 +249,8 @@ void accept(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOpti
       c.rejected = "not cross-validated (only the best " + std::to_string(kCvCandidates) + " are)";
       continue;
     }
+    tell(options, label + "cross-validating " + c.effect, static_cast<int>(validated),
+         static_cast<int>(kCvCandidates));
     c.heldOutChi2 = heldOutChi2(dataset, noise, c.fit.model, options.fit);
     const double drop = stage.heldOutChi2 - c.heldOutChi2;
     const double excess = stage.heldOutChi2 - static_cast<double>(stage.baseline.comparison.count);
@@ -294,9 +306,11 @@ double lap(std::chrono::steady_clock::time_point& t) {
 }
 
 DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
-                             const DiagnoseOptions& options, bool explore) {
+                             const DiagnoseOptions& options, bool explore, std::size_t index) {
   DiagnosisStage stage;
   auto t = std::chrono::steady_clock::now();
+  const std::string label = "diagnose: stage " + std::to_string(index + 1) + ": ";
+  tell(options, label + "baseline fit", 0, 0);
   stage.effects = start.effectIds();
   Replayer replayer(dataset);
   FitOptions baselineOptions = options.fit;
@@ -305,12 +319,14 @@ DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, c
   stage.where = failureWindows(dataset, stage.baseline.comparison, stage.baseline.prediction);
   stage.seconds.baseline = lap(t);
   stage.ranking = candidateList(stage.baseline.model, options);
-  fitCandidates(dataset, noise, stage.baseline.model, options, stage.ranking);
+  fitCandidates(dataset, noise, stage.baseline.model, options, label, stage.ranking);
   rank(stage.ranking, stage.baseline.bic, options.margin);
   stage.seconds.candidates = lap(t);
+  tell(options, label + "cross-validating the baseline", 0, 0);
   stage.heldOutChi2 = heldOutChi2(dataset, noise, stage.baseline.model, options.fit);
-  accept(dataset, noise, options, stage);
+  accept(dataset, noise, options, label, stage);
   stage.seconds.crossValidation = lap(t);
+  tell(options, label + "rig candidates", 0, 0);
   stage.rig = rigCandidates(dataset, stage.baseline.comparison);
   if (!stage.rig.empty() && stage.rig.front().deltaBic < -options.margin)
     stage.rig.front() = refineRig(dataset, noise, stage.baseline, stage.rig.front(), options.fit);
@@ -352,7 +368,7 @@ void prune(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOptio
     Replayer replayer(dataset);
     const FitResult refit = fit(replayer, noise, *reduced, options.fit);
     if (refit.bic >= current.bic + options.margin) continue;
-    DiagnosisStage stage = diagnoseStage(dataset, noise, *reduced, options, false);
+    DiagnosisStage stage = diagnoseStage(dataset, noise, *reduced, options, false, d.stages.size());
     stage.removed = id;
     d.stages.push_back(std::move(stage));
   }
@@ -384,14 +400,17 @@ std::vector<Candidate> candidateList(const Model& model, const DiagnoseOptions& 
 }
 
 Diagnosis diagnose(const Dataset& dataset, const NoiseLevels& noise, const Model& start,
-                   const DiagnoseOptions& options) {
+                   const DiagnoseOptions& given) {
+  DiagnoseOptions options = given;
+  options.fit.progress = nullptr;  // fits run in parallel: the stages report, not each fit
   Diagnosis d;
-  d.stages.push_back(diagnoseStage(dataset, noise, start, options, true));
+  d.stages.push_back(diagnoseStage(dataset, noise, start, options, true, 0));
   while (options.iterate && d.stages.back().kind == "effect") {
     const DiagnosisStage& last = d.stages.back();
     const auto best = std::find_if(last.ranking.begin(), last.ranking.end(),
                                    [](const Candidate& c) { return c.accepted; });
-    d.stages.push_back(diagnoseStage(dataset, noise, best->fit.model, options, false));
+    d.stages.push_back(
+        diagnoseStage(dataset, noise, best->fit.model, options, false, d.stages.size()));
   }
   if (options.iterate) prune(dataset, noise, options, d);
   return d;

@@ -129,6 +129,9 @@ struct DiagnoseOptions {
   double explainedChi = kExplainedChi;
   /// The effects tried at each stage (validation/candidates.hpp); the library's by default.
   CandidateSet candidates = CandidateSet::library();
+  /// Each stage's steps as they run (baseline, candidates i of n, cross-validation, rig);
+  /// empty: nothing reported. fit.progress is not used (the fits run in parallel).
+  ProgressFn progress{};
 };
 
 /// The candidates for `model`: each effect of options.candidates that the model lacks, with the

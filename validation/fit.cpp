@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -497,16 +498,25 @@ std::pair<Polished, int> multistart(Replayer& replayer, const NoiseLevels& noise
                                     const FitOptions& options) {
   const auto starts = designStarts(start, free, options);
   const RecordResiduals screen(replayer, noise, start, free, options.loss, options.heldOut);
+  const auto tell = [&](const char* what, int done, int total) {
+    if (options.progress) options.progress(what, done, total);
+  };
   std::vector<std::pair<double, int>> ranked;
-  for (std::size_t i = 0; i < starts.size(); ++i)
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    tell("fit: screening starts", static_cast<int>(i), static_cast<int>(starts.size()));
     ranked.emplace_back(i == 0 ? -1.0 : screen.cost(starts[i]), static_cast<int>(i));
+  }
   // the given start is always polished (cost −1 ranks it first)
   std::stable_sort(ranked.begin(), ranked.end());
   ranked.resize(std::min(ranked.size(), static_cast<std::size_t>(std::max(1, options.polished))));
   std::vector<Polished> runs(ranked.size());
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(runs.size());
+  tell("fit: Levenberg-Marquardt starts", 0, total);
   tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t i) {
     runs[i] = polish(replayer.dataset(), noise, start, free, options,
                      starts[static_cast<std::size_t>(ranked[i].second)]);
+    tell("fit: Levenberg-Marquardt starts", ++done, total);
   });
   std::size_t best = 0;
   for (std::size_t i = 1; i < runs.size(); ++i) {

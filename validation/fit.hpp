@@ -41,6 +41,7 @@
 // kIdentifiableRatio) are reported as not identifiable and held out of the covariance.
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,10 @@ enum class Loss { kSquared, kHuber, kCauchy };
 Loss parseLoss(const std::string& name);
 std::string lossName(Loss loss);
 
+/// Told as a long fit or diagnosis advances: what it is doing ("stage 2: candidates") and how
+/// far (done of total). Called from worker threads too: the callee serialises.
+using ProgressFn = std::function<void(const std::string& what, int done, int total)>;
+
 struct FitOptions {
   Loss loss = Loss::kSquared;
   int maxIterations = 100;
@@ -67,6 +72,8 @@ struct FitOptions {
   std::vector<std::string> explore{};
   /// Per sample: true = left out of the objective (cross-validation). Empty: none.
   std::vector<bool> heldOut{};
+  /// Screening and polished starts as they finish; empty: nothing reported.
+  ProgressFn progress{};
 };
 
 struct ParameterEstimate {

@@ -96,7 +96,7 @@ FrictionMapRow evaluate(const SweepContact& c, const dynamics::Model& lumped,
   const double scale = std::isinf(eps) ? 0.0 : 1.0 / std::hypot(eps, 1.0);
   r.v = std::isinf(eps) ? o.speed : o.speed * eps * scale;
   r.w = o.speed * scale / c.R;
-  const dynamics::RelativeMotion m{r.v * c.X_WH.linear().col(0), r.w * c.cv.n_W};
+  const dynamics::RelativeMotion m{r.v * c.X_WH.linear().col(0), r.w * c.cv.n_W, 0.0};
   const dynamics::ContactResult l = lumped.evaluate(c.cv, m, dynamics::PairState{});
   const Eigen::Vector3d n = c.cv.n_W;
   r.f_lumped = (l.wrench.f_W - l.wrench.f_W.dot(n) * n).norm();

@@ -105,6 +105,7 @@ class HalfspaceVolumes {
 // field v(p) = v_o + ω × (p − p_o) of a rigid body is the same from any of its points.
 dynamics::BodyKinematics payloadKinematics(const Sample& s, const Eigen::Isometry3d& X_BA) {
   dynamics::BodyKinematics k;
+  k.t = s.t;
   k.X_WB = X_BA;
   k.p_WBcm = X_BA.translation();
   k.v_WBcm = s.v_BA;

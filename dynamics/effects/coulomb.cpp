@@ -33,7 +33,7 @@ class Coulomb final : public EffectBase<Coulomb> {
     if (ctx.field != nullptr) {
       // The relative motion at p_c back from the context: v_c = v_t − δ̇ n; only ω_n acts
       // in the plate.
-      const RelativeMotion motion{ctx.v_t - ctx.delta_dot * ctx.n, ctx.omega_n * ctx.n};
+      const RelativeMotion motion{ctx.v_t - ctx.delta_dot * ctx.n, ctx.omega_n * ctx.n, ctx.t};
       return distributedFriction(*ctx.cv, *ctx.field, {ctx.kv, ctx.a}, motion, ctx.mu_max,
                                  ctx.settings.v_eps)
           .wrench;

@@ -26,6 +26,7 @@ enum Variable {
   kCv,
   kCw,
   kVEps,
+  kTime,
   kVariableCount
 };
 
@@ -47,6 +48,7 @@ const std::array<ExpressionVariable, kVariableCount>& variableTable() {
       {"C_v", "-", "Contensou factor on translation"},
       {"C_w", "-", "Contensou factor on spin"},
       {"v_eps", "m/s", "regularisation speed of dir_eps and sgn_eps"},
+      {"t", "s", "time: of the simulation, or of the record's sample in a replay"},
   }};
   return t;
 }
@@ -110,6 +112,7 @@ class Expression final : public Effect {
     vars_[kCv] = ctx.C_v;
     vars_[kCw] = ctx.C_w;
     vars_[kVEps] = ctx.settings.v_eps;
+    vars_[kTime] = ctx.t;
     for (std::size_t i = 0; i < params_.size(); ++i) params_[i] = parameter(i);
   }
 

@@ -46,9 +46,39 @@ TEST(SvgChart, LineChartDrawsEverySeriesAndWindow) {
   EXPECT_EQ(count(svg, "<svg class=\"chart\""), 1u);
   EXPECT_EQ(count(svg, "class=\"series\""), 2u);
   EXPECT_EQ(count(svg, "class=\"window\""), 1u);
-  EXPECT_EQ(count(svg, "<circle"), 3u) << "the NaN sample is skipped";
+  // the marker series' 3 finite points, and the short line's 4 points marked on it
+  EXPECT_EQ(count(svg, "<circle"), 3u + 4u) << "the NaN sample is skipped";
+  EXPECT_EQ(count(svg, "class=\"marks\""), 1u);
   EXPECT_EQ(svg.find("nan"), std::string::npos);
   EXPECT_NE(svg.find("model &lt;fit&gt;"), std::string::npos);
+}
+
+// A chart of one stage: its points drawn (a line of one point is invisible), the x ticks whole
+// stage numbers only.
+TEST(SvgChart, AStageChartOfOneStageShowsItsPointsAndWholeTicks) {
+  Axes axes{"chi", "stage", "log10 chi", 600, 240};
+  axes.integerX = true;
+  const std::string svg = lineChart(axes, {{"fitted", {1}, {1.98}, "", false}});
+  EXPECT_EQ(count(svg, "<circle"), 1u);
+  EXPECT_NE(svg.find(">1</text>"), std::string::npos);
+  EXPECT_EQ(svg.find(">0.95</text>"), std::string::npos);
+  EXPECT_EQ(svg.find(">1.05</text>"), std::string::npos);
+}
+
+// A 350 px regime panel: x ticks planned 70 px apart, no closer than 50 px after rounding (a
+// label of five characters is about 30 px wide at 11 px; before, 0.02 steps put 11 labels in
+// 260 px and they ran together), and three legend entries on three rows, not beyond the
+// right edge.
+TEST(SvgChart, ANarrowPanelKeepsTicksApartAndWrapsItsLegend) {
+  const std::vector<double> x = {0.0, 0.1, 0.2};
+  const std::string svg =
+      lineChart({"panel", "speed", "r", 350, 260},
+                {{"fx", x, x, "", true}, {"fy", x, x, "", true}, {"tz", x, x, "", true}});
+  const std::size_t ticks = count(svg, "stroke=\"#888\"/><text");  // x ticks only
+  EXPECT_GE(ticks, 2u);
+  EXPECT_LE(ticks, 1u + (350 - 90) / 50);  // 50 px: the closest niceTicks can place them
+  for (const char* row : {"y=\"49\">fx<", "y=\"63\">fy<", "y=\"77\">tz<"})
+    EXPECT_NE(svg.find(row), std::string::npos) << row;
 }
 
 TEST(SvgChart, BarChartHasOneBarPerValue) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "dynamics/effects/expression.hpp"
 #include "validation/diagnose.hpp"
 #include "validation/effect_cases.hpp"
 #include "validation/load_varying_drive.hpp"
@@ -54,6 +55,25 @@ TEST(ExpressionFit, DiagnoseWithTheUsersCandidatesNamesTheExpression) {
   EXPECT_EQ(s.verdict, "mu_load");
   EXPECT_GT(s.baseline.comparison.chi, 2.0);  // the bare model misses it
   EXPECT_LE(s.ranking.front().fit.comparison.chi, 1.2);
+}
+
+// In a replay, t is the time of the record's sample: a normal term c·t adds c t_i to fz.
+TEST(ExpressionFit, TheReplayGivesAFormulaTheSampleTime) {
+  const Dataset d = rigMotion("drive", 60);
+  auto def = std::make_shared<dynamics::ExpressionDefinition>();
+  def->id = "ramp";
+  def->parameters = {{"c", "N/s", 0.0, 0.0, 1e3, "normal force growth per second"}};
+  def->normal = "c*t";
+  dynamics::Model plain = dynamics::Model::withEffects({"stiffness"});
+  dynamics::Model ramp = plain;
+  ramp.add(dynamics::makeExpressionEffect(def));
+  ramp.setParameter("ramp.c", 2.0);
+  Replayer replayer(d);
+  const Eigen::VectorXd a = replayer.run(plain).column("fz"), b = replayer.run(ramp).column("fz");
+  for (std::size_t i = 0; i < d.size(); ++i) {  // the punch is in contact at every sample
+    const auto k = static_cast<Eigen::Index>(i);
+    EXPECT_NEAR(b[k] - a[k], 2.0 * d.samples[i].t, 1e-12 * a.cwiseAbs().maxCoeff()) << i;
+  }
 }
 
 }  // namespace

@@ -87,6 +87,25 @@ TEST(Expression, ACopiedModelKeepsItsValuesAndEvaluatesOnItsOwn) {
   EXPECT_EQ(a.parameterNames(), (std::vector<std::string>{"stiffness.kv", "user.mu"}));
 }
 
+// t reads the time the motion carries (the simulation's, or the record's sample in a replay).
+TEST(Expression, TheVariableTIsTheTimeOfTheMotion) {
+  auto d = std::make_shared<ExpressionDefinition>();
+  d->id = "ramp";
+  d->parameters = {{"c", "N/s", 0.0, 0.0, 1e3, "force growth per second"}};
+  d->normal = "c*t";
+  Model m = Model::withEffects({"stiffness"});
+  m.add(makeExpressionEffect(d));
+  m.setParameter("ramp.c", 4.0);
+  const volume::ContactVolume cv = sphereContact();
+  const double N = m.parameter("stiffness.kv") * cv.volume;
+  RelativeMotion mo;
+  for (double t : {0.0, 0.5, 2.5}) {
+    mo.t = t;
+    const Wrench share = m.evaluate(cv, mo, PairState{}).shares[1];
+    EXPECT_LT((share.f_W - 4.0 * t * cv.n_W).norm(), kRoundOff * N) << "t = " << t;
+  }
+}
+
 TEST(Expression, AFormulaThatDoesNotParseNamesItsTermAndPosition) {
   try {
     makeExpressionEffect(definition("-mu*f_n*", "", {kMu}));
