@@ -82,6 +82,7 @@ struct Snapshot {
   double t = 0.0;                      ///< s
   std::vector<BodyKinematics> bodies;  ///< one per Scenario::bodies
   std::vector<PairOutput> pairs;       ///< one per Scenario::pairs
+  std::vector<LoadOutput> loads;       ///< one per Scenario::loads, then one per spring
 };
 
 struct SimulationSummary {
@@ -141,6 +142,8 @@ class Simulator {
   void addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, const Wrench& w);
   void countPatches(const Snapshot& s, SimulationSummary& summary, long& samples,
                     long& total) const;
+  void checkLoads() const;
+  void applyLoads(double t);
   void bodyRates(std::size_t i, const State& x, State& dxdt) const;
   void screenPairs();
   bool rhsFinite(const double* x, double* dxdt, double t);
@@ -170,6 +173,7 @@ class Simulator {
   State last_x_;  ///< the state of the latest right-hand-side evaluation
   // The per-pair contacts of the latest right-hand-side evaluation (at last_x_).
   std::vector<PairOutput> last_pairs_;
+  std::vector<LoadOutput> last_loads_;      ///< the loads' and springs' wrenches, same evaluation
   std::vector<volume::DepthField> fields_;  ///< δ maps of the distributed-friction pairs
   /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
   /// the fast method's leaf pairs while the bodies move less than its reach).

@@ -82,7 +82,8 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
   io::makeOutputFolder(dir);
   const std::filesystem::path base(dir);
   // Every OutputFile first, the pointers after: files_out_ does not move once filled.
-  std::size_t count = outputs_.bodies ? 1 : 0;
+  const bool loads = outputs_.loads && (!scenario.loads.empty() || !scenario.springs.empty());
+  std::size_t count = (outputs_.bodies ? 1 : 0) + (loads ? 1 : 0);
   for (const auto& pair : scenario.pairs) {
     if (outputs_.pairs) count += dynamics::patchSlots(scenario, pair) < 2 ? 1 : 2;
   }
@@ -90,6 +91,10 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
   if (outputs_.bodies) {
     bodies_ = &open((base / "bodies.csv").string());
     bodies_->stream() << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  }
+  if (loads) {
+    loads_ = &open((base / "loads.csv").string());
+    loads_->stream() << "t,load,body,px,py,pz,fx,fy,fz,taux,tauy,tauz\n";
   }
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
@@ -130,6 +135,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
       bodies_->stream() << row << '\n';
     }
   }
+  if (loads_) writeLoads(s);
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const dynamics::PairOutput& p = s.pairs[k];
     const int state_size = scenario_.pairs[k].model.stateLayout().size();
@@ -145,6 +151,23 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
     if (patches_[k]) writePatches(s.t, p, state_size, patches_[k]->stream());
   }
   checkWrites();
+}
+
+// One row per load, then per spring: the wrench on its body (a spring's body a) with the
+// force at (px, py, pz).
+void SimulationCsvWriter::writeLoads(const dynamics::Snapshot& s) {
+  const std::size_t n_loads = scenario_.loads.size();
+  for (std::size_t k = 0; k < s.loads.size(); ++k) {
+    const bool load = k < n_loads;
+    const std::string& name = load ? scenario_.loads[k].name : scenario_.springs[k - n_loads].name;
+    const std::size_t body = load ? scenario_.loads[k].body : scenario_.springs[k - n_loads].a;
+    std::string row = startRow(s.t);
+    row += ',' + name + ',' + scenario_.bodies[body].name;
+    put(row, s.loads[k].p_W);
+    put(row, s.loads[k].wrench.f_W);
+    put(row, s.loads[k].wrench.tau_W);
+    loads_->stream() << row << '\n';
+  }
 }
 
 // One row per patch, in the query's order (patch = its index).
@@ -171,6 +194,7 @@ void SimulationCsvWriter::checkWrites() {
       pairs_.clear();
       patches_.clear();
       bodies_ = nullptr;
+      loads_ = nullptr;
       throw;
     }
   }
@@ -186,8 +210,10 @@ std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
                              const formats::OutputSelection& outputs) {
   const dynamics::SimulationSettings& set = scenario.settings;
   const double times = std::floor(set.duration * set.output_rate_hz) + 1.0;
-  const double per_time = (outputs.bodies ? static_cast<double>(scenario.bodies.size()) : 0.0) +
-                          (outputs.pairs ? static_cast<double>(scenario.pairs.size()) : 0.0);
+  const double per_time =
+      (outputs.bodies ? static_cast<double>(scenario.bodies.size()) : 0.0) +
+      (outputs.pairs ? static_cast<double>(scenario.pairs.size()) : 0.0) +
+      (outputs.loads ? static_cast<double>(scenario.loads.size() + scenario.springs.size()) : 0.0);
   const double rows = times * per_time;
   constexpr double kBeyond = 1e19;  // beyond any limit; keeps the cast defined
   return static_cast<std::uint64_t>(std::min(rows, kBeyond));

@@ -37,6 +37,7 @@ class SimulationCsvWriter {
  private:
   io::OutputFile& open(const std::string& path);
   void checkWrites();
+  void writeLoads(const dynamics::Snapshot& s);
   void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ostream& f);
 
   const dynamics::Scenario& scenario_;
@@ -46,10 +47,12 @@ class SimulationCsvWriter {
   io::OutputFile* bodies_ = nullptr;
   std::vector<io::OutputFile*> pairs_;
   std::vector<io::OutputFile*> patches_;  ///< per pair, its patch file; null when it has none
+  io::OutputFile* loads_ = nullptr;       ///< loads.csv, when written
   std::vector<std::string> files_;
 };
 
-/// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs).
+/// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs + loads
+/// and springs in loads.csv).
 std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
                              const formats::OutputSelection& outputs);
 
