@@ -156,7 +156,8 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
         r.vector3("velocity", Eigen::Vector3d::Zero(), io::kMaxSpeed, "m/s");
     body.v_WBcm0 = v_WBo + body.w_WB0.cross(body.X_WB0.linear() * body.p_BBcm);
   } else {
-    r.fail("motion", "expected \"free\", \"fixed\", \"prescribed\" or {\"csv\": PATH}");
+    r.fail("motion",
+           "expected \"free\", \"fixed\" or \"prescribed\", or a trajectory {\"csv\": PATH}");
   }
   return body;
 }
