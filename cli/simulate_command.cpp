@@ -83,8 +83,8 @@ void addSimulateCommand(CLI::App& app) {
   auto opts = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
       "simulate",
-      "Integrate a scenario (dynamics/SCENARIO.md) and write bodies.csv, pair_<name>.csv "
-      "and summary.json.");
+      "Integrate a scenario (dynamics/SCENARIO.md) and write bodies.csv, pair_<name>.csv, "
+      "loads.csv (with loads or springs) and summary.json.");
   cmd->add_option("SCENARIO", opts->scenario, "scenario JSON file")->required();
   cmd->add_option("--out", opts->out, "output directory")->capture_default_str();
   cmd->add_option("--output-rate", opts->outputRate,

@@ -48,9 +48,35 @@ double EnergyGuard::prescribedPower(const std::vector<BodyKinematics>& kin,
   return power;
 }
 
+// W, the power of the loads and springs on the free bodies (a fixed or prescribed body takes
+// its share as a support would, moving nothing).
+double EnergyGuard::loadPower(const std::vector<BodyKinematics>& kin,
+                              const std::vector<LoadOutput>& loads) const {
+  const auto on = [&](std::size_t body, const Eigen::Vector3d& f, const Eigen::Vector3d& tau,
+                      const Eigen::Vector3d& p) {
+    if (scenario_.bodies[body].motion != BodyMotion::kFree) return 0.0;
+    return f.dot(kin[body].pointVelocity(p)) + tau.dot(kin[body].w_WB);
+  };
+  double power = 0.0;
+  const std::size_t n_loads = scenario_.loads.size();
+  for (std::size_t k = 0; k < loads.size(); ++k) {
+    const LoadOutput& o = loads[k];
+    if (k < n_loads) {
+      power += on(scenario_.loads[k].body, o.wrench.f_W, o.wrench.tau_W, o.p_W);
+      continue;
+    }
+    const BodySpring& spring = scenario_.springs[k - n_loads];
+    power += on(spring.a, o.wrench.f_W, o.wrench.tau_W, o.p_W);
+    power += on(spring.b, -o.wrench.f_W, -o.wrench.tau_W, o.q_W);
+  }
+  return power;
+}
+
 std::string EnergyGuard::check(const std::vector<BodyKinematics>& kin,
-                               const std::vector<PairOutput>& pairs, double t) {
+                               const std::vector<PairOutput>& pairs,
+                               const std::vector<LoadOutput>& loads, double t) {
   work_prescribed_ += std::max(0.0, prescribedPower(kin, pairs)) * (t - t_last_);
+  work_loads_ += std::max(0.0, loadPower(kin, loads)) * (t - t_last_);
   t_last_ = t;
   double kinetic = 0.0, gravity_work = 0.0, largest = -1.0;
   std::size_t fastest = 0;
@@ -65,7 +91,7 @@ std::string EnergyGuard::check(const std::vector<BodyKinematics>& kin,
       fastest = i;
     }
   }
-  const double available = kinetic0_ + gravity_work + contact0_ + work_prescribed_;
+  const double available = kinetic0_ + gravity_work + contact0_ + work_prescribed_ + work_loads_;
   if (!(kinetic > kBlowUpFactor * std::max(available, 0.0) + floor_)) return "";
   std::ostringstream s;
   s << "body '" << scenario_.bodies[fastest].name << "' (speed " << kin[fastest].v_WBcm.norm()
@@ -73,6 +99,7 @@ std::string EnergyGuard::check(const std::vector<BodyKinematics>& kin,
     << " times the energy the scenario can have given them, " << available << " J (initial kinetic "
     << kinetic0_ << " J, work of gravity " << gravity_work << " J, contact energy at t = 0 "
     << contact0_ << " J, work of prescribed bodies " << work_prescribed_
+    << " J, work of loads and springs " << work_loads_
     << " J): the integration gains energy; the contact is too stiff for "
     << "the tolerances (lower tolerances.abs and .rel, or the stiffness)";
   return s.str();

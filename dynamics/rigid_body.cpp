@@ -26,25 +26,33 @@ struct SizeOf {
 
 }  // namespace
 
+PathPoint prescribedPath(const Eigen::Isometry3d& X_W0, const PrescribedMotion& m, double t) {
+  if (m.trajectory) return m.trajectory->at(t);
+  PathPoint out;
+  out.X_WB = X_W0;
+  const double angle = m.w_W.norm() * t;
+  if (angle > 0.0) {
+    out.X_WB.linear() =
+        Eigen::AngleAxisd(angle, m.w_W.normalized()).toRotationMatrix() * X_W0.linear();
+  }
+  const double phase = 2.0 * std::numbers::pi * m.frequency_hz * t;
+  out.X_WB.translation() = X_W0.translation() + m.v_W * t + m.amplitude_W * std::sin(phase);
+  out.v_WBo = m.v_W + m.amplitude_W * (2.0 * std::numbers::pi * m.frequency_hz * std::cos(phase));
+  out.w_WB = m.w_W;
+  return out;
+}
+
 BodyKinematics scheduledKinematics(const RigidBody& body, double t) {
   BodyKinematics k;
   k.t = t;
   k.X_WB = body.X_WB0;
   if (body.motion == BodyMotion::kPrescribed) {
-    const PrescribedMotion& m = body.prescribed;
-    const double angle = m.w_W.norm() * t;
-    if (angle > 0.0) {
-      k.X_WB.linear() =
-          Eigen::AngleAxisd(angle, m.w_W.normalized()).toRotationMatrix() * body.X_WB0.linear();
-    }
-    const double phase = 2.0 * std::numbers::pi * m.frequency_hz * t;
-    k.X_WB.translation() = body.X_WB0.translation() + m.v_W * t + m.amplitude_W * std::sin(phase);
+    const PathPoint path = prescribedPath(body.X_WB0, body.prescribed, t);
+    k.X_WB = path.X_WB;
     // Velocity of the frame origin Bo; Bcm moves with the rotation about Bo.
-    const Eigen::Vector3d v_WBo =
-        m.v_W + m.amplitude_W * (2.0 * std::numbers::pi * m.frequency_hz * std::cos(phase));
-    k.w_WB = m.w_W;
+    k.w_WB = path.w_WB;
     k.p_WBcm = k.X_WB * body.p_BBcm;
-    k.v_WBcm = v_WBo + m.w_W.cross(k.p_WBcm - k.X_WB.translation());
+    k.v_WBcm = path.v_WBo + path.w_WB.cross(k.p_WBcm - k.X_WB.translation());
     return k;
   }
   k.p_WBcm = k.X_WB * body.p_BBcm;

@@ -5,21 +5,28 @@
 // mass (p_BBcm in B). A free body's state is p_WBcm, q_WB (unit quaternion), v_WBcm, w_WB.
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 
+#include "dynamics/trajectory.hpp"
 #include "geometry/primitives.hpp"
 
 namespace vcontact::dynamics {
 
 enum class BodyMotion { kFree, kFixed, kPrescribed };
 
-/// X_WB(t) = [exp(w_W t) R_WB(0),  p_WB(0) + v_W t + A_W sin(2π f t)].
+/// X_WB(t) = [exp(w_W t) R_WB(0),  p_WB(0) + v_W t + A_W sin(2π f t)], or, with a
+/// trajectory, the trajectory's pose (X_WB(0) is then unused).
 struct PrescribedMotion {
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();          ///< m/s
   Eigen::Vector3d w_W = Eigen::Vector3d::Zero();          ///< rad/s
   Eigen::Vector3d amplitude_W = Eigen::Vector3d::Zero();  ///< m
   double frequency_hz = 0.0;                              ///< Hz
+  std::shared_ptr<const Trajectory> trajectory;           ///< interpolated table, or null
 };
+
+/// The pose and velocities of a frame that starts at X_W0 and moves by `m` at time t (s).
+PathPoint prescribedPath(const Eigen::Isometry3d& X_W0, const PrescribedMotion& m, double t);
 
 struct RigidBody {
   std::string name;

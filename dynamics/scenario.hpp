@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/loads.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/rigid_body.hpp"
 #include "volume/contact_volume.hpp"
@@ -76,6 +77,8 @@ struct SimulationSettings {
 struct Scenario {
   std::vector<RigidBody> bodies;
   std::vector<ContactPair> pairs;
+  std::vector<ExternalLoad> loads;  ///< external forces and drives on bodies
+  std::vector<BodySpring> springs;  ///< spring–dampers between two bodies
   Eigen::Vector3d gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< m/s²
   SimulationSettings settings;
 };

@@ -99,6 +99,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   kin_.resize(scenario_.bodies.size());
   addToBroadPhase();
   preparePairs();
+  checkLoads();
   queried_.assign(scenario_.pairs.size(), 1);
   force_.resize(scenario_.bodies.size());
   torque_.resize(scenario_.bodies.size());
@@ -225,6 +226,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
   }
   if (any_screened_) screenPairs();
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) evaluatePair(k, x, dxdt);
+  applyLoads(t);
   for (std::size_t i = 0; i < nb; ++i) {
     if (offset_[i] >= 0) bodyRates(i, x, dxdt);
   }
@@ -271,6 +273,7 @@ Snapshot Simulator::snapshot(const State& x, double t) {
   s.t = t;
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) s.bodies.push_back(kinematics(x, i, t));
   s.pairs = last_pairs_;
+  s.loads = last_loads_;
   return s;
 }
 
@@ -312,7 +315,7 @@ const char* stopCauseName(StopCause cause) {
 // The blow-up guard after an accepted step (energy_guard.hpp): O(bodies + pairs).
 void Simulator::checkEnergy(const State& x, double t) {
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
-  const std::string message = energy_guard_->check(guard_kin_, last_pairs_, t);
+  const std::string message = energy_guard_->check(guard_kin_, last_pairs_, last_loads_, t);
   if (!message.empty()) throw SimulationError(t, StopCause::kBlowUp, where(t) + ", " + message);
 }
 

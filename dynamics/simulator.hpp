@@ -87,6 +87,7 @@ struct Snapshot {
   double t = 0.0;                      ///< s
   std::vector<BodyKinematics> bodies;  ///< one per Scenario::bodies
   std::vector<PairOutput> pairs;       ///< one per Scenario::pairs
+  std::vector<LoadOutput> loads;       ///< one per Scenario::loads, then one per spring
 };
 
 struct SimulationSummary {
@@ -147,6 +148,8 @@ class Simulator {
   void noteNonFinite(std::size_t k, const volume::ContactVolume& cv, const ContactResult& r);
   void countPatches(const Snapshot& s, SimulationSummary& summary, long& samples,
                     long& total) const;
+  void checkLoads() const;
+  void applyLoads(double t);
   void bodyRates(std::size_t i, const State& x, State& dxdt) const;
   void screenPairs();
   bool rhsFinite(const double* x, double* dxdt, double t);
@@ -179,6 +182,7 @@ class Simulator {
   std::vector<PairOutput> last_pairs_;
   std::optional<EnergyGuard> energy_guard_;  ///< set by run() from the state at t = 0
   std::vector<BodyKinematics> guard_kin_;    ///< checkEnergy()'s scratch
+  std::vector<LoadOutput> last_loads_;       ///< the loads' and springs' wrenches, same evaluation
   std::vector<volume::DepthField> fields_;   ///< δ maps of the distributed-friction pairs
   /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
   /// the fast method's leaf pairs while the bodies move less than its reach).

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "formats/model_file.hpp"
+#include "formats/scenario_loads.hpp"
+#include "formats/scenario_reader.hpp"
 #include "geometry/error.hpp"
 #include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
@@ -18,137 +20,17 @@
 namespace vcontact::formats {
 namespace {
 
+using detail::Reader;
+using detail::readPose;
+using detail::resolve;
+
 constexpr const char* kFormat = "vcontact.scenario/1";
-
-// Reads one JSON object, knowing the file and the place in it for every message.
-class Reader {
- public:
-  Reader(const nlohmann::json& j, std::string source, std::string place)
-      : j_(j), source_(std::move(source)), place_(std::move(place)) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& expectation) const {
-    throw InputError(source_, at(key) + ": " + expectation);
-  }
-  std::string at(const std::string& key) const {
-    return place_.empty() ? key : (key.empty() ? place_ : place_ + "." + key);
-  }
-  bool has(const std::string& key) const { return j_.contains(key); }
-  const nlohmann::json& operator[](const std::string& key) const { return j_.at(key); }
-
-  void allowOnly(std::initializer_list<const char*> keys) const {
-    for (const auto& item : j_.items()) {
-      // a plain variable, not a structured binding: clang 14 (the fuzz build) cannot capture one
-      const std::string key = item.key();
-      if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) !=
-          keys.end()) {
-        continue;
-      }
-      std::ostringstream s;
-      s << "unknown key; expected one of:";
-      for (const char* k : keys) s << ' ' << k;
-      fail(key, s.str());
-    }
-  }
-
-  double number(const std::string& key, double fallback, double lower, double upper) const {
-    if (!has(key)) return fallback;
-    const auto& v = j_[key];
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lower ||
-        v.get<double>() > upper) {
-      std::ostringstream s;
-      s << "expected a number in [" << lower << ", " << upper << "]";
-      fail(key, s.str());
-    }
-    return v.get<double>();
-  }
-  double positive(const std::string& key, double fallback) const {
-    const double v = number(key, fallback, 0.0, HUGE_VAL);
-    if (!(v > 0.0)) fail(key, "expected a positive number");
-    return v;
-  }
-  std::string text(const std::string& key) const {
-    if (!has(key) || !j_[key].is_string()) fail(key, "expected a string");
-    return j_[key].get<std::string>();
-  }
-  std::vector<double> numbers(const std::string& key) const {
-    const auto& v = j_[key];
-    std::vector<double> out;
-    if (v.is_array()) {
-      for (const auto& x : v) {
-        if (!x.is_number() || !std::isfinite(x.get<double>())) fail(key, "expected numbers");
-        out.push_back(x.get<double>());
-      }
-    }
-    return out;
-  }
-  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
-    if (!has(key)) return fallback;
-    const auto v = numbers(key);
-    if (v.size() != 3) fail(key, "expected an array of 3 numbers");
-    return {v[0], v[1], v[2]};
-  }
-  /// A vector each of whose components is within +-limit (io/input_ranges.hpp).
-  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback, double limit,
-                          const char* unit) const {
-    const Eigen::Vector3d v = vector3(key, fallback);
-    if (v.cwiseAbs().maxCoeff() > limit) {
-      std::ostringstream s;
-      s << "expected components within +-" << limit << " " << unit << ", got [" << v.x() << ", "
-        << v.y() << ", " << v.z() << "]";
-      fail(key, s.str());
-    }
-    return v;
-  }
-  double inRange(const std::string& key, double fallback, const io::Range& range) const {
-    if (has(key) && !j_[key].is_number()) fail(key, "expected a number");
-    const double v = has(key) ? j_[key].get<double>() : fallback;
-    const std::string why = io::outOfRange(v, range, "a number");
-    if (!why.empty()) fail(key, why);
-    return v;
-  }
-  bool flag(const std::string& key, bool fallback) const {
-    if (!has(key)) return fallback;
-    if (!j_[key].is_boolean()) fail(key, "expected true or false");
-    return j_[key].get<bool>();
-  }
-  Reader child(const std::string& key) const {
-    if (!has(key) || !j_[key].is_object()) fail(key, "expected an object");
-    return Reader(j_[key], source_, at(key));
-  }
-  const std::string& source() const { return source_; }
-
- private:
-  const nlohmann::json& j_;
-  std::string source_;
-  std::string place_;
-};
 
 bool isPrimitive(const std::string& text) {
   for (const char* prefix : {"sphere:", "cylinder:", "box:"}) {
     if (text.rfind(prefix, 0) == 0) return true;
   }
   return text == "halfspace";
-}
-
-std::string resolve(const std::string& path, const std::string& base_dir) {
-  const std::filesystem::path p(path);
-  return p.is_absolute() ? path : (std::filesystem::path(base_dir) / p).string();
-}
-
-Eigen::Isometry3d readPose(const Reader& r, const std::string& key) {
-  if (!r.has(key)) return Eigen::Isometry3d::Identity();
-  const auto& v = r[key];
-  if (v.is_string()) return io::parsePose(v.get<std::string>(), r.source() + ": " + r.at(key));
-  const auto n = r.numbers(key);
-  if (n.size() != 3 && n.size() != 6 && n.size() != 7) {
-    r.fail(key,
-           "expected \"x,y,z[,roll,pitch,yaw | ,qw,qx,qy,qz]\" or an array of 3, 6 or 7 "
-           "numbers");
-  }
-  std::ostringstream s;
-  s.precision(17);
-  for (std::size_t i = 0; i < n.size(); ++i) s << (i ? "," : "") << n[i];
-  return io::parsePose(s.str(), r.source() + ": " + r.at(key));
 }
 
 Eigen::Matrix3d readInertia(const Reader& r) {
@@ -248,6 +130,15 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
   body.shape = std::move(parsed.shape);
   for (const auto& w : parsed.warnings) warnings.push_back(body.name + ": " + w);
   body.X_WB0 = readPose(r, "pose");
+  if (r.has("motion") && r["motion"].is_object()) {  // a trajectory from a table
+    for (const char* key : {"pose", "velocity", "angular_velocity", "prescribed"}) {
+      if (r.has(key)) r.fail(key, "the trajectory gives the pose and velocities; leave it out");
+    }
+    body.motion = dynamics::BodyMotion::kPrescribed;
+    body.prescribed.trajectory = detail::readTrajectoryMotion(r.child("motion"), base_dir);
+    body.X_WB0 = body.prescribed.trajectory->at(0.0).X_WB;
+    return body;
+  }
   const std::string motion = r.has("motion") ? r.text("motion") : "free";
   if (motion == "fixed") {
     body.motion = dynamics::BodyMotion::kFixed;
@@ -265,7 +156,8 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
         r.vector3("velocity", Eigen::Vector3d::Zero(), io::kMaxSpeed, "m/s");
     body.v_WBcm0 = v_WBo + body.w_WB0.cross(body.X_WB0.linear() * body.p_BBcm);
   } else {
-    r.fail("motion", "expected \"free\", \"fixed\" or \"prescribed\"");
+    r.fail("motion",
+           "expected \"free\", \"fixed\" or \"prescribed\", or a trajectory {\"csv\": PATH}");
   }
   return body;
 }
@@ -409,27 +301,29 @@ void checkPairMethod(const Reader& p, const dynamics::ContactPair& pair,
   }
 }
 
-// "contacts": one pair for every two bodies not already a pair, at least one of them free.
-// The later body in "bodies" is the payload a, unless it is not free; the method, if not
-// given, is the best each pair allows, and a pair no method handles is an error.
+// "contacts": one pair for every two bodies not already a pair, at least one of them moving
+// (free or prescribed). The payload a is the free one of the two, else the prescribed one,
+// and the later one in "bodies" between two of a kind; the method, if not given, is the best
+// each pair allows, and a pair no method handles is an error.
 void addDefaultContacts(const Reader& c, const std::map<std::string, dynamics::Model>& models,
                         const std::string& base_dir, dynamics::Scenario& sc) {
   c.allowOnly({"model", "method", "friction", "columns", "max_patches"});
-  const auto free = [&](std::size_t i) {
-    return sc.bodies[i].motion == dynamics::BodyMotion::kFree;
+  const auto rank = [&](std::size_t i) {  // free 2, prescribed 1, fixed 0
+    const dynamics::BodyMotion m = sc.bodies[i].motion;
+    return m == dynamics::BodyMotion::kFree ? 2 : m == dynamics::BodyMotion::kPrescribed ? 1 : 0;
   };
   const std::vector<dynamics::ContactPair> listed = sc.pairs;
   for (std::size_t j = 1; j < sc.bodies.size(); ++j) {
     for (std::size_t i = 0; i < j; ++i) {
-      if (!free(i) && !free(j)) continue;
+      if (rank(i) == 0 && rank(j) == 0) continue;
       if (std::any_of(listed.begin(), listed.end(), [&](const dynamics::ContactPair& q) {
             return std::minmax(q.a, q.b) == std::minmax(i, j);
           })) {
         continue;
       }
       dynamics::ContactPair pair;
-      pair.a = free(j) ? j : i;
-      pair.b = free(j) ? i : j;
+      pair.a = rank(j) >= rank(i) ? j : i;
+      pair.b = rank(j) >= rank(i) ? i : j;
       pair.name = sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
       readPairContact(c, models, base_dir, pair);
       checkPairMethod(c, pair, sc.bodies);
@@ -520,11 +414,12 @@ void checkPairNames(const Reader& r, const std::vector<dynamics::ContactPair>& p
 }
 
 OutputSelection readOutputs(const Reader& o) {
-  o.allowOnly({"bodies", "pairs", "shares"});
+  o.allowOnly({"bodies", "pairs", "shares", "loads"});
   OutputSelection outputs;
   outputs.bodies = o.flag("bodies", true);
   outputs.pairs = o.flag("pairs", true);
   outputs.shares = o.flag("shares", true);
+  outputs.loads = o.flag("loads", true);
   return outputs;
 }
 
@@ -535,7 +430,7 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
   r.allowOnly({"format", "duration", "output_rate", "integrator", "gravity", "tolerances", "bodies",
-               "models", "pairs", "contacts", "outputs", "description"});
+               "models", "pairs", "contacts", "loads", "springs", "outputs", "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }
@@ -547,6 +442,8 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
   }
   sc.gravity_W = r.vector3("gravity", sc.gravity_W, io::kMaxAcceleration, "m/s^2");
   readBodies(r, source, base_dir, file);
+  detail::readLoads(r, base_dir, sc);
+  detail::readSprings(r, sc);
   const std::map<std::string, dynamics::Model> models = readModels(r, source, base_dir);
   if (r.has("pairs") ? !r["pairs"].is_array() : !r.has("contacts")) {
     r.fail("pairs", "expected an array of pairs (it may be left out when \"contacts\" is given)");

@@ -16,6 +16,7 @@ struct OutputSelection {
   bool bodies = true;  ///< bodies.csv
   bool pairs = true;   ///< pair_<name>.csv: volume, centroid, normal, wrench, states
   bool shares = true;  ///< each effect's share of the wrench in pair_<name>.csv
+  bool loads = true;   ///< loads.csv, when the scenario has loads or springs
 };
 
 struct ScenarioFile {

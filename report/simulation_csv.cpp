@@ -80,9 +80,14 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
                                          const formats::OutputSelection& outputs)
     : scenario_(scenario), outputs_(outputs), set_(dir) {
   const std::filesystem::path base(dir);
+  const bool loads = outputs_.loads && (!scenario.loads.empty() || !scenario.springs.empty());
   if (outputs_.bodies) {
     bodies_ = &open((base / "bodies.csv").string());
     *bodies_ << "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  }
+  if (loads) {
+    loads_ = &open((base / "loads.csv").string());
+    *loads_ << "t,load,body,px,py,pz,fx,fy,fz,taux,tauy,tauz\n";
   }
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
@@ -122,6 +127,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
       *bodies_ << row << '\n';
     }
   }
+  if (loads_) writeLoads(s);
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const dynamics::PairOutput& p = s.pairs[k];
     const int state_size = scenario_.pairs[k].model.stateLayout().size();
@@ -137,6 +143,23 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
     if (patches_[k]) writePatches(s.t, p, state_size, *patches_[k]);
   }
   checkWrites();
+}
+
+// One row per load, then per spring: the wrench on its body (a spring's body a) with the
+// force at (px, py, pz).
+void SimulationCsvWriter::writeLoads(const dynamics::Snapshot& s) {
+  const std::size_t n_loads = scenario_.loads.size();
+  for (std::size_t k = 0; k < s.loads.size(); ++k) {
+    const bool load = k < n_loads;
+    const std::string& name = load ? scenario_.loads[k].name : scenario_.springs[k - n_loads].name;
+    const std::size_t body = load ? scenario_.loads[k].body : scenario_.springs[k - n_loads].a;
+    std::string row = startRow(s.t);
+    row += ',' + name + ',' + scenario_.bodies[body].name;
+    put(row, s.loads[k].p_W);
+    put(row, s.loads[k].wrench.f_W);
+    put(row, s.loads[k].wrench.tau_W);
+    *loads_ << row << '\n';
+  }
 }
 
 // One row per patch, in the query's order (patch = its index).
@@ -160,6 +183,7 @@ void SimulationCsvWriter::checkWrites() {
     pairs_.clear();
     patches_.clear();
     bodies_ = nullptr;
+    loads_ = nullptr;
     throw;
   }
 }
@@ -180,6 +204,8 @@ std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
       per_time += 1.0 + (slots < 2 ? 0.0 : static_cast<double>(slots));
     }
   }
+  if (outputs.loads)
+    per_time += static_cast<double>(scenario.loads.size() + scenario.springs.size());
   const double rows = times * per_time;
   constexpr double kBeyond = 1e19;  // beyond any limit; keeps the cast defined
   return static_cast<std::uint64_t>(std::min(rows, kBeyond));

@@ -40,6 +40,7 @@ class SimulationCsvWriter {
  private:
   std::ostream& open(const std::string& path);
   void checkWrites();
+  void writeLoads(const dynamics::Snapshot& s);
   void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ostream& f);
 
   const dynamics::Scenario& scenario_;
@@ -49,12 +50,14 @@ class SimulationCsvWriter {
   std::ostream* bodies_ = nullptr;
   std::vector<std::ostream*> pairs_;
   std::vector<std::ostream*> patches_;  ///< per pair, its patch file; null when it has none
+  std::ostream* loads_ = nullptr;       ///< loads.csv, when written
   std::vector<std::string> files_;
 };
 
 /// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs + the
 /// patch files' rows, counted as one per state slot: a pair touching in more patches than it
-/// has slots writes more, so this is the count of a run whose patches fill their slots).
+/// has slots writes more, so this is the count of a run whose patches fill their slots + loads
+/// and springs in loads.csv).
 std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
                              const formats::OutputSelection& outputs);
 
