@@ -9,11 +9,13 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <variant>
 #include <vector>
 
 #include "geometry/moments.hpp"
 #include "geometry/tessellate.hpp"
+#include "volume/column_depth.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -86,15 +88,19 @@ ContactVolume contactFromFaces(const std::vector<RegionFace>& faces) {
   }
   if (!(M.m0 > 0.0) || areaOnA.norm() == 0.0) return ContactVolume{.method = Method::kCgal};
   const Vector3d n = -areaOnA.normalized();
-  double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
+  double area2 = 0.0, scale = 0.0;
+  ColumnDepth depth;
+  std::uint64_t key = 0;
   for (const RegionFace& f : faces) {
-    area2 += std::abs(n.dot((f.p[1] - f.p[0]).cross(f.p[2] - f.p[0])));
-    for (const Vector3d& p : f.p) {
-      lo = std::min(lo, n.dot(p - o));
-      hi = std::max(hi, n.dot(p - o));
-    }
+    const Vector3d N = (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
+    area2 += std::abs(n.dot(N));
+    for (const Vector3d& p : f.p) scale = std::max(scale, p.cwiseAbs().maxCoeff());
+    if (!(N.norm() > 0.0)) continue;  // a face of no area bounds no column
+    const Vector3d n_f = N.normalized();
+    for (int k = 0; k < 3; ++k) depth.add(key, n_f, f.p[k], f.p[(k + 1) % 3]);
+    ++key;
   }
-  return contactFromMoments(M, o, n, 0.25 * area2, hi - lo, Method::kCgal);
+  return contactFromMoments(M, o, n, 0.25 * area2, depth.deepest(n, o, scale), Method::kCgal);
 }
 
 /// The whole region as the aggregate and each connected component as a patch, each with the

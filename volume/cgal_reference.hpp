@@ -19,7 +19,9 @@ namespace vcontact::volume {
 ///   n ∝ ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA = −2 ∫_{∂A∩B} n_A dA (MODEL.md §1; the
 ///   region's boundary is closed, so the two parts' area vectors cancel);
 ///   area = ½ Σ_faces |n_f·n| A_f, the projection of the region onto the plate, exact when
-///   every column along n crosses the region once; depth = extent of the region along n.
+///   every column along n crosses the region once; depth = max over the plate of δ(s), the
+///   deepest column along n, from the intersection's faces (column_depth.hpp, exact under the
+///   same condition).
 /// @pre both meshes closed, outward-oriented and free of self-intersections, without cavities
 ContactPatches cgalMeshMeshContact(const geometry::TriangleMesh& a, const Eigen::Isometry3d& X_WA,
                                    const geometry::TriangleMesh& b, const Eigen::Isometry3d& X_WB);

@@ -233,18 +233,28 @@ ContactVolume assemble(const Grid& g, const GridSums& s, const Vector3d& n) {
   return contactFromMoments(s.M, g.o, n, s.wetLines * g.cellArea(), s.maxDepth, Method::kColumns);
 }
 
-/// Do the wet parts of two neighbouring lines touch? Their spans [tFirst, tLast] along n
-/// overlap (one region crossing both).
-bool spansTouch(const LineIntegrals& x, const LineIntegrals& y) {
-  return y.L > 0.0 && x.tFirst <= y.tLast && y.tFirst <= x.tLast;
+/// The slope (along n, per unit across the plate) up to which a thin region's neighbouring
+/// lines stay joined: tan 76°. A peg pressed sideways into its hole's wall overlaps it in a
+/// crescent, 5 µm thick where its wings reach 70° from the pair's normal; regions apart along
+/// n by more than 4 line spacings (opposite walls of a hole, millimetres against tens of µm)
+/// stay apart.
+constexpr double kJoinSlope = 4.0;
+
+/// Do the wet parts of two neighbouring lines, h apart, belong to one region? Their spans
+/// [tFirst, tLast] along n overlap once grown by kJoinSlope·h: between the two lines, a
+/// boundary sloped up to kJoinSlope moves by at most that along n.
+bool spansTouch(const LineIntegrals& x, const LineIntegrals& y, double h) {
+  const double reach = kJoinSlope * h;
+  return y.L > 0.0 && x.tFirst <= y.tLast + reach && y.tFirst <= x.tLast + reach;
 }
 
 /// The wet lines of grid g grouped into patches: lines joined to their four neighbours whose
-/// spans along n overlap (spansTouch), each group summed alone (row by row) with the pair's
+/// spans along n touch (spansTouch), each group summed alone (row by row) with the pair's
 /// normal n and estimate `error`. Two regions stacked on one line are one patch.
 std::vector<ContactVolume> columnPatches(const Grid& g, const std::vector<LineIntegrals>& lines,
                                          const Vector3d& n, double error) {
   const auto at = [&g](int i, int j) { return static_cast<std::size_t>(i) * g.n + j; };
+  const double h1 = 2.0 * g.r1 / g.n, h2 = 2.0 * g.r2 / g.n;  // line spacing along e1, e2
   std::vector<int> label(lines.size(), -1);
   std::vector<std::pair<int, int>> stack;
   int groups = 0;
@@ -259,7 +269,7 @@ std::vector<ContactVolume> columnPatches(const Grid& g, const std::vector<LineIn
         for (const auto& [dk, dl] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
           const int k2 = k + dk, l2 = l + dl;
           if (k2 < 0 || l2 < 0 || k2 >= g.n || l2 >= g.n || label[at(k2, l2)] >= 0 ||
-              !spansTouch(lines[at(k, l)], lines[at(k2, l2)])) {
+              !spansTouch(lines[at(k, l)], lines[at(k2, l2)], dk != 0 ? h1 : h2)) {
             continue;
           }
           label[at(k2, l2)] = groups;

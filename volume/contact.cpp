@@ -1,9 +1,11 @@
 #include "volume/contact.hpp"
 
 #include <string>
+#include <vector>
 
 #include "geometry/error.hpp"
 #include "volume/methods.hpp"
+#include "volume/patch_floor.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -27,6 +29,13 @@ Method firstHandling(const geometry::Shape& a, const geometry::Shape& b, Eligibl
 }
 
 }  // namespace
+
+void dropSpecks(std::vector<ContactVolume>& patches) {
+  double total = 0.0;
+  for (const ContactVolume& p : patches) total += p.volume;
+  const double floor = kPatchVolumeFloor * total;
+  while (!patches.empty() && patches.back().volume < floor) patches.pop_back();
+}
 
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b) {
   return firstHandling(
@@ -63,7 +72,9 @@ ContactPatches computeContact(const geometry::Shape& a, const Eigen::Isometry3d&
     throw InputError("volume method " + std::string(row.name),
                      "it does not sample the depth field asked for");
   }
-  return row.compute(a, X_WA, b, X_WB, options, field, cache);
+  ContactPatches out = row.compute(a, X_WA, b, X_WB, options, field, cache);
+  dropSpecks(out.patches);
+  return out;
 }
 
 }  // namespace vcontact::volume

@@ -54,8 +54,8 @@ struct ContactCache {
 };
 
 /// The contact patches of A (the payload) and B (the plate or other body) and their aggregate
-/// (ContactPatches) by options.method. `fast` takes two meshes only: a mesh against a half-space is
-/// refused (the halfspace clip is the exact method for it).
+/// (ContactPatches) by options.method, specks left out (patch_floor.hpp). `fast` takes two meshes
+/// only: a mesh against a half-space is refused (the halfspace clip is the exact method for it).
 /// @param field  if not null, filled with the δ samples of the contact (left as it was when
 ///               the bodies are apart); the method must fill depth fields (fillsDepthField)
 /// @param cache  if not null, the pair's memory between queries (ContactCache)

@@ -243,7 +243,7 @@ ContactVolume Intersector::integrate() {
   RegionSum sum(o);
   const auto add = [&](int side, int face, const Vector3d& c, const Vector3d& p, const Vector3d& q,
                        const Vector3d& nrm, double area) {
-    sum.add(side, c, p, q, nrm, area, inNormal(side, face), inArea(side, face), patches);
+    sum.add(side, face, c, p, q, nrm, area, inNormal(side, face), inArea(side, face), patches);
   };
   // Every piece lies on a cut face: their feet first, in one loop whose square roots and
   // divisions do not wait on each other.
@@ -262,7 +262,7 @@ ContactVolume Intersector::integrate() {
     const double twiceArea = N.norm();
     const Vector3d nrm = N * (1.0 / twiceArea);
     add(wf.side, wf.face, a, b, c, nrm, 0.5 * twiceArea);
-    if (inArea(wf.side, wf.face)) patches.push_back({nrm, 0.0, a, a});  // for depth
+    if (inArea(wf.side, wf.face)) addOtherEdges(wf, nrm, patches);
   }
   return contactOf(sum, patches);
 }
@@ -277,15 +277,23 @@ ContactVolume Intersector::contactOf(const RegionSum& sum, const std::vector<Pat
   const Vector3d c_o = M.m1 / M.m0;
   const Vector3d n = contactNormal(sum.nSum, sum.areaSum, o + c_o);
 
-  double area2 = 0.0, lo = INFINITY, hi = -INFINITY;
+  double area2 = 0.0;
+  ColumnDepth& depth = scratch_.depth;
+  depth.clear();
   for (const Patch& pt : parts) {
     area2 += std::abs(n.dot(pt.n_W)) * pt.area;
-    for (const Vector3d* p : {&pt.p, &pt.q}) {
-      lo = std::min(lo, n.dot(*p - o));
-      hi = std::max(hi, n.dot(*p - o));
-    }
+    depth.add(pt.face, pt.n_W, pt.p, pt.q);
   }
-  return contactFromMoments(M, o, n, 0.5 * area2, hi - lo, Method::kFast);
+  return contactFromMoments(M, o, n, 0.5 * area2, depth.deepest(n, o, scale), Method::kFast);
+}
+
+/// A whole face's edges a → b and c → a for the depth pass (RegionSum::add has filed b → c).
+void Intersector::addOtherEdges(const WholeFace& wf, const Vector3d& nrm,
+                                std::vector<Patch>& parts) {
+  Body& m = body_[wf.side];
+  const Vector3d &a = m.corner(wf.face, 0), &b = m.corner(wf.face, 1), &c = m.corner(wf.face, 2);
+  parts.push_back({faceKey(wf.side, wf.face), nrm, 0.0, a, b});
+  parts.push_back({faceKey(wf.side, wf.face), nrm, 0.0, c, a});
 }
 
 /// n from the area vectors; when they cancel (the region is bounded by one body's surface

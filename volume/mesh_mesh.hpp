@@ -83,7 +83,7 @@ struct MeshMeshCache {
 ///   area = ½ Σ_faces |n_f·n| A_f over the region's boundary faces, the projection of the
 ///   region onto the plate, exact when every column along n crosses the region once (as in
 ///   cgal_reference.hpp, so the two methods report the same area);
-///   depth = extent of the region along n.
+///   depth = max over the plate of δ(s), the longest column along n (column_depth.hpp).
 /// Apart, or touching without overlap: V = 0 (inContact() false).
 /// Patches (step 5, mesh_mesh_patches.cpp): the pieces of ∂(A ∩ B) join through their end
 /// nodes (crossings, inside vertices; whole faces through their corners); a face whose region

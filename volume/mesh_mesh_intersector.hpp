@@ -14,6 +14,7 @@
 #include "geometry/bvh.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "geometry/moments.hpp"
+#include "volume/column_depth.hpp"
 #include "volume/contact_volume.hpp"
 #include "volume/mesh_mesh.hpp"
 #include "volume/stamp_set.hpp"
@@ -81,25 +82,33 @@ struct Piece {
 
 /// A boundary patch as the area and depth passes see it.
 struct Patch {
-  Vector3d n_W;   ///< unit normal of its face
-  double area;    ///< signed area (a piece's share of its face's region)
-  Vector3d p, q;  ///< points of the patch, for the extent along n
+  std::uint64_t face;  ///< (side << 32) | face index: the depth pass groups edges by face
+  Vector3d n_W;        ///< unit normal of its face
+  double area;         ///< signed area (a piece's share of its face's region)
+  Vector3d p, q;       ///< a boundary edge of the face's region, for the depth
 };
+
+/// The key of face `face` of mesh `side` in Patch::face.
+inline std::uint64_t faceKey(int side, int face) {
+  return (static_cast<std::uint64_t>(side) << 32) | static_cast<std::uint32_t>(face);
+}
 
 /// The integration's running sums over one region's boundary (step 4): its fan about the apex
 /// o, the sizes its noise test needs, n's area vector and the patches for area and depth.
 struct RegionSum {
   explicit RegionSum(const Vector3d& apex) : o(apex), scale3(apex.cwiseAbs()) {}
 
-  /// Adds the boundary triangle (c, p, q) of a face with unit normal nrm and signed area
-  /// `area`, of mesh `side`; `normal`, `area`: whether it counts in n, in area and depth.
-  void add(int side, const Vector3d& c, const Vector3d& p, const Vector3d& q, const Vector3d& nrm,
-           double area, bool inNormal, bool inArea, std::vector<Patch>& parts) {
+  /// Adds the boundary triangle (c, p, q) of face `face` of mesh `side`, with unit normal nrm
+  /// and signed area `area` (p → q is an edge of the face's region); `normal`, `area`: whether
+  /// it counts in n, in area and depth.
+  void add(int side, int face, const Vector3d& c, const Vector3d& p, const Vector3d& q,
+           const Vector3d& nrm, double area, bool inNormal, bool inArea,
+           std::vector<Patch>& parts) {
     termSum6 += std::abs(fan.add(c - o, p - o, q - o));
     areaSum += std::abs(area);
     scale3 = scale3.cwiseMax(p.cwiseAbs()).cwiseMax(q.cwiseAbs());
     if (inNormal) nSum += (side == 1 ? area : -area) * nrm;
-    if (inArea) parts.push_back({nrm, area, p, q});
+    if (inArea) parts.push_back({faceKey(side, face), nrm, area, p, q});
   }
 
   Vector3d o;
@@ -129,6 +138,7 @@ struct Scratch {
   std::vector<Patch> patches;
   /// Union-find parents of the boundary nodes: crossings first, then inside vertices.
   std::vector<int> nodeParent;
+  ColumnDepth depth;
 };
 
 /// A mesh placed in W for one query.
@@ -229,6 +239,7 @@ class Intersector {
   ContactVolume integrate();
   /// The ContactVolume of a region from its sums and its area/depth patches `parts`.
   ContactVolume contactOf(const RegionSum& sum, const std::vector<Patch>& parts) const;
+  void addOtherEdges(const WholeFace& wf, const Vector3d& nrm, std::vector<Patch>& parts);
   Vector3d contactNormal(const Vector3d& nSum, double areaSum, const Vector3d& p_c) const;
   // --- 5: patches (mesh_mesh_patches.cpp) ----------------------------------------------------
   int findNode(int node);

@@ -162,7 +162,7 @@ std::vector<ContactVolume> Intersector::integratePatches() {
     const FaceFoot& F = body_[pc.side].scratch.feet[pc.face];
     // the group's apex dropped onto the face's plane (F.foot is a point of that plane)
     const Vector3d c = sums[g].o - F.n_W * F.n_W.dot(sums[g].o - F.foot);
-    sums[g].add(pc.side, c, pc.p, pc.q, F.n_W, 0.5 * F.n_W.dot((pc.p - c).cross(pc.q - c)),
+    sums[g].add(pc.side, pc.face, c, pc.p, pc.q, F.n_W, 0.5 * F.n_W.dot((pc.p - c).cross(pc.q - c)),
                 inNormal(pc.side, pc.face), inArea(pc.side, pc.face), parts[g]);
   }
   for (const WholeFace& wf : scratch_.wholes) {
@@ -174,8 +174,9 @@ std::vector<ContactVolume> Intersector::integratePatches() {
     const double twiceArea = N.norm();
     const Vector3d nrm = N * (1.0 / twiceArea);
     const bool area = inArea(wf.side, wf.face);
-    sums[g].add(wf.side, a, b, c, nrm, 0.5 * twiceArea, inNormal(wf.side, wf.face), area, parts[g]);
-    if (area) parts[g].push_back({nrm, 0.0, a, a});  // for depth
+    sums[g].add(wf.side, wf.face, a, b, c, nrm, 0.5 * twiceArea, inNormal(wf.side, wf.face), area,
+                parts[g]);
+    if (area) addOtherEdges(wf, nrm, parts[g]);
   }
   std::vector<ContactVolume> patches;
   for (std::size_t g = 0; g < sums.size(); ++g) {

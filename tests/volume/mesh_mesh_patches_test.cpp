@@ -178,14 +178,16 @@ TEST(FastMeshMeshPatches, KeyedShaftTurnedInItsHub) {
     EXPECT_LT(std::abs(p.n_W.dot(X_WS.linear() * key_S)), 0.05);     // the hub is 0.03 rad off
     EXPECT_LT(std::abs(p.n_W.dot(axis_W)), 1e-9);                    // flanks parallel to the axis
     EXPECT_NEAR(p.volume, fast.patches[0].volume, 1e-9 * p.volume);  // four-fold symmetry
-    // Deepest penetration: the key's flank point (x, a) turned by φ reaches y = x sin φ +
-    // a cos φ, the block's face is at a + gap, deepest at the block's far end x = 0.01365:
-    // 2.076e-4 m. depth is the patch's extent along its own n (tilted by up to φ from the
-    // block's face), 2 % more here; 5 % bounds it. The merged region's extent is 30 mm.
-    const double phi = 0.03, x = 0.0101 + 0.00355;
-    const double deepest = x * std::sin(phi) + a * std::cos(phi) - a - gap;
-    EXPECT_NEAR(p.depth, deepest, 0.05 * deepest);
-    EXPECT_GT(fast.aggregate.depth, 100 * p.depth);
+    // Deepest penetration along the patch's n, the flank's normal: the region is a prism over
+    // a right triangle whose hypotenuse is the flank, and its longest column is the altitude
+    // onto it, (x_f − x_1) sin φ, with x_1 where the flank meets the block's face y = a + gap
+    // and x_f the block's far end (depth_test.cpp, KeyFlankInAHubBlock). Two exact methods:
+    // 1e-9. The merged region's depth, along one normal for four flanks, is larger.
+    const double phi = 0.03, t = (a + gap - a * std::cos(phi)) / std::sin(phi);
+    const double x1 = t * std::cos(phi) - a * std::sin(phi), xf = 0.0101 + 0.00355;
+    const double deepest = (xf - x1) * std::sin(phi);
+    EXPECT_NEAR(p.depth, deepest, 1e-9 * deepest);
+    EXPECT_GT(fast.aggregate.depth, 2 * p.depth);
   }
 }
 

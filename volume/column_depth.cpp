@@ -1,0 +1,227 @@
+#include "volume/column_depth.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace vcontact::volume {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+/// τ as a fraction of the largest coordinate: two boundary points on one column (a vertex of
+/// one body straight above a crossing on the other) differ in projection by their rounding, a
+/// few ε of that size (≈ 1e-15); 1e-12 covers it a thousand times (as the box margin of
+/// mesh_mesh.cpp does). The column's span is taken over this reach, which adds at most τ times
+/// the boundary's slope to the depth (a 1 m part at the origin, slope 1: 1e-12 m).
+constexpr double kReach = 1e-12;
+/// |n_f·n| at or below this: the face is a wall (parallel to the columns), seen only through
+/// its edges. Above it the plane's height is evaluated and clamped to the face's own range,
+/// so a steep face's large slope does no harm.
+constexpr double kWall = 1e-12;
+
+double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+}  // namespace
+
+void ColumnDepth::clear() { input_.clear(); }
+
+void ColumnDepth::add(std::uint64_t faceKey, const Vector3d& n_f, const Vector3d& p,
+                      const Vector3d& q) {
+  input_.push_back({faceKey, n_f, p, q});
+}
+
+int ColumnDepth::Grid::col(double x) const {
+  return std::clamp(static_cast<int>(std::floor((x - x0) / hx)), 0, nx - 1);
+}
+
+int ColumnDepth::Grid::row(double y) const {
+  return std::clamp(static_cast<int>(std::floor((y - y0) / hy)), 0, ny - 1);
+}
+
+/// Segments on the plate (u, v ⊥ n, about o) with their heights along n, grouped by face.
+void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
+  const Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  order_.resize(input_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
+  std::sort(order_.begin(), order_.end(), [this](int i, int j) {
+    const auto ki = input_[static_cast<std::size_t>(i)].key;
+    const auto kj = input_[static_cast<std::size_t>(j)].key;
+    return ki != kj ? ki < kj : i < j;
+  });
+  segs_.clear();
+  faces_.clear();
+  for (std::size_t k = 0; k < order_.size(); ++k) {
+    const Input& in = input_[static_cast<std::size_t>(order_[k])];
+    const Vector3d p = in.p - o, q = in.q - o;
+    const Seg s{{u.dot(p), v.dot(p)}, {u.dot(q), v.dot(q)}, n.dot(p), n.dot(q), 0};
+    if (k == 0 || in.key != input_[static_cast<std::size_t>(order_[k - 1])].key) {
+      const double c = in.n_f.dot(n);
+      Face f{0.0, 0.0, 0.0, s.ha, s.ha, 0};
+      if (std::abs(c) > kWall) {
+        // n_f·(x u + y v + h n) = n_f·p  ⇒  h = n_f·p / c − (n_f·u / c) x − (n_f·v / c) y
+        f = {in.n_f.dot(u) / c, in.n_f.dot(v) / c, in.n_f.dot(p) / c, s.ha, s.ha, c > 0 ? 1 : -1};
+      }
+      faces_.push_back(f);
+    }
+    Face& f = faces_.back();
+    f.lo = std::min({f.lo, s.ha, s.hb});
+    f.hi = std::max({f.hi, s.ha, s.hb});
+    segs_.push_back(s);
+    segs_.back().face = static_cast<int>(faces_.size()) - 1;
+  }
+}
+
+/// About one cell per segment over the projections' bounding box (τ added around it).
+void ColumnDepth::buildGrid() {
+  Vector2d lo = segs_.front().a, hi = lo;
+  for (const Seg& s : segs_) {
+    lo = lo.cwiseMin(s.a).cwiseMin(s.b);
+    hi = hi.cwiseMax(s.a).cwiseMax(s.b);
+  }
+  const double W = hi.x() - lo.x() + 2 * tau_, H = hi.y() - lo.y() + 2 * tau_;
+  const double n = static_cast<double>(segs_.size());
+  const double cap = 4.0 * n + 1.0;  // cells per axis for a region thin along one of them
+  double h = std::sqrt(W * H / n);
+  if (!(h > 0.0)) h = std::max(W, H) / n;
+  grid_.nx = static_cast<int>(std::clamp(std::ceil(W / h), 1.0, cap));
+  grid_.ny = static_cast<int>(std::clamp(std::ceil(H / h), 1.0, cap));
+  grid_.x0 = lo.x() - tau_;
+  grid_.y0 = lo.y() - tau_;
+  grid_.hx = W > 0.0 ? W / grid_.nx : 1.0;
+  grid_.hy = H > 0.0 ? H / grid_.ny : 1.0;
+}
+
+/// Files segment s in every row its projection spans and, row by row, in the cells it passes
+/// within τ of.
+void ColumnDepth::fileSegment(int index) {
+  const Seg& s = segs_[static_cast<std::size_t>(index)];
+  const double ylo = std::min(s.a.y(), s.b.y()), yhi = std::max(s.a.y(), s.b.y());
+  const double dy = s.b.y() - s.a.y();
+  const int r0 = grid_.row(ylo - tau_), r1 = grid_.row(yhi + tau_);
+  for (int r = r0; r <= r1; ++r) {
+    rowPairs_.emplace_back(r, index);
+    double xlo = std::min(s.a.x(), s.b.x()), xhi = std::max(s.a.x(), s.b.x());
+    if (dy != 0.0) {  // the x range of the segment within this row's slab
+      const double y0 = std::clamp(grid_.y0 + r * grid_.hy - tau_, ylo, yhi);
+      const double y1 = std::clamp(grid_.y0 + (r + 1) * grid_.hy + tau_, ylo, yhi);
+      const double x0 = s.a.x() + (y0 - s.a.y()) * (s.b.x() - s.a.x()) / dy;
+      const double x1 = s.a.x() + (y1 - s.a.y()) * (s.b.x() - s.a.x()) / dy;
+      xlo = std::max(xlo, std::min(x0, x1));
+      xhi = std::min(xhi, std::max(x0, x1));
+    }
+    const int c0 = grid_.col(xlo - tau_), c1 = grid_.col(xhi + tau_);
+    for (int c = c0; c <= c1; ++c) cellPairs_.emplace_back(r * grid_.nx + c, index);
+  }
+}
+
+/// (bin, item) pairs to compressed rows: bin b's items are items[start[b] .. start[b + 1]).
+void ColumnDepth::toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
+                        std::vector<int>& items) {
+  start.assign(static_cast<std::size_t>(bins) + 1, 0);
+  for (const auto& [bin, item] : pairs) ++start[static_cast<std::size_t>(bin) + 1];
+  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  items.resize(pairs.size());
+  std::vector<int>& next = parity_;  // free until the columns are evaluated
+  next.assign(start.begin(), start.end() - 1);
+  for (const auto& [bin, item] : pairs) items[static_cast<std::size_t>(next[bin]++)] = item;
+  pairs.clear();
+}
+
+/// The span along n of the closed boundary on the column through x (a vertex at height h).
+double ColumnDepth::columnSpanAt(const Vector2d& x, double h) {
+  double lo = h, hi = h;
+  const auto reach = [&](double z) {
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  };
+  const int r = grid_.row(x.y()), cell = r * grid_.nx + grid_.col(x.x());
+  // Edges within τ: the heights over the part of each that lies within τ of the column.
+  for (int k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
+    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
+    const Vector2d d = s.b - s.a, w = x - s.a;
+    const double L2 = d.squaredNorm();
+    if (L2 == 0.0) {  // an edge along n
+      if (w.norm() <= tau_) reach(s.ha), reach(s.hb);
+      continue;
+    }
+    const double L = std::sqrt(L2), e = std::abs(cross2(d, w)) / L;
+    if (e > tau_) continue;
+    const double t = w.dot(d) / L2, half = std::sqrt(tau_ * tau_ - e * e) / L;
+    if (t + half < 0.0 || t - half > 1.0) continue;
+    const double t0 = std::max(t - half, 0.0), t1 = std::min(t + half, 1.0);
+    reach(s.ha + t0 * (s.hb - s.ha));
+    reach(s.ha + t1 * (s.hb - s.ha));
+  }
+  // Faces whose projection holds x: crossing number along +u over the row's edges (each edge
+  // meets the line v = x.v once at most, so none is counted twice).
+  for (int k = rowStart_[r]; k < rowStart_[r + 1]; ++k) {
+    const Seg& s = segs_[static_cast<std::size_t>(rowSegs_[k])];
+    if (faces_[static_cast<std::size_t>(s.face)].side == 0) continue;
+    if ((s.a.y() > x.y()) == (s.b.y() > x.y())) continue;
+    const double xc = s.a.x() + (x.y() - s.a.y()) * (s.b.x() - s.a.x()) / (s.b.y() - s.a.y());
+    if (xc <= x.x()) continue;
+    int& p = parity_[static_cast<std::size_t>(s.face)];
+    if (p == 0) touched_.push_back(s.face);
+    p ^= 1;
+    if (p == 0) p = 2;  // even again, but already listed
+  }
+  for (const int f : touched_) {
+    const Face& F = faces_[static_cast<std::size_t>(f)];
+    if (parity_[static_cast<std::size_t>(f)] == 1) {
+      reach(std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi));
+    }
+    parity_[static_cast<std::size_t>(f)] = 0;
+  }
+  touched_.clear();
+  return hi - lo;
+}
+
+/// The largest height difference of a top edge over a bottom edge where their projections
+/// cross within the cell.
+double ColumnDepth::crossingsIn(int cell) const {
+  double best = 0.0;
+  for (int i = cellStart_[cell]; i < cellStart_[cell + 1]; ++i) {
+    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[i])];
+    const int side = faces_[static_cast<std::size_t>(s.face)].side;
+    if (side == 0) continue;
+    for (int j = i + 1; j < cellStart_[cell + 1]; ++j) {
+      const Seg& t = segs_[static_cast<std::size_t>(cellSegs_[j])];
+      if (faces_[static_cast<std::size_t>(t.face)].side != -side) continue;
+      const Vector2d ds = s.b - s.a, dt = t.b - t.a, w = t.a - s.a;
+      const double den = cross2(ds, dt), dt2 = dt.squaredNorm();
+      // Edges that stay within τ of each other's line over their length (sin α · length ≤ τ):
+      // δ is linear along their overlap, whose ends are vertex columns, which see the other
+      // edge within τ. Skipped here, where their crossing would be ill-conditioned.
+      if (!(std::abs(den) > tau_ * std::sqrt(std::min(ds.squaredNorm(), dt2)))) continue;
+      const double a = cross2(w, dt) / den;
+      if (a < 0.0 || a > 1.0) continue;
+      // t's height at the foot of s's crossing point on t: both at one column (to τ) even
+      // where the rounding moves the crossing along the edges
+      const Vector2d x = s.a + a * ds;
+      const double b = (x - t.a).dot(dt) / dt2;
+      if (b < 0.0 || b > 1.0 || (t.a + b * dt - x).norm() > tau_) continue;
+      const double hs = s.ha + a * (s.hb - s.ha), ht = t.ha + b * (t.hb - t.ha);
+      best = std::max(best, side > 0 ? hs - ht : ht - hs);
+    }
+  }
+  return best;
+}
+
+double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) {
+  if (input_.empty()) return 0.0;
+  tau_ = kReach * scale;
+  project(n, o);
+  buildGrid();
+  for (int s = 0; s < static_cast<int>(segs_.size()); ++s) fileSegment(s);
+  toCsr(cellPairs_, grid_.nx * grid_.ny, cellStart_, cellSegs_);
+  toCsr(rowPairs_, grid_.ny, rowStart_, rowSegs_);
+  parity_.assign(faces_.size(), 0);
+  double best = 0.0;
+  for (const Seg& s : segs_) best = std::max(best, columnSpanAt(s.a, s.ha));
+  for (int c = 0; c < grid_.nx * grid_.ny; ++c) best = std::max(best, crossingsIn(c));
+  return best;
+}
+
+}  // namespace vcontact::volume

@@ -1,0 +1,92 @@
+#pragma once
+// The depth of a polyhedral contact region (MODEL.md §1): d = max over the contact plate S of
+// δ(s), the length of the region's column along n through s. The exact mesh–mesh methods
+// (`fast`, `cgal`) know the region only as its planar boundary faces; this pass takes those
+// faces' boundary segments and finds the deepest column without building the region.
+//
+// Why the candidates below suffice. Where every column along n crosses the region once, δ(s)
+// = h_top(s) − h_bot(s), the heights (along n) of the faces the column leaves and enters by.
+// Both are linear over each cell of the overlay of the projected boundary edges, so δ is too,
+// and its maximum lies at an overlay vertex: a projected vertex of the region (a column through
+// a vertex), or a point where a projected edge of a top face (n_f·n > 0) crosses one of a
+// bottom face (n_f·n < 0). The pass evaluates the column at every such point:
+//  - through a vertex: the lowest and highest point of the closed boundary on that column,
+//    from the faces whose projection holds it (crossing number along the grid row) and the
+//    edges that pass within τ = 1e-12 of the coordinates of it (a wall, n_f·n = 0, counts
+//    through its edges only);
+//  - at a top/bottom edge crossing: the difference of the two edges' heights there.
+// So d is exact (up to rounding and τ) where the columns cross the region once, the condition
+// under which `area` is exact too. Where a column crosses it several times, the vertex columns
+// count the gaps between the crossings (the column's span, an upper bound of its δ).
+//
+// Cost: a uniform grid on the plate with about one cell per segment; a segment is filed in the
+// cells its projection passes (row by row) and in the rows it spans. A query visits the
+// segments of its cell and row, so the pass is about linear in the segment count for
+// fragments of a similar size.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace vcontact::volume {
+
+class ColumnDepth {
+ public:
+  /// Forgets the segments of the previous region (keeps the memory).
+  void clear();
+
+  /// A boundary segment p–q of the face `faceKey` (any direction; each face's segments form
+  /// closed loops), whose unit outward normal is n_f (the same for all its segments).
+  void add(std::uint64_t faceKey, const Eigen::Vector3d& n_f, const Eigen::Vector3d& p,
+           const Eigen::Vector3d& q);
+
+  /// max δ along the unit direction n over the segments added (0 without any).
+  /// @param o      a point near the region: coordinates are taken relative to it
+  /// @param scale  the largest |coordinate| of the region's points in their frame, m: the
+  ///               rounding of the points (a few ε of it) sets the tolerance τ
+  double deepest(const Eigen::Vector3d& n, const Eigen::Vector3d& o, double scale);
+
+ private:
+  struct Input {
+    std::uint64_t key;
+    Eigen::Vector3d n_f, p, q;
+  };
+  struct Seg {
+    Eigen::Vector2d a, b;  ///< projection on the plate
+    double ha, hb;         ///< heights along n
+    int face;              ///< dense face index
+  };
+  struct Face {
+    double slope_u, slope_v;  ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
+    double h0;                ///< height of the plane at the plate's origin
+    double lo, hi;            ///< height range of its segments' ends
+    int side;                 ///< +1 top (n_f·n > 0), −1 bottom, 0 wall
+  };
+  /// Row-major cells of hx × hy from (x0, y0); nx × ny of them.
+  struct Grid {
+    double x0 = 0, y0 = 0, hx = 1, hy = 1;
+    int nx = 1, ny = 1;
+    int col(double x) const;
+    int row(double y) const;
+  };
+
+  void project(const Eigen::Vector3d& n, const Eigen::Vector3d& o);
+  void buildGrid();
+  void fileSegment(int s);
+  void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
+             std::vector<int>& items);
+  double columnSpanAt(const Eigen::Vector2d& x, double h);
+  double crossingsIn(int cell) const;
+
+  std::vector<Input> input_;
+  std::vector<int> order_;
+  std::vector<Seg> segs_;
+  std::vector<Face> faces_;
+  Grid grid_;
+  double tau_ = 0.0;
+  std::vector<std::pair<int, int>> cellPairs_, rowPairs_;  ///< (bin, segment) before CSR
+  std::vector<int> cellStart_, cellSegs_, rowStart_, rowSegs_;
+  std::vector<int> parity_, touched_;  ///< per face, for one column's crossing numbers
+};
+
+}  // namespace vcontact::volume
