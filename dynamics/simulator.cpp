@@ -36,8 +36,9 @@ Eigen::Quaterniond quaternionAt(const double* q) {
 }
 
 // The penetration the run is stopped on: the mean depth V/A over the contact area. The
-// deepest point (cv.depth) is not used: where several separate regions touch, the methods
-// report the extent of all of them along n, which is no penetration.
+// deepest column (cv.depth) is not used: the force evaluations skip it (pairContact), and a
+// region with volume has a projection of positive area, so the fallback serves only a method
+// that reports no area.
 double meanPenetration(const volume::ContactVolume& cv) {
   if (!cv.inContact()) return 0.0;
   return cv.area > 0.0 ? cv.volume / cv.area : cv.depth;
@@ -273,6 +274,7 @@ Snapshot Simulator::snapshot(const State& x, double t) {
   s.t = t;
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) s.bodies.push_back(kinematics(x, i, t));
   s.pairs = last_pairs_;
+  for (std::size_t k = 0; k < s.pairs.size(); ++k) fillDepths(k, s.pairs[k]);
   s.loads = last_loads_;
   return s;
 }
@@ -461,8 +463,9 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   rhs(x, dxdt, t);
   guard_kin_.resize(scenario_.bodies.size());
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
-  energy_guard_.emplace(scenario_, guard_kin_, last_pairs_);
-  output(snapshot(x, t));
+  const Snapshot first = snapshot(x, t);  // with the depths, which the guard's bound uses
+  energy_guard_.emplace(scenario_, guard_kin_, first.pairs);
+  output(first);
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {
       runBdf(x, t, output, on_progress, summary);

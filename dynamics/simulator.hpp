@@ -140,7 +140,9 @@ class Simulator {
   void addToBroadPhase();
   void preparePairs();
   void rhs(const State& x, State& dxdt, double t);
-  volume::ContactPatches pairContact(std::size_t k);
+  volume::ContactPatches pairContact(std::size_t k,
+                                     volume::DepthMode depth = volume::DepthMode::kSkip);
+  void fillDepths(std::size_t k, PairOutput& out);
   void evaluatePair(std::size_t k, const State& x, State& dxdt);
   void evaluatePatches(std::size_t k, const volume::ContactPatches& contact, const State& x,
                        State& dxdt);

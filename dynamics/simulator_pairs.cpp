@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "dynamics/simulator.hpp"
@@ -62,8 +63,11 @@ int patchSlots(const Scenario& s, const ContactPair& p) {
 }
 
 // Pair k's contact at kin_: queried, or its contact when apart when the broad phase
-// screened it out.
-volume::ContactPatches Simulator::pairContact(std::size_t k) {
+// screened it out. The force evaluations skip the exact depth (kSkip: the model does not
+// use it, and for `fast` it costs several times the rest of the query); kDeepest is an
+// output sample's query (fillDepths), made without the depth field and the pair's cache so
+// that it leaves the run's state as it was, and not counted as a contact evaluation.
+volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode depth) {
   const ContactPair& pair = scenario_.pairs[k];
   if (!queried_[k]) return apart_[k];
   // the constructor checked that the method takes the pair's shapes
@@ -71,10 +75,35 @@ volume::ContactPatches Simulator::pairContact(std::size_t k) {
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
   const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
   const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
+  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0, depth};
+  if (depth == volume::DepthMode::kDeepest) {
+    return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
+  }
   ++contact_count_;
   return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
                                 distributed ? &fields_[k] : nullptr, &caches_[k]);
+}
+
+// The depths the force evaluation left out (NaN, QueryOptions::depth) in pair k's output
+// `out` at kin_: the pair asked once more with the depth pass; each patch takes the depth of
+// the patch of that answer whose centroid is nearest to its own (the same region: the pose is
+// the same, only the order of patches of equal volume could differ).
+void Simulator::fillDepths(std::size_t k, PairOutput& out) {
+  const auto missing = [](const volume::ContactVolume& cv) {
+    return cv.inContact() && std::isnan(cv.depth);
+  };
+  bool any = missing(out.cv);
+  for (const PatchOutput& p : out.patches) any = any || missing(p.cv);
+  if (!any) return;
+  const volume::ContactPatches exact = pairContact(k, volume::DepthMode::kDeepest);
+  out.cv.depth = exact.aggregate.depth;
+  for (PatchOutput& p : out.patches) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const volume::ContactVolume& e : exact.patches) {
+      const double d = (e.p_WC - p.cv.p_WC).squaredNorm();
+      if (d < best) best = d, p.cv.depth = e.depth;
+    }
+  }
 }
 
 // Wrench w on body A at p_c into force_ and torque_; body B gets the opposite.

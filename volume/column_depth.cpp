@@ -58,16 +58,23 @@ void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
     const Seg s{{u.dot(p), v.dot(p)}, {u.dot(q), v.dot(q)}, n.dot(p), n.dot(q), 0};
     if (k == 0 || in.key != input_[static_cast<std::size_t>(order_[k - 1])].key) {
       const double c = in.n_f.dot(n);
-      Face f{0.0, 0.0, 0.0, s.ha, s.ha, 0};
+      const int seg = static_cast<int>(segs_.size());
+      Face f{0.0, 0.0, 0.0, s.ha, s.ha, s.a, s.a, 0, seg, seg};
       if (std::abs(c) > kWall) {
         // n_f·(x u + y v + h n) = n_f·p  ⇒  h = n_f·p / c − (n_f·u / c) x − (n_f·v / c) y
-        f = {in.n_f.dot(u) / c, in.n_f.dot(v) / c, in.n_f.dot(p) / c, s.ha, s.ha, c > 0 ? 1 : -1};
+        f.slope_u = in.n_f.dot(u) / c;
+        f.slope_v = in.n_f.dot(v) / c;
+        f.h0 = in.n_f.dot(p) / c;
+        f.side = c > 0 ? 1 : -1;
       }
       faces_.push_back(f);
     }
     Face& f = faces_.back();
     f.lo = std::min({f.lo, s.ha, s.hb});
     f.hi = std::max({f.hi, s.ha, s.hb});
+    f.bmin = f.bmin.cwiseMin(s.a).cwiseMin(s.b);
+    f.bmax = f.bmax.cwiseMax(s.a).cwiseMax(s.b);
+    ++f.s1;
     segs_.push_back(s);
     segs_.back().face = static_cast<int>(faces_.size()) - 1;
   }
@@ -93,15 +100,13 @@ void ColumnDepth::buildGrid() {
   grid_.hy = H > 0.0 ? H / grid_.ny : 1.0;
 }
 
-/// Files segment s in every row its projection spans and, row by row, in the cells it passes
-/// within τ of.
+/// Files segment s, row by row, in the cells its projection passes within τ of.
 void ColumnDepth::fileSegment(int index) {
   const Seg& s = segs_[static_cast<std::size_t>(index)];
   const double ylo = std::min(s.a.y(), s.b.y()), yhi = std::max(s.a.y(), s.b.y());
   const double dy = s.b.y() - s.a.y();
   const int r0 = grid_.row(ylo - tau_), r1 = grid_.row(yhi + tau_);
   for (int r = r0; r <= r1; ++r) {
-    rowPairs_.emplace_back(r, index);
     double xlo = std::min(s.a.x(), s.b.x()), xhi = std::max(s.a.x(), s.b.x());
     if (dy != 0.0) {  // the x range of the segment within this row's slab
       const double y0 = std::clamp(grid_.y0 + r * grid_.hy - tau_, ylo, yhi);
@@ -112,7 +117,19 @@ void ColumnDepth::fileSegment(int index) {
       xhi = std::min(xhi, std::max(x0, x1));
     }
     const int c0 = grid_.col(xlo - tau_), c1 = grid_.col(xhi + tau_);
-    for (int c = c0; c <= c1; ++c) cellPairs_.emplace_back(r * grid_.nx + c, index);
+    for (int c = c0; c <= c1; ++c) segPairs_.emplace_back(r * grid_.nx + c, index);
+  }
+}
+
+/// Files a top or bottom face in the cells its projection's bounding box covers (a point of
+/// the face lies in one of them; a wall holds no column's inside and is not filed).
+void ColumnDepth::fileFace(int index) {
+  const Face& f = faces_[static_cast<std::size_t>(index)];
+  if (f.side == 0) return;
+  const int r0 = grid_.row(f.bmin.y()), r1 = grid_.row(f.bmax.y());
+  const int c0 = grid_.col(f.bmin.x()), c1 = grid_.col(f.bmax.x());
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) facePairs_.emplace_back(r * grid_.nx + c, index);
   }
 }
 
@@ -123,22 +140,38 @@ void ColumnDepth::toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::
   for (const auto& [bin, item] : pairs) ++start[static_cast<std::size_t>(bin) + 1];
   for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
   items.resize(pairs.size());
-  std::vector<int>& next = parity_;  // free until the columns are evaluated
+  std::vector<int>& next = next_;
   next.assign(start.begin(), start.end() - 1);
   for (const auto& [bin, item] : pairs) items[static_cast<std::size_t>(next[bin]++)] = item;
   pairs.clear();
 }
 
+/// Whether x lies inside the projection of face f: the crossing number along +u over the
+/// face's own boundary loops (each edge meets the line v = x.v once at most).
+bool ColumnDepth::holds(const Face& f, const Vector2d& x) const {
+  if (x.x() < f.bmin.x() || x.x() > f.bmax.x() || x.y() < f.bmin.y() || x.y() > f.bmax.y()) {
+    return false;
+  }
+  bool inside = false;
+  for (int k = f.s0; k < f.s1; ++k) {
+    const Seg& s = segs_[static_cast<std::size_t>(k)];
+    if ((s.a.y() > x.y()) == (s.b.y() > x.y())) continue;
+    const double xc = s.a.x() + (x.y() - s.a.y()) * (s.b.x() - s.a.x()) / (s.b.y() - s.a.y());
+    if (xc > x.x()) inside = !inside;
+  }
+  return inside;
+}
+
 /// The span along n of the closed boundary on the column through x (a vertex at height h).
-double ColumnDepth::columnSpanAt(const Vector2d& x, double h) {
+double ColumnDepth::columnSpanAt(const Vector2d& x, double h) const {
   double lo = h, hi = h;
   const auto reach = [&](double z) {
     lo = std::min(lo, z);
     hi = std::max(hi, z);
   };
-  const int r = grid_.row(x.y()), cell = r * grid_.nx + grid_.col(x.x());
+  const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
   // Edges within τ: the heights over the part of each that lies within τ of the column.
-  for (int k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
+  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
     const Vector2d d = s.b - s.a, w = x - s.a;
     const double L2 = d.squaredNorm();
@@ -154,27 +187,11 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h) {
     reach(s.ha + t0 * (s.hb - s.ha));
     reach(s.ha + t1 * (s.hb - s.ha));
   }
-  // Faces whose projection holds x: crossing number along +u over the row's edges (each edge
-  // meets the line v = x.v once at most, so none is counted twice).
-  for (int k = rowStart_[r]; k < rowStart_[r + 1]; ++k) {
-    const Seg& s = segs_[static_cast<std::size_t>(rowSegs_[k])];
-    if (faces_[static_cast<std::size_t>(s.face)].side == 0) continue;
-    if ((s.a.y() > x.y()) == (s.b.y() > x.y())) continue;
-    const double xc = s.a.x() + (x.y() - s.a.y()) * (s.b.x() - s.a.x()) / (s.b.y() - s.a.y());
-    if (xc <= x.x()) continue;
-    int& p = parity_[static_cast<std::size_t>(s.face)];
-    if (p == 0) touched_.push_back(s.face);
-    p ^= 1;
-    if (p == 0) p = 2;  // even again, but already listed
+  // The top and bottom faces whose projection holds x: the column meets their planes there.
+  for (int k = faceStart_[cell]; k < faceStart_[cell + 1]; ++k) {
+    const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
+    if (holds(F, x)) reach(std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi));
   }
-  for (const int f : touched_) {
-    const Face& F = faces_[static_cast<std::size_t>(f)];
-    if (parity_[static_cast<std::size_t>(f)] == 1) {
-      reach(std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi));
-    }
-    parity_[static_cast<std::size_t>(f)] = 0;
-  }
-  touched_.clear();
   return hi - lo;
 }
 
@@ -182,11 +199,11 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h) {
 /// cross within the cell.
 double ColumnDepth::crossingsIn(int cell) const {
   double best = 0.0;
-  for (int i = cellStart_[cell]; i < cellStart_[cell + 1]; ++i) {
+  for (int i = segStart_[cell]; i < segStart_[cell + 1]; ++i) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[i])];
     const int side = faces_[static_cast<std::size_t>(s.face)].side;
     if (side == 0) continue;
-    for (int j = i + 1; j < cellStart_[cell + 1]; ++j) {
+    for (int j = i + 1; j < segStart_[cell + 1]; ++j) {
       const Seg& t = segs_[static_cast<std::size_t>(cellSegs_[j])];
       if (faces_[static_cast<std::size_t>(t.face)].side != -side) continue;
       const Vector2d ds = s.b - s.a, dt = t.b - t.a, w = t.a - s.a;
@@ -215,9 +232,9 @@ double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) 
   project(n, o);
   buildGrid();
   for (int s = 0; s < static_cast<int>(segs_.size()); ++s) fileSegment(s);
-  toCsr(cellPairs_, grid_.nx * grid_.ny, cellStart_, cellSegs_);
-  toCsr(rowPairs_, grid_.ny, rowStart_, rowSegs_);
-  parity_.assign(faces_.size(), 0);
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) fileFace(f);
+  toCsr(segPairs_, grid_.nx * grid_.ny, segStart_, cellSegs_);
+  toCsr(facePairs_, grid_.nx * grid_.ny, faceStart_, cellFaces_);
   double best = 0.0;
   for (const Seg& s : segs_) best = std::max(best, columnSpanAt(s.a, s.ha));
   for (int c = 0; c < grid_.nx * grid_.ny; ++c) best = std::max(best, crossingsIn(c));

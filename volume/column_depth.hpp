@@ -11,18 +11,21 @@
 // a vertex), or a point where a projected edge of a top face (n_f·n > 0) crosses one of a
 // bottom face (n_f·n < 0). The pass evaluates the column at every such point:
 //  - through a vertex: the lowest and highest point of the closed boundary on that column,
-//    from the faces whose projection holds it (crossing number along the grid row) and the
-//    edges that pass within τ = 1e-12 of the coordinates of it (a wall, n_f·n = 0, counts
-//    through its edges only);
+//    from the faces whose projection holds it (crossing number over the face's own boundary
+//    loops) and the edges that pass within τ = 1e-12 of the coordinates of it (a wall,
+//    n_f·n = 0, counts through its edges only);
 //  - at a top/bottom edge crossing: the difference of the two edges' heights there.
 // So d is exact (up to rounding and τ) where the columns cross the region once, the condition
 // under which `area` is exact too. Where a column crosses it several times, the vertex columns
 // count the gaps between the crossings (the column's span, an upper bound of its δ).
 //
-// Cost: a uniform grid on the plate with about one cell per segment; a segment is filed in the
-// cells its projection passes (row by row) and in the rows it spans. A query visits the
-// segments of its cell and row, so the pass is about linear in the segment count for
-// fragments of a similar size.
+// Cost: a uniform grid over the projections' bounding box with about one cell per segment. A
+// segment is filed in the cells its projection passes within τ of, a face (top or bottom) in
+// the cells its projected bounding box covers. A vertex column looks at the segments and faces
+// of its own cell only, and a crossing is sought among the segments that share a cell, so the
+// pass is linear in the segment count for pieces of similar size (a lens seen along n: two
+// triangulated caps over one disk, each cell holding a few faces of each). The buffers are
+// kept from query to query.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -57,10 +60,12 @@ class ColumnDepth {
     int face;              ///< dense face index
   };
   struct Face {
-    double slope_u, slope_v;  ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
-    double h0;                ///< height of the plane at the plate's origin
-    double lo, hi;            ///< height range of its segments' ends
-    int side;                 ///< +1 top (n_f·n > 0), −1 bottom, 0 wall
+    double slope_u, slope_v;     ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
+    double h0;                   ///< height of the plane at the plate's origin
+    double lo, hi;               ///< height range of its segments' ends
+    Eigen::Vector2d bmin, bmax;  ///< bounding box of its projection
+    int side;                    ///< +1 top (n_f·n > 0), −1 bottom, 0 wall
+    int s0, s1;                  ///< its segments: segs_[s0 .. s1)
   };
   /// Row-major cells of hx × hy from (x0, y0); nx × ny of them.
   struct Grid {
@@ -73,9 +78,11 @@ class ColumnDepth {
   void project(const Eigen::Vector3d& n, const Eigen::Vector3d& o);
   void buildGrid();
   void fileSegment(int s);
+  void fileFace(int f);
   void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
              std::vector<int>& items);
-  double columnSpanAt(const Eigen::Vector2d& x, double h);
+  bool holds(const Face& f, const Eigen::Vector2d& x) const;
+  double columnSpanAt(const Eigen::Vector2d& x, double h) const;
   double crossingsIn(int cell) const;
 
   std::vector<Input> input_;
@@ -84,9 +91,9 @@ class ColumnDepth {
   std::vector<Face> faces_;
   Grid grid_;
   double tau_ = 0.0;
-  std::vector<std::pair<int, int>> cellPairs_, rowPairs_;  ///< (bin, segment) before CSR
-  std::vector<int> cellStart_, cellSegs_, rowStart_, rowSegs_;
-  std::vector<int> parity_, touched_;  ///< per face, for one column's crossing numbers
+  std::vector<std::pair<int, int>> segPairs_, facePairs_;  ///< (cell, item) before CSR
+  std::vector<int> segStart_, cellSegs_, faceStart_, cellFaces_;
+  std::vector<int> next_;  ///< CSR fill cursor
 };
 
 }  // namespace vcontact::volume

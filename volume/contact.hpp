@@ -13,6 +13,12 @@
 
 namespace vcontact::volume {
 
+/// Whether a query computes ContactVolume::depth exactly (QueryOptions::depth).
+enum class DepthMode {
+  kDeepest,  ///< every method fills depth: max over the plate of δ(s) (MODEL.md §1)
+  kSkip,     ///< `fast` leaves depth NaN (the others fill it all the same)
+};
+
 /// How a query is computed.
 struct QueryOptions {
   /// The method (default: defaultMethod, or defaultDepthFieldMethod when a depth field is
@@ -22,6 +28,10 @@ struct QueryOptions {
   /// query costs the same (a simulation's right-hand side) and gives no error estimate;
   /// 0: the method's own refinement. Methods without a grid ignore it.
   int fixed_resolution = 0;
+  /// kSkip spares `fast` its exact depth pass (column_depth.hpp), which costs several times
+  /// the rest of its query (benchmarks/README.md): for callers that do not read depth, such
+  /// as a simulation's force evaluations (the force model uses V, not depth).
+  DepthMode depth = DepthMode::kDeepest;
 };
 
 /// The method used when none is asked for: the first default row of the table that takes

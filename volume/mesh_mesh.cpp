@@ -66,7 +66,8 @@ Intersector::Intersector(Body a, Body b, Scratch& scratch) : body_{a, b}, scratc
   margin_ = kBoxMargin * (extent(body_[0]) + extent(body_[1]));
 }
 
-ContactPatches Intersector::run(MeshMeshCache* cache) {
+ContactPatches Intersector::run(MeshMeshCache* cache, bool deepest) {
+  deepest_ = deepest;
   findCrossings(cache);
   walkEdges();
   buildSegments();
@@ -278,13 +279,15 @@ ContactVolume Intersector::contactOf(const RegionSum& sum, const std::vector<Pat
   const Vector3d n = contactNormal(sum.nSum, sum.areaSum, o + c_o);
 
   double area2 = 0.0;
-  ColumnDepth& depth = scratch_.depth;
-  depth.clear();
-  for (const Patch& pt : parts) {
-    area2 += std::abs(n.dot(pt.n_W)) * pt.area;
-    depth.add(pt.face, pt.n_W, pt.p, pt.q);
+  for (const Patch& pt : parts) area2 += std::abs(n.dot(pt.n_W)) * pt.area;
+  double d = std::numeric_limits<double>::quiet_NaN();
+  if (deepest_) {
+    ColumnDepth& depth = scratch_.depth;
+    depth.clear();
+    for (const Patch& pt : parts) depth.add(pt.face, pt.n_W, pt.p, pt.q);
+    d = depth.deepest(n, o, scale);
   }
-  return contactFromMoments(M, o, n, 0.5 * area2, depth.deepest(n, o, scale), Method::kFast);
+  return contactFromMoments(M, o, n, 0.5 * area2, d, Method::kFast);
 }
 
 /// A whole face's edges a → b and c → a for the depth pass (RegionSum::add has filed b → c).
@@ -315,23 +318,24 @@ using internal::MeshTopology;
 
 ContactPatches meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, const Isometry3d& X_WA,
                                const MeshBvh& b, const MeshTopology& topoB, const Isometry3d& X_WB,
-                               MeshMeshCache* cache) {
+                               MeshMeshCache* cache, bool deepest) {
   // A closed mesh has every edge in two faces: 2 E = 3 F (an open one has more edges).
   assert(2 * topoA.edges().size() == 3 * std::size_t(a.mesh().triangleCount()));
   assert(2 * topoB.edges().size() == 3 * std::size_t(b.mesh().triangleCount()));
   thread_local internal::Scratch scratch;
   internal::Intersector query(internal::Body{a, topoA, X_WA, scratch.sides[0]},
                               internal::Body{b, topoB, X_WB, scratch.sides[1]}, scratch);
-  return query.run(cache);
+  return query.run(cache, deepest);
 }
 
 ContactPatches fastContact(const geometry::Shape& a, const Isometry3d& X_WA,
-                           const geometry::Shape& b, const Isometry3d& X_WB, MeshMeshCache* cache) {
+                           const geometry::Shape& b, const Isometry3d& X_WB, MeshMeshCache* cache,
+                           bool deepest) {
   assert(std::holds_alternative<geometry::Mesh>(a) && std::holds_alternative<geometry::Mesh>(b));
   const auto& meshA = std::get<geometry::Mesh>(a).mesh;
   const auto& meshB = std::get<geometry::Mesh>(b).mesh;
   return meshMeshContact(*bvhOf(meshA), *topologyOf(meshA), X_WA, *bvhOf(meshB), *topologyOf(meshB),
-                         X_WB, cache);
+                         X_WB, cache, deepest);
 }
 
 }  // namespace vcontact::volume

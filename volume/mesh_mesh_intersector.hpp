@@ -196,7 +196,8 @@ class Intersector {
  public:
   Intersector(Body a, Body b, Scratch& scratch);
 
-  ContactPatches run(MeshMeshCache* cache);
+  /// @param deepest  run the depth pass (else depth is NaN)
+  ContactPatches run(MeshMeshCache* cache, bool deepest);
 
   /// `what` went wrong, with both poses to 17 digits (a reproducible test case).
   std::string describeFailure(const std::string& what) const;
@@ -254,6 +255,7 @@ class Intersector {
   Body body_[2];
   Scratch& scratch_;
   double margin_ = 0.0;
+  bool deepest_ = true;            ///< run()'s deepest
   bool anyCoplanar_ = false;       ///< flagIfCoplanar has flagged a face pair in this query
   bool wholeShellInside_ = false;  ///< classifyUnseededComponents found a shell inside
 };

@@ -46,8 +46,9 @@ ContactPatches cgal(const Shape& a, const Isometry3d& X_WA, const Shape& b, cons
 }
 
 ContactPatches fast(const Shape& a, const Isometry3d& X_WA, const Shape& b, const Isometry3d& X_WB,
-                    const QueryOptions&, DepthField*, ContactCache* cache) {
-  return fastContact(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr);
+                    const QueryOptions& options, DepthField*, ContactCache* cache) {
+  return fastContact(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr,
+                     options.depth == DepthMode::kDeepest);
 }
 
 ContactPatches columns(const Shape& a, const Isometry3d& X_WA, const Shape& b,

@@ -93,6 +93,27 @@ TEST(PatchSimulation, TiltedPegInARoundHoleIsHeldByACouple) {
   EXPECT_GT(std::abs(couple), 4 * kMm * f0) << "the patches are ~8 mm apart along the axis";
 }
 
+// The force evaluations skip the exact depth (QueryOptions::depth); an output sample carries
+// it all the same, for the aggregate and each patch: the depth of a direct query at the
+// sample's pose (the same code on the same pose, so to the bit).
+TEST(PatchSimulation, OutputSamplesCarryTheExactDepth) {
+  const auto hole = meshShape(ring(5.05 * kMm, 10 * kMm, 10 * kMm, 64), "ring");
+  const auto peg = meshShape(geometry::tessellateCylinder(5 * kMm, 20 * kMm, 64), "peg");
+  const Eigen::Isometry3d X_WA =
+      placed(Vector3d::Zero(), Eigen::AngleAxisd(0.02, Vector3d::UnitX()).toRotationMatrix());
+  const PairOutput p = atStart(heldPair(peg, X_WA, hole, volume::Method::kFast));
+  const volume::ContactPatches direct = volume::computeContact(
+      peg, X_WA, hole, Eigen::Isometry3d::Identity(), {volume::Method::kFast});
+  ASSERT_EQ(p.patches.size(), 2u);
+  ASSERT_EQ(direct.patches.size(), 2u);
+  EXPECT_GT(p.cv.depth, 0.0);
+  EXPECT_EQ(p.cv.depth, direct.aggregate.depth);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(p.patches[i].cv.volume, direct.patches[i].volume) << "the same pose";
+    EXPECT_EQ(p.patches[i].cv.depth, direct.patches[i].depth);
+  }
+}
+
 TEST(PatchSimulation, TurnedKeyedShaftGetsATorqueAboutItsAxisAndNoForceAcross) {
   // A square shaft (circumradius 9.9 mm) turned 1° in a square hole (10 mm): each of its four
   // edges presses into the wall ahead of it, 0.05 mm deep.

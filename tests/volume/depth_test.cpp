@@ -199,5 +199,40 @@ TEST(Depth, KeyFlankInAHubBlock) {
   }
 }
 
+// DepthMode::kSkip (a simulation's force evaluations) spares `fast` its depth pass and changes
+// nothing else: on a peg tilted in a round hole (two patches on opposite walls), every other
+// field of every patch and of the aggregate is the same to the bit (the pass only reads the
+// region), depth is NaN; cgal, whose corefinement dwarfs the pass, fills it all the same.
+TEST(Depth, SkipLeavesOnlyFastsDepthOut) {
+  const Shape hole = meshShape(test::tube(0.0101, 0.00505, 0.0103, 64), "hole");
+  const Shape peg = meshShape(geometry::tessellateCylinder(0.005, 0.0207, 64), "peg");
+  const Isometry3d X_WH = test::randomPose(46);
+  const Isometry3d X_WP = X_WH * Isometry3d(Eigen::AngleAxisd(0.02, Vector3d::UnitX()));
+  const auto same = [](const ContactVolume& s, const ContactVolume& d) {
+    EXPECT_EQ(s.volume, d.volume);
+    EXPECT_EQ(s.p_WC, d.p_WC);
+    EXPECT_EQ(s.n_W, d.n_W);
+    EXPECT_EQ(s.J_v, d.J_v);
+    EXPECT_EQ(s.J_s, d.J_s);
+    EXPECT_EQ(s.area, d.area);
+    EXPECT_EQ(s.r_gyr, d.r_gyr);
+    EXPECT_TRUE(std::isnan(s.depth));
+    EXPECT_GT(d.depth, 0.0);
+  };
+  const ContactPatches deep = computeContact(peg, X_WP, hole, X_WH, {Method::kFast});
+  const ContactPatches skip =
+      computeContact(peg, X_WP, hole, X_WH, {Method::kFast, 0, DepthMode::kSkip});
+  ASSERT_EQ(deep.patches.size(), 2u);
+  ASSERT_EQ(skip.patches.size(), 2u);
+  same(skip.aggregate, deep.aggregate);
+  for (std::size_t i = 0; i < 2; ++i) same(skip.patches[i], deep.patches[i]);
+  const ContactPatches cgal =
+      computeContact(peg, X_WP, hole, X_WH, {Method::kCgal, 0, DepthMode::kSkip});
+  ASSERT_EQ(cgal.patches.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(cgal.patches[i].depth, deep.patches[i].depth, kExact * deep.patches[i].depth);
+  }
+}
+
 }  // namespace
 }  // namespace vcontact::volume
