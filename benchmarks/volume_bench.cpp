@@ -10,8 +10,9 @@
 //   torus_*: a non-convex body on a half-space, flat and upright (registerTorus).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
 // the half-space modelled as a box), columns (column integration to 1e-3), fast (exact local
-// surface integration of two meshes, volume/mesh_mesh.hpp); dispatch: the default method
-// through volume::computeContact (the method table), to time the dispatch against the direct
+// surface integration of two meshes, volume/mesh_mesh.hpp), fast_skip (the same without the
+// depth pass, QueryOptions::depth = kSkip: a simulation's force evaluation); dispatch: the default
+// method through volume::computeContact (the method table), to time the dispatch against the direct
 // call (halfspace for a half-space, fast for a pair).
 
 #include <benchmark/benchmark.h>
@@ -194,6 +195,17 @@ void registerPair(const std::string& size, int triangles, bool withCgal) {
     run(
         s,
         [&] { return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB).aggregate; },
+        m);
+  })->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark((name + "fast_skip").c_str(), [=](benchmark::State& s) {
+    const MeshBvh& m = sphere(triangles);
+    const auto& topo = sphereTopology(triangles);
+    run(
+        s,
+        [&] {
+          return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB, nullptr, false)
+              .aggregate;
+        },
         m);
   })->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark((name + "dispatch").c_str(), [=](benchmark::State& s) {
