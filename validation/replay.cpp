@@ -7,6 +7,7 @@
 #include <map>
 #include <variant>
 
+#include "dynamics/patch_tracker.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::validation {
@@ -48,7 +49,7 @@ std::vector<double> geometryKey(const Model& model) {
 // round-off share the entry; the canonical pose is built from the rounded key.
 class HalfspaceVolumes {
  public:
-  volume::ContactVolume at(const geometry::Shape& payload, const Eigen::Isometry3d& X_BA) {
+  volume::ContactPatches at(const geometry::Shape& payload, const Eigen::Isometry3d& X_BA) {
     const Eigen::Isometry3d X = symmetryReduced(payload, X_BA);
     const Eigen::Vector3d b = X.linear().transpose().col(2);
     const std::array<double, 4> key = {rounded(b.x()), rounded(b.y()), rounded(b.z()),
@@ -63,11 +64,14 @@ class HalfspaceVolumes {
       const geometry::Shape halfspace = geometry::HalfSpace{};
       it = cache_
                .emplace(key, volume::computeContact(payload, X_c, halfspace,
-                                                    Eigen::Isometry3d::Identity())
-                                 .aggregate)
+                                                    Eigen::Isometry3d::Identity()))
                .first;
     }
-    return moved(it->second, X * X_c.inverse());
+    const Eigen::Isometry3d T = X * X_c.inverse();
+    volume::ContactPatches c = it->second;
+    c.aggregate = moved(c.aggregate, T);
+    for (volume::ContactVolume& p : c.patches) p = moved(p, T);
+    return c;
   }
 
  private:
@@ -98,7 +102,7 @@ class HalfspaceVolumes {
     return cv;
   }
 
-  std::map<std::array<double, 4>, volume::ContactVolume> cache_;
+  std::map<std::array<double, 4>, volume::ContactPatches> cache_;
 };
 
 // The payload's motion at one sample. Its origin stands in for the centre of mass: the velocity
@@ -113,18 +117,34 @@ dynamics::BodyKinematics payloadKinematics(const Sample& s, const Eigen::Isometr
   return k;
 }
 
+PatchGeometry patchGeometry(const volume::ContactVolume& cv, const Sample& s,
+                            const Eigen::Isometry3d& X_BA) {
+  PatchGeometry p;
+  p.cv = cv;
+  if (!cv.inContact()) return p;
+  p.p_AoC_B = cv.p_WC - X_BA.translation();
+  p.motion = dynamics::relativeMotion(payloadKinematics(s, X_BA), dynamics::BodyKinematics{},
+                                      cv.p_WC);  // the plate does not move
+  return p;
+}
+
 SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& model,
                               HalfspaceVolumes& halfspace) {
   const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d X_BA = model.adjustPayloadPose(s.X_BA, X_BB);
+  const volume::ContactPatches c = std::holds_alternative<geometry::HalfSpace>(d.plate)
+                                       ? halfspace.at(d.payload, X_BA)
+                                       : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
+  PatchGeometry whole = patchGeometry(c.aggregate, s, X_BA);
   SampleGeometry g;
-  g.cv = std::holds_alternative<geometry::HalfSpace>(d.plate)
-             ? halfspace.at(d.payload, X_BA)
-             : volume::computeContact(d.payload, X_BA, d.plate, X_BB).aggregate;
-  if (!g.cv.inContact()) return g;
-  g.p_AoC_B = g.cv.p_WC - X_BA.translation();
-  g.motion = dynamics::relativeMotion(payloadKinematics(s, X_BA), dynamics::BodyKinematics{},
-                                      g.cv.p_WC);  // the plate does not move
+  g.cv = whole.cv;
+  g.motion = whole.motion;
+  g.p_AoC_B = whole.p_AoC_B;
+  g.X_BA = X_BA;
+  if (c.patches.size() > 1) {
+    for (const volume::ContactVolume& cv : c.patches)
+      g.patches.push_back(patchGeometry(cv, s, X_BA));
+  }
   return g;
 }
 
@@ -161,8 +181,9 @@ struct RestClock {
 };
 
 // One exponential Euler step of the pair state over dt (see the header).
-void advance(const Model& model, const SampleGeometry& g, const dynamics::ContactResult& at,
-             double dt, PairState& state) {
+void advance(const Model& model, const volume::ContactVolume& cv,
+             const dynamics::RelativeMotion& motion, const dynamics::ContactResult& at, double dt,
+             PairState& state) {
   const int size = model.stateLayout().size();
   double x[PairState::kCapacity], rate[PairState::kCapacity];
   state.pack(x, size);
@@ -174,7 +195,7 @@ void advance(const Model& model, const SampleGeometry& g, const dynamics::Contac
     xp[j] = x[j] - h[j];
   }
   double ratep[PairState::kCapacity];
-  model.evaluate(g.cv, g.motion, PairState::unpack(xp, size)).rates.pack(ratep, size);
+  model.evaluate(cv, motion, PairState::unpack(xp, size)).rates.pack(ratep, size);
   for (int j = 0; j < size; ++j) {
     const double d = std::min(0.0, (rate[j] - ratep[j]) / h[j]);  // decay rate, 1/s
     x[j] += rate[j] * phi(d * dt) * dt;
@@ -212,6 +233,14 @@ const std::vector<SampleGeometry>& Replayer::geometryFor(const Model& model) {
 
 Prediction Replayer::run(const Model& model) {
   const auto& geometry = geometryFor(model);
+  std::size_t most = 1;
+  for (const SampleGeometry& g : geometry) most = std::max(most, g.patches.size());
+  return most > 1 ? runPatches(model, static_cast<int>(most)) : runWhole(model);
+}
+
+// Every sample's contact is one region: one set of friction states.
+Prediction Replayer::runWhole(const Model& model) {
+  const auto& geometry = geometry_;
   const auto& samples = dataset_.samples;
   const std::size_t n = samples.size();
   Prediction p;
@@ -227,7 +256,62 @@ Prediction Replayer::run(const Model& model) {
     p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Ao.transpose();
     p.regime[i] = regimeOf(g, r.f_n, model.settings.v_eps);
     rest.update(samples[i].t, g, p.regime[i]);
-    if (i + 1 < n) advance(model, g, r, samples[i + 1].t - samples[i].t, state);
+    if (i + 1 < n) advance(model, g.cv, g.motion, r, samples[i + 1].t - samples[i].t, state);
+  }
+  return p;
+}
+
+// Some sample touches in several regions: one set of friction states per tracked patch
+// (dynamics/patch_tracker.hpp), with as many slots as the most patches of any sample, so every
+// patch has its own. A sample of one region is its own single patch.
+Prediction Replayer::runPatches(const Model& model, int slots) {
+  const auto& geometry = geometry_;
+  const auto& samples = dataset_.samples;
+  const std::size_t n = samples.size();
+  Prediction p;
+  p.wrench.setZero(static_cast<Eigen::Index>(n), 6);
+  p.regime.resize(n);
+  dynamics::PatchTracker tracker(slots);
+  std::vector<PairState> states(static_cast<std::size_t>(slots));
+  std::vector<volume::ContactVolume> volumes;
+  std::vector<PatchGeometry> one(1);
+  dynamics::PatchMatch match;
+  const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
+  RestClock rest;
+  for (std::size_t i = 0; i < n; ++i) {
+    const SampleGeometry& g = geometry[i];
+    const std::vector<PatchGeometry>* patches = &g.patches;
+    if (g.patches.empty()) {
+      one[0] = {g.cv, g.motion, g.p_AoC_B};
+      patches = g.cv.inContact() ? &one : &g.patches;
+    }
+    volumes.clear();
+    for (const PatchGeometry& q : *patches) volumes.push_back(q.cv);
+    tracker.match(volumes, g.X_BA, X_BB, match);
+    std::vector<bool> held(states.size(), false);
+    Eigen::Vector3d f = Eigen::Vector3d::Zero(), tau = Eigen::Vector3d::Zero();
+    double f_n = 0.0;
+    const double dt = i + 1 < n ? samples[i + 1].t - samples[i].t : 0.0;
+    for (std::size_t j = 0; j < patches->size(); ++j) {
+      const PatchGeometry& q = (*patches)[j];
+      const int own = match.slot[j];
+      PairState& state = states[static_cast<std::size_t>(match.host[j])];
+      if (own >= 0) model.settle(q.cv, q.motion, state);
+      const dynamics::ContactResult r = model.evaluate(q.cv, q.motion, state);
+      f += r.wrench.f_W;
+      tau += r.wrench.tau_W + q.p_AoC_B.cross(r.wrench.f_W);
+      f_n += r.f_n;
+      if (own < 0) continue;  // reads its nearest slot's states and integrates none
+      held[static_cast<std::size_t>(own)] = true;
+      if (i + 1 < n) advance(model, q.cv, q.motion, r, dt, state);
+    }
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      if (!held[k]) states[k] = PairState{};  // a vanished patch is dropped
+    }
+    tracker.update(volumes, match, g.X_BA, X_BB);
+    p.wrench.row(static_cast<Eigen::Index>(i)) << f.transpose(), tau.transpose();
+    p.regime[i] = regimeOf(g, f_n, model.settings.v_eps);
+    rest.update(samples[i].t, g, p.regime[i]);
   }
   return p;
 }

@@ -9,6 +9,11 @@
 //      (MODEL.md §2, dynamics::relativeMotion),
 //   4. evaluates the model with the friction states integrated along the record,
 //   5. moves the wrench from p_c to the payload origin Ao: τ_Ao = τ_c + (p_c − p_BAo) × f.
+// A payload that touches the plate in several regions (feet, a ring, a rocking part) has one
+// contact patch per region: steps 3–5 run per patch, each with its own friction states, and
+// the wrenches are summed about Ao. Patches are followed from sample to sample by the
+// simulator's rule (dynamics/patch_tracker.hpp): a new patch starts from rest, a vanished one
+// is dropped. A record whose contact is one region throughout is replayed exactly as before.
 //
 // Friction states (bristle z, θ_n, dwell s_dw) are integrated from sample i to i+1 with the
 // exponential Euler method on the kinematics of sample i:
@@ -21,6 +26,7 @@
 // when contact is lost). The first sample starts from the zero state.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -30,11 +36,23 @@
 
 namespace vcontact::validation {
 
-/// Geometry and relative motion of one sample, for one payload pose adjustment.
-struct SampleGeometry {
+/// One contact region of a sample (MODEL.md §1): its volume, the relative motion at its
+/// centroid and the lever from the payload origin to that centroid.
+struct PatchGeometry {
   volume::ContactVolume cv;
   dynamics::RelativeMotion motion;
   Eigen::Vector3d p_AoC_B = Eigen::Vector3d::Zero();  ///< payload origin → centroid, m
+};
+
+/// Geometry and relative motion of one sample, for one payload pose adjustment.
+struct SampleGeometry {
+  volume::ContactVolume cv;  ///< the whole A ∩ B as one region (the regime is described on it)
+  dynamics::RelativeMotion motion;
+  Eigen::Vector3d p_AoC_B = Eigen::Vector3d::Zero();       ///< payload origin → centroid, m
+  Eigen::Isometry3d X_BA = Eigen::Isometry3d::Identity();  ///< the adjusted payload pose
+  /// Each connected region when there are two or more; empty when the contact is one region
+  /// (then it is `cv` itself, and a payload that never touches in two places costs nothing).
+  std::vector<PatchGeometry> patches;
 };
 
 /// The physical regime of one sample: what `where` windows are described by.
@@ -78,6 +96,8 @@ class Replayer {
 
  private:
   const std::vector<SampleGeometry>& geometryFor(const dynamics::Model& model);
+  Prediction runWhole(const dynamics::Model& model);
+  Prediction runPatches(const dynamics::Model& model, int slots);
 
   const Dataset& dataset_;
   std::vector<double> cachedKey_;
