@@ -65,7 +65,11 @@ int patchSlots(const Scenario& s, const ContactPair& p) {
 // screened it out.
 volume::ContactPatches Simulator::pairContact(std::size_t k) {
   const ContactPair& pair = scenario_.pairs[k];
-  if (!queried_[k]) return apart_[k];
+  if (reuse_contacts_) return last_contact_[k];
+  if (!queried_[k]) {
+    if (!last_contact_.empty()) last_contact_[k] = apart_[k];
+    return apart_[k];
+  }
   // the constructor checked that the method takes the pair's shapes
   const bool distributed = pair.friction == FrictionMode::kDistributed;
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
@@ -73,8 +77,11 @@ volume::ContactPatches Simulator::pairContact(std::size_t k) {
   const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
   const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
   ++contact_count_;
-  return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                                distributed ? &fields_[k] : nullptr, &caches_[k]);
+  volume::ContactPatches contact =
+      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                             distributed ? &fields_[k] : nullptr, &caches_[k]);
+  if (!last_contact_.empty()) last_contact_[k] = contact;
+  return contact;
 }
 
 // Wrench w on body A at p_c into force_ and torque_; body B gets the opposite.
