@@ -22,6 +22,7 @@
 // size below the minimum (or another failure of CVODE, in words), or kinetic energy far beyond
 // what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
 
+#include <Eigen/LU>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -150,6 +151,9 @@ class Simulator {
   void assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
                      const State& x, double h);
   void updateDiscreteStates(State& x, double h);
+  void assembleLoads(double t, double h);
+  void loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
+                 Vector6d out[2]) const;
   int layoutStates();
   void setInitialState(int n);
   void addToBroadPhase();
@@ -227,8 +231,10 @@ class Simulator {
   std::vector<DiscretePatch> step_patches_;
   std::size_t step_patch_count_ = 0;
   Eigen::MatrixXd step_matrix_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> step_lu_;
   Eigen::VectorXd step_rhs_, step_twist_;
   std::vector<BodyKinematics> next_kin_;  ///< the bodies at the step's end (prescribed ones)
+  std::vector<BodyKinematics> load_kin_;  ///< assembleLoads()' perturbed kinematics
   long rhs_count_ = 0;
   long contact_count_ = 0;
 };

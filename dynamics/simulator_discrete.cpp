@@ -115,6 +115,7 @@ void Simulator::discreteStep(State& x, double t, double h) {
         body.mass * kin_[i].v_WBcm + h * (force_[i] + body.mass * scenario_.gravity_W);
     step_rhs_.segment<3>(c + 3) = I_W * w + h * (torque_[i] - w.cross(I_W * w));
   }
+  assembleLoads(t, h);
   // the contact patches
   step_patch_count_ = 0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
@@ -127,7 +128,8 @@ void Simulator::discreteStep(State& x, double t, double h) {
       assemblePatch(k, out.patches[i].cv, matches_[k].host[i], out.patches[i].slot, x, h);
     }
   }
-  step_twist_ = step_matrix_.partialPivLu().solve(step_rhs_);
+  step_lu_.compute(step_matrix_);
+  step_twist_ = step_lu_.solve(step_rhs_);
   for (std::size_t i = 0; i < nb; ++i) {
     if (column_[i] < 0) continue;
     next_kin_[i].v_WBcm = step_twist_.segment<3>(column_[i]);
