@@ -1,13 +1,17 @@
 // Whole simulations of the bundled scenarios (assets/scenarios), without output:
 // simulate/<scenario> with the scenario's own integrator, simulate/<scenario>/<integrator> as
-// the A/B pair of Dormand–Prince and BDF on the same scenario. Counters: real_time_factor
+// the A/B pair of Dormand–Prince and BDF on the same scenario, and
+// simulate/<scenario>/discrete_<h> for the fixed-step discrete integrator against the
+// Dormand–Prince run (docs/DISCRETE.md §4). Counters: real_time_factor
 // (simulated seconds per CPU second), steps, contact evaluations (Jacobians' included) and
 // Jacobians per run, output samples, and the final height of the last body (m) as a sanity
 // figure beside the time.
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -26,6 +30,67 @@ std::string scenarioPath(const std::string& name) {
   return (std::filesystem::path(__FILE__).parent_path().parent_path() / "assets" / "scenarios" /
           (name + ".json"))
       .string();
+}
+
+// The last snapshot of a run of `scenario` (all outputs skipped but the last).
+Snapshot finalSnapshot(const vcontact::dynamics::Scenario& scenario) {
+  Simulator sim(scenario);
+  SimulationSummary summary;
+  Snapshot last;
+  sim.run([&](const Snapshot& s) { last = s; }, [](double) {}, summary);
+  return last;
+}
+
+// The Dormand–Prince run of the scenario at its own tolerances, once per process: the
+// reference of the discrete stepper's rest pose (counter rest_diff_m).
+const Snapshot& reference(const std::string& name) {
+  static std::map<std::string, Snapshot> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
+  file.scenario.settings.integrator = Integrator::kDopri5;
+  return cache.emplace(name, finalSnapshot(file.scenario)).first->second;
+}
+
+// Largest distance between the centres of mass of `a` and `b` (m), and largest speed in `s`.
+double largestDistance(const Snapshot& a, const Snapshot& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < a.bodies.size() && i < b.bodies.size(); ++i)
+    d = std::max(d, (a.bodies[i].p_WBcm - b.bodies[i].p_WBcm).norm());
+  return d;
+}
+double largestSpeed(const Snapshot& s) {
+  double v = 0.0;
+  for (const auto& b : s.bodies) v = std::max(v, b.v_WBcm.norm());
+  return v;
+}
+
+// The discrete stepper at step h against the Dormand–Prince reference of the same scenario,
+// in the same process: counters rest_diff_m (largest distance between the bodies' final
+// centres of mass), final_speed_m_s and ref_speed_m_s (largest final speed of a body).
+void discrete(benchmark::State& state, const std::string& name, double h) {
+  vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
+  file.scenario.settings.integrator = Integrator::kDiscrete;
+  file.scenario.settings.step = h;
+  const Snapshot& ref = reference(name);
+  double simulated = 0.0;
+  long steps = 0, contacts = 0;
+  Snapshot last;
+  for (auto _ : state) {
+    Simulator sim(file.scenario);
+    SimulationSummary summary;
+    sim.run([&](const Snapshot& s) { last = s; }, [](double) {}, summary);
+    simulated += summary.simulated_time;
+    steps = summary.steps;
+    contacts = summary.contact_evaluations;
+  }
+  state.counters["real_time_factor"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["contact_evals"] = static_cast<double>(contacts);
+  state.counters["rest_diff_m"] = largestDistance(last, ref);
+  state.counters["final_speed_m_s"] = largestSpeed(last);
+  state.counters["ref_speed_m_s"] = largestSpeed(ref);
+  state.counters["final_z_m"] = last.bodies.back().p_WBcm.z();
 }
 
 void simulate(benchmark::State& state, const std::string& name,
@@ -71,6 +136,16 @@ void registerScenario(const std::string& name) {
 [[maybe_unused]] const bool kRegistered = [] {
   for (const char* name : {"ball_drop", "ball_roll", "tippe_top", "punch_slide_spin"}) {
     registerScenario(name);
+  }
+  // The discrete stepper (docs/DISCRETE.md §4) at 1 ms and 0.5 ms beside the Dormand–Prince
+  // runs above and below; the reference run is outside the timed loop.
+  for (const char* name : {"ball_drop", "tippe_top", "cad_tray_drop"}) {
+    for (const auto& [suffix, h] : {std::pair{"1ms", 1e-3}, std::pair{"0.5ms", 5e-4}}) {
+      benchmark::RegisterBenchmark(
+          ("simulate/" + std::string(name) + "/discrete_" + suffix).c_str(), discrete,
+          std::string(name), h)
+          ->Unit(benchmark::kMillisecond);
+    }
   }
   // Two meshes, fast method, 2 kHz output: the CAD-part target (>= 1x at 1 kHz).
   benchmark::RegisterBenchmark("simulate/battery_box_fixture", simulate,

@@ -266,6 +266,13 @@ void Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& moti
   r.mu_max = ctx.mu_max;
 }
 
+ContactContext Model::context(const volume::ContactVolume& cv, const RelativeMotion& motion,
+                              const PairState& state) const {
+  ContactContext ctx = makeContext(cv, motion, state);
+  for (const auto& e : effects_) e->apply(ctx);
+  return ctx;
+}
+
 bool Model::settle(const volume::ContactVolume& cv, const RelativeMotion& motion,
                    PairState& state) const {
   const PairState before = state;

@@ -97,6 +97,12 @@ class Model {
                 const PairState& state, ContactResult& out,
                 const volume::DepthField* field = nullptr) const;
 
+  /// The shared context after both passes of evaluate() (lumped friction): the final f_n, s,
+  /// μ_max, Contensou factors and the configured parameters, for the linearisation of the
+  /// discrete stepper (dynamics/discrete_jacobian.hpp). @pre cv.inContact()
+  ContactContext context(const volume::ContactVolume& cv, const RelativeMotion& motion,
+                         const PairState& state) const;
+
   /// Distributed friction replaces the lumped Coulomb force and spin torque (coulomb, spin,
   /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs an effect
   /// that integrates it (Effect::integratesDistributedFriction: coulomb), and no effect that

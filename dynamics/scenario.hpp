@@ -57,9 +57,16 @@ struct ContactPair {
 
 /// The time integrator (dynamics/SCENARIO.md "Integrators").
 enum class Integrator {
-  kDopri5,  ///< explicit Dormand–Prince 5(4), Boost.Odeint: cheap steps, step ≲ 3.3/|λ_max|
-  kBdf,     ///< implicit variable-order BDF, SUNDIALS CVODE: steps set by accuracy alone
+  kDopri5,    ///< explicit Dormand–Prince 5(4), Boost.Odeint: cheap steps, step ≲ 3.3/|λ_max|
+  kBdf,       ///< implicit variable-order BDF, SUNDIALS CVODE: steps set by accuracy alone
+  kDiscrete,  ///< linearly implicit fixed step, one contact query per step (docs/DISCRETE.md)
 };
+
+/// Bounds of the discrete stepper's step SimulationSettings::step, s: below 1 µs the
+/// error-controlled integrators are the cheaper choice; above 10 ms free flight steps over
+/// millimetre contacts and the explicit gyroscopic term loses accuracy.
+constexpr double kMinDiscreteStep = 1e-6;
+constexpr double kMaxDiscreteStep = 1e-2;
 
 struct SimulationSettings {
   Integrator integrator = Integrator::kDopri5;
@@ -70,6 +77,9 @@ struct SimulationSettings {
   double initial_step = 1e-6;      ///< s
   double max_step = 1e-3;          ///< s, so that no contact is stepped over in free flight
   double min_step = 1e-13;         ///< s; a step-size collapse below this stops the run
+  /// s, the fixed step of Integrator::kDiscrete, in [kMinDiscreteStep, kMaxDiscreteStep]
+  /// (shortened only to land on output times and the end).
+  double step = 1e-3;
   /// Stop when a pair's mean penetration V/A exceeds this fraction of the smaller body's size.
   double max_penetration_fraction = 0.1;
 };

@@ -102,6 +102,16 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   preparePairs();
   checkLoads();
   queried_.assign(scenario_.pairs.size(), 1);
+  if (scenario_.settings.integrator == Integrator::kDiscrete) {
+    const double h = scenario_.settings.step;
+    if (!(h >= kMinDiscreteStep && h <= kMaxDiscreteStep)) {
+      std::ostringstream s;
+      s << "step " << h << " s is outside [" << kMinDiscreteStep << ", " << kMaxDiscreteStep
+        << "] s";
+      throw InputError("settings", s.str());
+    }
+    last_contact_.resize(scenario_.pairs.size());
+  }
   force_.resize(scenario_.bodies.size());
   torque_.resize(scenario_.bodies.size());
 }
@@ -469,6 +479,8 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {
       runBdf(x, t, output, on_progress, summary);
+    } else if (scenario_.settings.integrator == Integrator::kDiscrete) {
+      runDiscrete(x, t, output, on_progress, summary);
     } else {
       runDopri5(x, dxdt, t, output, on_progress, summary);
     }

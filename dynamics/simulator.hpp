@@ -22,12 +22,14 @@
 // size below the minimum (or another failure of CVODE, in words), or kinetic energy far beyond
 // what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
 
+#include <Eigen/LU>
 #include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "dynamics/discrete_jacobian.hpp"
 #include "dynamics/energy_guard.hpp"
 #include "dynamics/patch_tracker.hpp"
 #include "dynamics/scenario.hpp"
@@ -37,6 +39,14 @@
 namespace vcontact::dynamics {
 
 class BdfError;
+
+/// One contact patch of one step of the discrete stepper (simulator_discrete.cpp).
+struct DiscretePatch {
+  std::size_t pair = 0;
+  int slot = -1;  ///< its own state slot, −1 when none
+  Eigen::Vector3d p_c = Eigen::Vector3d::Zero();
+  PatchStep step;
+};
 
 /// Why a run stopped, for a program reading its summary (the message says it in words).
 enum class StopCause {
@@ -135,6 +145,15 @@ class Simulator {
                  const ProgressFn& on_progress, SimulationSummary& summary);
   void runBdf(State& x, double& t, const OutputFn& on_output, const ProgressFn& on_progress,
               SimulationSummary& summary);
+  void runDiscrete(State& x, double& t, const OutputFn& on_output, const ProgressFn& on_progress,
+                   SimulationSummary& summary);
+  void discreteStep(State& x, double t, double h);
+  void assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
+                     const State& x, double h);
+  void updateDiscreteStates(State& x, double h);
+  void assembleLoads(double t, double h);
+  void loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
+                 Vector6d out[2]) const;
   int layoutStates();
   void setInitialState(int n);
   void addToBroadPhase();
@@ -205,6 +224,19 @@ class Simulator {
   /// The first effect whose wrench was not finite at a finite contact, and when ("" if none).
   std::string non_finite_effect_;
   double rhs_t_ = 0.0;  ///< s, the time of the right-hand side being evaluated
+  // The discrete stepper (simulator_discrete.cpp): the latest query's contacts per pair, reused
+  // instead of a query while reuse_contacts_ (re-evaluating the models after a settle), and
+  // the step's system, kept between steps to avoid allocations.
+  std::vector<volume::ContactPatches> last_contact_;
+  bool reuse_contacts_ = false;
+  std::vector<int> column_;  ///< per body, its first column in the step's system, −1 if not free
+  std::vector<DiscretePatch> step_patches_;
+  std::size_t step_patch_count_ = 0;
+  Eigen::MatrixXd step_matrix_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> step_lu_;
+  Eigen::VectorXd step_rhs_, step_twist_;
+  std::vector<BodyKinematics> next_kin_;  ///< the bodies at the step's end (prescribed ones)
+  std::vector<BodyKinematics> load_kin_;  ///< assembleLoads()' perturbed kinematics
   long rhs_count_ = 0;
   long contact_count_ = 0;
 };

@@ -69,7 +69,11 @@ int patchSlots(const Scenario& s, const ContactPair& p) {
 // that it leaves the run's state as it was, and not counted as a contact evaluation.
 volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode depth) {
   const ContactPair& pair = scenario_.pairs[k];
-  if (!queried_[k]) return apart_[k];
+  if (reuse_contacts_) return last_contact_[k];
+  if (!queried_[k]) {
+    if (!last_contact_.empty()) last_contact_[k] = apart_[k];
+    return apart_[k];
+  }
   // the constructor checked that the method takes the pair's shapes
   const bool distributed = pair.friction == FrictionMode::kDistributed;
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
@@ -80,8 +84,11 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
   }
   ++contact_count_;
-  return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                                distributed ? &fields_[k] : nullptr, &caches_[k]);
+  volume::ContactPatches contact =
+      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                             distributed ? &fields_[k] : nullptr, &caches_[k]);
+  if (!last_contact_.empty()) last_contact_[k] = contact;
+  return contact;
 }
 
 // The depths the force evaluation left out (NaN, QueryOptions::depth) in pair k's output

@@ -195,10 +195,13 @@ dynamics::SimulationSettings readSettings(const Reader& r) {
       s.integrator = dynamics::Integrator::kDopri5;
     } else if (name == "bdf") {
       s.integrator = dynamics::Integrator::kBdf;
+    } else if (name == "discrete") {
+      s.integrator = dynamics::Integrator::kDiscrete;
     } else {
-      r.fail("integrator", "expected \"dopri5\" or \"bdf\"");
+      r.fail("integrator", "expected \"dopri5\", \"bdf\" or \"discrete\"");
     }
   }
+  s.step = r.number("step", s.step, dynamics::kMinDiscreteStep, dynamics::kMaxDiscreteStep);
   if (!r.has("tolerances")) return s;
   const Reader t = r.child("tolerances");
   t.allowOnly({"abs", "rel", "initial_step", "max_step", "min_step", "max_penetration_fraction"});
@@ -429,8 +432,9 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir) {
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
-  r.allowOnly({"format", "duration", "output_rate", "integrator", "gravity", "tolerances", "bodies",
-               "models", "pairs", "contacts", "loads", "springs", "outputs", "description"});
+  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "gravity", "tolerances",
+               "bodies", "models", "pairs", "contacts", "loads", "springs", "outputs",
+               "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }

@@ -90,7 +90,8 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
       {"/pairs/0/model/effects/stiffness/kv", -5.0,
        "pairs[0].model.effects.stiffness.kv: stiffness.kv = -5 is outside"},
       {"/tolerances", nlohmann::json{{"rel", 0.0}}, "tolerances.rel: expected a positive number"},
-      {"/integrator", "euler", "s.json: integrator: expected \"dopri5\" or \"bdf\""},
+      {"/integrator", "euler", "s.json: integrator: expected \"dopri5\", \"bdf\" or \"discrete\""},
+      {"/step", 0.1, "s.json: step: expected a number in [1e-06, 0.01]"},
       // Physical ranges (io/input_ranges.hpp) and types the issue 20 catalogue found accepted.
       {"/bodies/1/density", -7900.0,
        "bodies[1].density: expected a number in [0.1, 100000] kg/m^3, got -7900"},

@@ -1,0 +1,223 @@
+// The discrete stepper of Simulator (Integrator::kDiscrete, docs/DISCRETE.md §3): a fixed
+// step h, one contact query per step, the contact wrenches linearised about the step's start
+// (discrete_jacobian.hpp) and solved implicitly for the free bodies' new twists:
+//
+//   M (V⁺ − V) = h [ F_loads + m g − ω × I_W ω + Σ_patches Gᵀ (c + L ξ⁺) ],   ξ⁺ = G V⁺,
+//   p⁺ = p + h v⁺,   q⁺ = exp(h ω⁺) q,
+//
+// a dense solve of 6 × (free bodies) unknowns. The pair states are advanced with the step:
+// the bristle deflections implicitly (PatchStep), the others (dwell) by explicit Euler.
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "dynamics/simulator.hpp"
+#include "geometry/error.hpp"
+
+namespace vcontact::dynamics {
+namespace {
+
+constexpr int kBodyStates = 13;  // as simulator.cpp: p (3), q (w, x, y, z), v (3), ω (3)
+
+// A step that ends within this fraction of the output interval of an output time lands on it.
+constexpr double kOutputTimeSlack = 1e-9;
+
+// G of a body at lever arm r = p_c − p_cm: the velocity at p_c and ω from the body's twist
+// (v_cm, ω), v(p_c) = v_cm + ω × r; Gᵀ moves a wrench at p_c to the centre of mass.
+Matrix6d leverMap(const Eigen::Vector3d& r) {
+  Matrix6d G = Matrix6d::Identity();
+  Eigen::Matrix3d rx;
+  rx << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  G.topRightCorner<3, 3>() = -rx;  // ω × r = −[r]× ω
+  return G;
+}
+
+Vector6d bodyTwist(const BodyKinematics& k) {
+  Vector6d V;
+  V << k.v_WBcm, k.w_WB;
+  return V;
+}
+
+// q⁺ = exp(h ω) ⊗ q for a world-frame angular velocity ω, as a rotation vector.
+Eigen::Quaterniond rotated(const Eigen::Quaterniond& q, const Eigen::Vector3d& w, double h) {
+  const double angle = w.norm() * h;
+  if (angle == 0.0) return q;
+  return (Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
+}
+
+}  // namespace
+
+void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
+                            const ProgressFn& on_progress, SimulationSummary& summary) {
+  const SimulationSettings& set = scenario_.settings;
+  for (const ContactPair& p : scenario_.pairs) {
+    if (p.friction == FrictionMode::kDistributed) {
+      throw InputError("pair '" + p.name + "'",
+                       "the discrete integrator has no linearisation of distributed friction; "
+                       "use \"friction\": \"lumped\" or the dopri5 or bdf integrator");
+    }
+  }
+  const double interval = 1.0 / set.output_rate_hz;
+  long next_output = 1;
+  State dxdt(x.size());
+  while (t < set.duration) {
+    const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
+    const bool lands = t_target - t <= set.step * (1.0 + kOutputTimeSlack);
+    const double h = lands ? t_target - t : set.step;
+    discreteStep(x, t, h);
+    t = lands ? t_target : t + h;
+    ++summary.steps;
+    normaliseQuaternions(x);
+    rhs(x, dxdt, t);  // the step's one contact query, at the new state
+    check(x, t);
+    if (settlePairs(x, t)) {
+      reuse_contacts_ = true;
+      rhs(x, dxdt, t);
+      reuse_contacts_ = false;
+    }
+    if (lands) {
+      on_output(snapshot(x, t));
+      ++next_output;
+    }
+    on_progress(t);
+  }
+}
+
+// One step from the contacts of the latest query (at x): assemble, solve, update x.
+void Simulator::discreteStep(State& x, double t, double h) {
+  const std::size_t nb = scenario_.bodies.size();
+  int n = 0;
+  column_.resize(nb);
+  next_kin_.resize(nb);
+  for (std::size_t i = 0; i < nb; ++i) {
+    column_[i] = offset_[i] >= 0 ? n : -1;
+    if (offset_[i] >= 0) n += 6;
+    next_kin_[i] = offset_[i] >= 0 ? kin_[i] : scheduledKinematics(scenario_.bodies[i], t + h);
+  }
+  step_matrix_.setZero(n, n);
+  step_rhs_.setZero(n);
+  // explicit parts: loads and springs, gravity, gyroscopic torque; the mass matrix
+  for (std::size_t i = 0; i < nb; ++i) {
+    force_[i].setZero();
+    torque_[i].setZero();
+  }
+  applyLoads(t);
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (column_[i] < 0) continue;
+    const RigidBody& body = scenario_.bodies[i];
+    const Eigen::Matrix3d R = kin_[i].X_WB.linear();
+    const Eigen::Matrix3d I_W = R * body.I_BBcm_B * R.transpose();
+    const Eigen::Vector3d& w = kin_[i].w_WB;
+    const int c = column_[i];
+    step_matrix_.block<3, 3>(c, c) = body.mass * Eigen::Matrix3d::Identity();
+    step_matrix_.block<3, 3>(c + 3, c + 3) = I_W;
+    step_rhs_.segment<3>(c) =
+        body.mass * kin_[i].v_WBcm + h * (force_[i] + body.mass * scenario_.gravity_W);
+    step_rhs_.segment<3>(c + 3) = I_W * w + h * (torque_[i] - w.cross(I_W * w));
+  }
+  assembleLoads(t, h);
+  // the contact patches
+  step_patch_count_ = 0;
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const PairOutput& out = last_pairs_[k];
+    if (slots_[k] == 1) {
+      assemblePatch(k, out.cv, 0, 0, x, h);
+      continue;
+    }
+    for (std::size_t i = 0; i < out.patches.size(); ++i) {
+      assemblePatch(k, out.patches[i].cv, matches_[k].host[i], out.patches[i].slot, x, h);
+    }
+  }
+  step_lu_.compute(step_matrix_);
+  step_twist_ = step_lu_.solve(step_rhs_);
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (column_[i] < 0) continue;
+    next_kin_[i].v_WBcm = step_twist_.segment<3>(column_[i]);
+    next_kin_[i].w_WB = step_twist_.segment<3>(column_[i] + 3);
+  }
+  updateDiscreteStates(x, h);
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (column_[i] < 0) continue;
+    double* s = &x[static_cast<std::size_t>(offset_[i])];
+    const Eigen::Vector3d v = next_kin_[i].v_WBcm, w = next_kin_[i].w_WB;
+    const Eigen::Quaterniond q = rotated(Eigen::Quaterniond(s[3], s[4], s[5], s[6]), w, h);
+    const double next[kBodyStates] = {s[0] + h * v.x(),
+                                      s[1] + h * v.y(),
+                                      s[2] + h * v.z(),
+                                      q.w(),
+                                      q.x(),
+                                      q.y(),
+                                      q.z(),
+                                      v.x(),
+                                      v.y(),
+                                      v.z(),
+                                      w.x(),
+                                      w.y(),
+                                      w.z()};
+    std::copy(next, next + kBodyStates, s);
+  }
+}
+
+// Patch (contact cv of pair k, states of slot `host`, its own slot `slot` or −1) into the
+// step's system: body A gets Gᵀ_A (c + L ξ⁺), body B the opposite at the same point.
+void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
+                              const State& x, double h) {
+  if (!cv.inContact()) return;
+  const ContactPair& pair = scenario_.pairs[k];
+  if (step_patch_count_ == step_patches_.size()) step_patches_.emplace_back();
+  DiscretePatch& dp = step_patches_[step_patch_count_++];
+  dp.pair = k;
+  dp.slot = slot;
+  dp.p_c = cv.p_WC;
+  const int size = pair.model.stateLayout().size();
+  const PairState state =
+      PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k] + host * size)], size);
+  const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], cv.p_WC);
+  linearisePatch(pair.model, cv, motion, state, h, dp.step);
+  const std::size_t body[2] = {pair.a, pair.b};
+  const double sign[2] = {1.0, -1.0};  // ξ = G_A V_A − G_B V_B; B gets the opposite wrench
+  Matrix6d G[2];
+  for (int j = 0; j < 2; ++j) G[j] = leverMap(cv.p_WC - kin_[body[j]].p_WBcm);
+  for (int r = 0; r < 2; ++r) {
+    const int row = column_[body[r]];
+    if (row < 0) continue;
+    const Matrix6d GtL = sign[r] * h * G[r].transpose() * dp.step.L;
+    step_rhs_.segment<6>(row) += sign[r] * h * G[r].transpose() * dp.step.c;
+    for (int c = 0; c < 2; ++c) {
+      const int col = column_[body[c]];
+      const Matrix6d block = GtL * (sign[c] * G[c]);
+      if (col >= 0) {
+        step_matrix_.block<6, 6>(row, col) -= block;
+      } else {
+        step_rhs_.segment<6>(row) += block * bodyTwist(next_kin_[body[c]]);
+      }
+    }
+  }
+}
+
+// The pair states over the step: explicit Euler from the start's rates, the bristle states
+// from their implicit update at the solved twists. A slot without a patch keeps its states
+// (settle resets them when the contact is gone).
+void Simulator::updateDiscreteStates(State& x, double h) {
+  for (std::size_t j = 0; j < step_patch_count_; ++j) {
+    const DiscretePatch& dp = step_patches_[j];
+    if (dp.slot < 0) continue;
+    const ContactPair& pair = scenario_.pairs[dp.pair];
+    const int size = pair.model.stateLayout().size();
+    double* s = &x[static_cast<std::size_t>(pair_offset_[dp.pair] + dp.slot * size)];
+    PairState state = PairState::unpack(s, size);
+    for (int i = 0; i < size; ++i) state[i] += h * dp.step.start.rates[i];
+    if (dp.step.bristle) {
+      const BodyKinematics& A = next_kin_[pair.a];
+      const BodyKinematics& B = next_kin_[pair.b];
+      const RelativeMotion m = relativeMotion(A, B, dp.p_c);
+      Vector6d xi;
+      xi << m.v_c_W, m.w_W;
+      state.vector(dp.step.bristle_offset) = dp.step.z_c + dp.step.Z * xi;
+      state[dp.step.bristle_offset + 3] = dp.step.theta_c + (dp.step.Theta * xi)(0);
+    }
+    state.pack(s, size);
+  }
+}
+
+}  // namespace vcontact::dynamics
