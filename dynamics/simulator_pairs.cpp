@@ -73,8 +73,10 @@ volume::ContactPatches Simulator::pairContact(std::size_t k) {
   const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
   const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0};
   ++contact_count_;
-  return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                                distributed ? &fields_[k] : nullptr, &caches_[k]);
+  return recovered_->contact(k, X_WA, kin_[pair.b].X_WB, [&] {
+    return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                                  distributed ? &fields_[k] : nullptr, &caches_[k]);
+  });
 }
 
 // Wrench w on body A at p_c into force_ and torque_; body B gets the opposite.
