@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "volume/contact.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace vcontact::validation {
 namespace {
@@ -48,7 +49,9 @@ std::vector<double> geometryKey(const Model& model) {
 // round-off share the entry; the canonical pose is built from the rounded key.
 class HalfspaceVolumes {
  public:
-  volume::ContactVolume at(const geometry::Shape& payload, const Eigen::Isometry3d& X_BA) {
+  /// @param surface  the payload's recovered surface, or null for its shape as it is
+  volume::ContactVolume at(const geometry::Shape& payload, const volume::RecoveredSurface* surface,
+                           const Eigen::Isometry3d& X_BA) {
     const Eigen::Isometry3d X = symmetryReduced(payload, X_BA);
     const Eigen::Vector3d b = X.linear().transpose().col(2);
     const std::array<double, 4> key = {rounded(b.x()), rounded(b.y()), rounded(b.z()),
@@ -59,14 +62,7 @@ class HalfspaceVolumes {
                        .toRotationMatrix();
     X_c.translation().z() = key[3];
     auto it = cache_.find(key);
-    if (it == cache_.end()) {
-      const geometry::Shape halfspace = geometry::HalfSpace{};
-      it = cache_
-               .emplace(key, volume::computeContact(payload, X_c, halfspace,
-                                                    Eigen::Isometry3d::Identity())
-                                 .aggregate)
-               .first;
-    }
+    if (it == cache_.end()) it = cache_.emplace(key, atCanonical(payload, surface, X_c)).first;
     return moved(it->second, X * X_c.inverse());
   }
 
@@ -75,6 +71,19 @@ class HalfspaceVolumes {
   // far below any penetration a rig measures.
   static constexpr double kKeyResolution = 1e-15;
   static double rounded(double x) { return std::round(x / kKeyResolution) * kKeyResolution; }
+
+  // On the recovered surface's closed form where one applies, else on the shape as it is.
+  static volume::ContactVolume atCanonical(const geometry::Shape& payload,
+                                           const volume::RecoveredSurface* surface,
+                                           const Eigen::Isometry3d& X_c) {
+    const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
+    std::string reason;
+    if (surface) {
+      if (auto r = surface->body->closedFormContact(X_c, X_BB, reason)) return r->cv;
+    }
+    const geometry::Shape halfspace = geometry::HalfSpace{};
+    return volume::computeContact(payload, X_c, halfspace, X_BB).aggregate;
+  }
 
   static Eigen::Isometry3d symmetryReduced(const geometry::Shape& payload, Eigen::Isometry3d X) {
     if (std::holds_alternative<geometry::Sphere>(payload)) {
@@ -119,7 +128,7 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
   const Eigen::Isometry3d X_BA = model.adjustPayloadPose(s.X_BA, X_BB);
   SampleGeometry g;
   g.cv = std::holds_alternative<geometry::HalfSpace>(d.plate)
-             ? halfspace.at(d.payload, X_BA)
+             ? halfspace.at(d.payload, d.payload_surface.get(), X_BA)
              : volume::computeContact(d.payload, X_BA, d.plate, X_BB).aggregate;
   if (!g.cv.inContact()) return g;
   g.p_AoC_B = g.cv.p_WC - X_BA.translation();
