@@ -1,8 +1,9 @@
 // surface/<case>/<path>: a query on the recovered surface (docs/SURFACES.md) against the
 // polyhedral clip of the same mesh on the same pose, so their ratio is the cost of the true
 // surface. Cases: a 10,000-triangle sphere and a 512-triangle cylinder on their side, whole
-// bodies of one closed form; and the same sphere with a free-form patch on top, so that each
-// query scans the vertices for the faces that reach the plane.
+// bodies of one closed form; the same sphere with a free-form patch on top, so that each
+// query scans the vertices for the faces that reach the plane; and the rolling ball of
+// assets/scenarios/ball_roll_recovered.json.
 
 #include <benchmark/benchmark.h>
 
@@ -32,15 +33,17 @@ struct Case {
   Isometry3d X_WM = Isometry3d::Identity();
 };
 
-// The mesh prepared once: its tree, its surfaces, the recovered body; lowest point at depth d.
-std::shared_ptr<Case> prepare(TriangleMesh mesh, const Isometry3d& rotation) {
+// The mesh prepared once: its tree, its surfaces, the recovered body; the sphere's (or the
+// side-lying cylinder's) lowest point at depth d = depth_ratio R.
+std::shared_ptr<Case> prepare(TriangleMesh mesh, const Isometry3d& rotation,
+                              double depth_ratio = kDepthRatio) {
   auto c = std::make_shared<Case>();
   c->mesh = std::move(mesh);
   c->bvh = std::make_unique<vcontact::geometry::MeshBvh>(c->mesh);
   c->surfaces = vcontact::geometry::recogniseSurfaces(c->mesh);
   c->body = std::make_unique<vcontact::volume::RecoveredBody>(c->mesh, c->surfaces);
   c->X_WM = rotation;
-  c->X_WM.translation().z() = kRadius * (1.0 - kDepthRatio);
+  c->X_WM.translation().z() = kRadius * (1.0 - depth_ratio);
   return c;
 }
 
@@ -93,6 +96,14 @@ void registerCase(const std::string& name, std::function<std::shared_ptr<Case>()
   });
   registerCase("sphere10k_freeform_top",
                [] { return prepare(bumpySphere(), Isometry3d::Identity()); });
+  // The ball of ball_roll_recovered.json (2,000 triangles: 40 segments, 26 rings) at its
+  // static penetration, d/R = 1.41e-4, turned 0.3 rad as it rolls: the polyhedron touches at
+  // a few faces near a vertex, the recovered surface is the sphere's closed form.
+  registerCase("ball2k_rolling", [] {
+    Isometry3d rolled = Isometry3d::Identity();
+    rolled.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    return prepare(vcontact::geometry::tessellateSphere(kRadius, 40, 26), rolled, 1.41378e-4);
+  });
   return true;
 }();
 

@@ -32,6 +32,30 @@ void printSummary(const dynamics::SimulationSummary& s) {
             << " contact evaluations";
   if (s.jacobian_evaluations > 0) std::cerr << ", " << s.jacobian_evaluations << " Jacobians";
   std::cerr << '\n';
+  for (const dynamics::SurfacePairUse& p : s.surface_pairs) {
+    std::cerr << "vcontact: pair '" << p.pair << "': ";
+    if (!p.polyhedral_reason.empty()) {
+      std::cerr << "polyhedra throughout: " << p.polyhedral_reason << '\n';
+      continue;
+    }
+    const char* sep = "recovered surface, evaluations ";
+    for (const auto& [representation, n] : p.evaluations) {
+      std::cerr << sep << representation << ' ' << n;
+      sep = ", ";
+    }
+    std::cerr << '\n';
+  }
+}
+
+// What recognition found on the bodies with a recovered surface, and how long it took (once,
+// when the scenario was read).
+void printRecognition(const dynamics::Scenario& scenario, bool quiet) {
+  if (quiet) return;
+  const dynamics::RecoveredPairs recovered(scenario);
+  for (const dynamics::SurfaceBodyUse& b : recovered.bodies()) {
+    std::cerr << "vcontact: body '" << b.body << "': recovered surface " << b.description
+              << " (recognised in " << b.recognition_seconds << " s)\n";
+  }
 }
 
 // The output rate of the command line replaces the scenario's; then the rows the run would
@@ -57,6 +81,7 @@ void runSimulate(const SimulateOptions& o) {
   formats::ScenarioFile file = formats::readScenarioFile(o.scenario);
   printWarnings(file.warnings);
   applyOutputOptions(o, file);
+  printRecognition(file.scenario, o.quiet);
   dynamics::Simulator sim(file.scenario);
   report::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
   io::Progress progress("simulate", file.scenario.settings.duration, "s", o.quiet);

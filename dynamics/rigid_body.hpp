@@ -11,6 +11,10 @@
 #include "dynamics/trajectory.hpp"
 #include "geometry/primitives.hpp"
 
+namespace vcontact::volume {
+struct RecoveredSurface;  // volume/recovered_surface.hpp
+}
+
 namespace vcontact::dynamics {
 
 enum class BodyMotion { kFree, kFixed, kPrescribed };
@@ -39,6 +43,10 @@ struct RigidBody {
   Eigen::Vector3d v_WBcm0 = Eigen::Vector3d::Zero();        ///< initial velocity of Bcm, m/s
   Eigen::Vector3d w_WB0 = Eigen::Vector3d::Zero();          ///< initial angular velocity, rad/s
   PrescribedMotion prescribed;
+  /// A mesh body's recovered surface ("surface": "recovered", dynamics/SCENARIO.md): its
+  /// contact with a half-space is then that of the true sphere or capped cylinder where one
+  /// applies. Null: the polyhedron (a mesh body's default, and every primitive).
+  std::shared_ptr<const volume::RecoveredSurface> surface;
 };
 
 /// Where a body is and how it moves at one instant.

@@ -100,6 +100,7 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   kin_.resize(scenario_.bodies.size());
   addToBroadPhase();
   preparePairs();
+  recovered_.emplace(scenario_);
   checkLoads();
   queried_.assign(scenario_.pairs.size(), 1);
   if (scenario_.settings.integrator == Integrator::kDiscrete) {
@@ -463,9 +464,12 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     summary.rhs_evaluations = rhs_count_ - rhs_start;
     summary.contact_evaluations = contact_count_ - contacts_start;
+    summary.surface_bodies = recovered_->bodies();
+    summary.surface_pairs = recovered_->pairs();
   };
 
   non_finite_effect_.clear();
+  recovered_->resetCounts();
   State x = x0_;
   State dxdt(x.size());
   rhs(x, dxdt, t);

@@ -32,6 +32,7 @@
 #include "dynamics/discrete_jacobian.hpp"
 #include "dynamics/energy_guard.hpp"
 #include "dynamics/patch_tracker.hpp"
+#include "dynamics/recovered_pairs.hpp"
 #include "dynamics/scenario.hpp"
 #include "geometry/broad_phase.hpp"
 #include "volume/contact.hpp"
@@ -113,6 +114,10 @@ struct SimulationSummary {
   int patches_max = 0;            ///< most patches of one pair at an output time
   double patches_mean = 0.0;      ///< mean patch count over the output times of pairs in contact
   long patches_without_slot = 0;  ///< patches without a slot of their own, summed over outputs
+  /// The bodies with a recovered surface and the pairs with one of them (RecoveredPairs);
+  /// empty when no body has "surface": "recovered".
+  std::vector<SurfaceBodyUse> surface_bodies;
+  std::vector<SurfacePairUse> surface_pairs;
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
 
@@ -208,6 +213,8 @@ class Simulator {
   /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
   /// the fast method's leaf pairs while the bodies move less than its reach).
   std::vector<volume::ContactCache> caches_;
+  /// Which pairs are queried on a body's recovered surface, and the counts per representation.
+  std::optional<RecoveredPairs> recovered_;
   // Broad phase (FCL's dynamic AABB tree over the bodies' placed bounds): a pair whose bodies'
   // boxes do not overlap is not queried; its contact is empty (V = 0), as the query would say.
   geometry::BroadPhase broad_phase_;

@@ -84,9 +84,10 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
   }
   ++contact_count_;
-  volume::ContactPatches contact =
-      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                             distributed ? &fields_[k] : nullptr, &caches_[k]);
+  volume::ContactPatches contact = recovered_->contact(k, X_WA, kin_[pair.b].X_WB, [&] {
+    return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                                  distributed ? &fields_[k] : nullptr, &caches_[k]);
+  });
   if (!last_contact_.empty()) last_contact_[k] = contact;
   return contact;
 }

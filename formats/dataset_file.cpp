@@ -17,6 +17,7 @@
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
 #include "io/shape_json.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace vcontact::formats {
 namespace {
@@ -215,6 +216,31 @@ Eigen::Matrix3d readInertiaMatrix(const json& v, const std::string& where) {
   return I;
 }
 
+// The payload's optional "surface": "mesh" (default) or "recovered", recognised here once
+// (docs/DATASET.md, docs/SURFACES.md).
+void readPayloadSurface(const json& payload, const std::string& where, validation::Dataset& d) {
+  if (!payload.contains("surface")) return;
+  const json& s = payload.at("surface");
+  if (!s.is_string() || (s != "mesh" && s != "recovered")) {
+    throw InputError(where,
+                     "\"surface\" must be \"mesh\" (the polyhedron, default) or "
+                     "\"recovered\" (the analytic surfaces the mesh was tessellated "
+                     "from), got " +
+                         s.dump());
+  }
+  if (s == "mesh") return;
+  const auto* mesh = std::get_if<geometry::Mesh>(&d.payload);
+  if (mesh == nullptr) {
+    throw InputError(where, "\"surface\": \"recovered\" applies to a mesh payload; a " +
+                                geometry::shapeKind(d.payload) + " is its own true surface");
+  }
+  try {
+    d.payload_surface = volume::recoverSurface(mesh->mesh);
+  } catch (const InputError& e) {
+    throw InputError(where, std::string("the mesh's surfaces cannot be recognised: ") + e.what());
+  }
+}
+
 // The optional "payload_inertia": {"mass": kg, "inertia": [...], "com": [x, y, z]}.
 void readPayloadInertia(const json& j, const std::string& where, validation::Dataset& d) {
   if (!j.contains("payload_inertia")) return;
@@ -287,6 +313,13 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
   }
   if (std::holds_alternative<geometry::HalfSpace>(d.payload)) {
     throw InputError(where + ": payload", "the payload must be a bounded body, not a half-space");
+  }
+  readPayloadSurface(j.at("payload"), where + ": payload", d);
+  if (d.payload_surface && !std::holds_alternative<geometry::HalfSpace>(d.plate)) {
+    result.warnings.push_back(where +
+                              ": payload: \"surface\": \"recovered\" has closed forms "
+                              "against a half-space plate only; against this " +
+                              geometry::shapeKind(d.plate) + " the polyhedra are used");
   }
   fillSamples(readTable(d.dataPath), d.dataPath, d);
   readOutputsAndNoise(j, where, d.dataPath, d);

@@ -16,6 +16,7 @@
 #include "io/mesh_io.hpp"
 #include "io/shape_spec.hpp"
 #include "volume/contact.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace vcontact::formats {
 namespace {
@@ -116,10 +117,33 @@ io::ParsedShape readShape(const Reader& r, const std::string& shape,
   }
 }
 
+// "surface": "mesh" (the polyhedron, default) or "recovered": the surfaces the mesh was
+// tessellated from, recognised here once (docs/SURFACES.md, dynamics/SCENARIO.md).
+void readSurface(const Reader& r, dynamics::RigidBody& body) {
+  if (!r.has("surface")) return;
+  const std::string surface = r.text("surface");
+  if (surface == "mesh") return;
+  if (surface != "recovered") {
+    r.fail("surface",
+           "expected \"mesh\" (the polyhedron, default) or \"recovered\" (the analytic "
+           "surfaces the mesh was tessellated from)");
+  }
+  const auto* mesh = std::get_if<geometry::Mesh>(&body.shape);
+  if (mesh == nullptr) {
+    r.fail("surface", "\"recovered\" applies to a mesh body; a " + geometry::shapeKind(body.shape) +
+                          " is its own true surface");
+  }
+  try {
+    body.surface = volume::recoverSurface(mesh->mesh);
+  } catch (const InputError& e) {
+    r.fail("surface", std::string("the mesh's surfaces cannot be recognised: ") + e.what());
+  }
+}
+
 dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
                              std::vector<std::string>& warnings) {
   r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density", "mass",
-               "inertia", "com", "prescribed", "repair"});
+               "inertia", "com", "prescribed", "repair", "surface"});
   dynamics::RigidBody body;
   body.name = r.text("name");
   std::string shape = r.text("shape");
@@ -129,6 +153,7 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
   io::ParsedShape parsed = readShape(r, shape, mesh);
   body.shape = std::move(parsed.shape);
   for (const auto& w : parsed.warnings) warnings.push_back(body.name + ": " + w);
+  readSurface(r, body);
   body.X_WB0 = readPose(r, "pose");
   if (r.has("motion") && r["motion"].is_object()) {  // a trajectory from a table
     for (const char* key : {"pose", "velocity", "angular_velocity", "prescribed"}) {

@@ -6,6 +6,31 @@
 #include "report/simulation_csv.hpp"
 
 namespace vcontact::report {
+namespace {
+
+// "surfaces": per body with a recovered surface what recognition found, per pair with one
+// which representation its queries used (dynamics/SCENARIO.md "Recovered surfaces").
+nlohmann::json surfacesJson(const dynamics::SimulationSummary& s) {
+  nlohmann::json bodies = nlohmann::json::array(), pairs = nlohmann::json::array();
+  for (const dynamics::SurfaceBodyUse& b : s.surface_bodies) {
+    bodies.push_back({{"body", b.body},
+                      {"recognition_time_s", b.recognition_seconds},
+                      {"surfaces", b.kinds},
+                      {"free_form_faces", b.free_form_faces},
+                      {"max_residual_m", b.max_residual}});
+  }
+  for (const dynamics::SurfacePairUse& p : s.surface_pairs) {
+    nlohmann::json j = {{"pair", p.pair},
+                        {"representation", p.polyhedral_reason.empty() ? "recovered" : "mesh"},
+                        {"evaluations", p.evaluations}};
+    if (!p.polyhedral_reason.empty()) j["why_mesh"] = p.polyhedral_reason;
+    if (!p.mesh_reasons.empty()) j["mesh_fallbacks"] = p.mesh_reasons;
+    pairs.push_back(j);
+  }
+  return {{"bodies", bodies}, {"pairs", pairs}};
+}
+
+}  // namespace
 
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
                                      const std::string& scenario_path,
@@ -23,6 +48,7 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
                        {{"max", s.patches_max},
                         {"mean", s.patches_mean},
                         {"without_slot", s.patches_without_slot}}}};
+  if (!s.surface_bodies.empty()) j["surfaces"] = surfacesJson(s);
   if (stop) {
     j["stopped_at_s"] = stop->time;
     j["stop_cause"] = dynamics::stopCauseName(stop->cause);

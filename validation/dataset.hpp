@@ -13,11 +13,16 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/primitives.hpp"
+
+namespace vcontact::volume {
+struct RecoveredSurface;  // volume/recovered_surface.hpp
+}
 
 namespace vcontact::validation {
 
@@ -47,6 +52,10 @@ struct Dataset {
   std::string dataPath;     ///< the CSV, resolved
   geometry::Shape payload;
   geometry::Shape plate;
+  /// A mesh payload's recovered surface (the payload's "surface": "recovered",
+  /// docs/DATASET.md): its contact with a half-space plate is then that of the true sphere or
+  /// capped cylinder where one applies. Null: the polyhedron.
+  std::shared_ptr<const volume::RecoveredSurface> payload_surface;
   std::vector<std::string> outputs;       ///< wrench columns to compare, e.g. {"fx", "tz"}
   std::map<std::string, double> noise;    ///< 1-σ per output where the sidecar gives it
   std::optional<PayloadInertia> inertia;  ///< where the sidecar gives it

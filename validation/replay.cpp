@@ -9,6 +9,7 @@
 
 #include "dynamics/patch_tracker.hpp"
 #include "volume/contact.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace vcontact::validation {
 namespace {
@@ -49,7 +50,9 @@ std::vector<double> geometryKey(const Model& model) {
 // round-off share the entry; the canonical pose is built from the rounded key.
 class HalfspaceVolumes {
  public:
-  volume::ContactPatches at(const geometry::Shape& payload, const Eigen::Isometry3d& X_BA) {
+  /// @param surface  the payload's recovered surface, or null for its shape as it is
+  volume::ContactPatches at(const geometry::Shape& payload, const volume::RecoveredSurface* surface,
+                            const Eigen::Isometry3d& X_BA) {
     const Eigen::Isometry3d X = symmetryReduced(payload, X_BA);
     const Eigen::Vector3d b = X.linear().transpose().col(2);
     const std::array<double, 4> key = {rounded(b.x()), rounded(b.y()), rounded(b.z()),
@@ -60,13 +63,7 @@ class HalfspaceVolumes {
                        .toRotationMatrix();
     X_c.translation().z() = key[3];
     auto it = cache_.find(key);
-    if (it == cache_.end()) {
-      const geometry::Shape halfspace = geometry::HalfSpace{};
-      it = cache_
-               .emplace(key, volume::computeContact(payload, X_c, halfspace,
-                                                    Eigen::Isometry3d::Identity()))
-               .first;
-    }
+    if (it == cache_.end()) it = cache_.emplace(key, atCanonical(payload, surface, X_c)).first;
     const Eigen::Isometry3d T = X * X_c.inverse();
     volume::ContactPatches c = it->second;
     c.aggregate = moved(c.aggregate, T);
@@ -79,6 +76,21 @@ class HalfspaceVolumes {
   // far below any penetration a rig measures.
   static constexpr double kKeyResolution = 1e-15;
   static double rounded(double x) { return std::round(x / kKeyResolution) * kKeyResolution; }
+
+  // On the recovered surface's closed form where one applies, else on the shape as it is.
+  static volume::ContactPatches atCanonical(const geometry::Shape& payload,
+                                            const volume::RecoveredSurface* surface,
+                                            const Eigen::Isometry3d& X_c) {
+    const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
+    std::string reason;
+    if (surface) {
+      if (auto r = surface->body->closedFormContact(X_c, X_BB, reason)) {
+        return volume::singlePatch(r->cv);
+      }
+    }
+    const geometry::Shape halfspace = geometry::HalfSpace{};
+    return volume::computeContact(payload, X_c, halfspace, X_BB);
+  }
 
   static Eigen::Isometry3d symmetryReduced(const geometry::Shape& payload, Eigen::Isometry3d X) {
     if (std::holds_alternative<geometry::Sphere>(payload)) {
@@ -133,7 +145,7 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
   const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d X_BA = model.adjustPayloadPose(s.X_BA, X_BB);
   const volume::ContactPatches c = std::holds_alternative<geometry::HalfSpace>(d.plate)
-                                       ? halfspace.at(d.payload, X_BA)
+                                       ? halfspace.at(d.payload, d.payload_surface.get(), X_BA)
                                        : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
   PatchGeometry whole = patchGeometry(c.aggregate, s, X_BA);
   SampleGeometry g;

@@ -1,8 +1,10 @@
 #include "volume/recovered_surface.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -144,14 +146,26 @@ RecoveredContact RecoveredBody::onSurface(const RecognisedSurface& s, const Eige
                                         : cylinderContact(mesh_, s, X_WM, X_WH);
 }
 
-RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
-                                                 const Eigen::Isometry3d& X_WH) const {
+std::optional<RecoveredContact> RecoveredBody::closedFormContact(const Eigen::Isometry3d& X_WM,
+                                                                 const Eigen::Isometry3d& X_WH,
+                                                                 std::string& reason) const {
   if (whole_) return onSurface(*whole_, X_WM, X_WH);  // the body is one closed form
   const std::set<int> touched = reachingSurfaces(X_WH.inverse() * X_WM);
-  if (touched.empty()) return onMesh(mesh_, X_WM, X_WH, "no face reaches the plane", 0.0);
-  std::string reason;
+  if (touched.empty()) {
+    reason = "no face reaches the plane";
+    return std::nullopt;
+  }
   if (const RecognisedSurface* s = closedFormSurface(touched, reason))
     return onSurface(*s, X_WM, X_WH);
+  return std::nullopt;
+}
+
+RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
+                                                 const Eigen::Isometry3d& X_WH) const {
+  std::string reason;
+  if (auto r = closedFormContact(X_WM, X_WH, reason)) return *r;
+  const std::set<int> touched = reachingSurfaces(X_WH.inverse() * X_WM);
+  if (touched.empty()) return onMesh(mesh_, X_WM, X_WH, reason, 0.0);
   double gap = 0.0;  // a plane's faces have none; unknown (NaN) on free-form faces
   for (int s : touched)
     if (s >= 0) gap = std::max(gap, gap_[s]);
@@ -183,6 +197,38 @@ std::set<int> RecoveredBody::reachingSurfaces(const Eigen::Isometry3d& X_HM) con
     }
   }
   return touched;
+}
+
+std::shared_ptr<const RecoveredSurface> recoverSurface(
+    std::shared_ptr<const geometry::TriangleMesh> mesh) {
+  auto r = std::make_shared<RecoveredSurface>();
+  r->mesh = std::move(mesh);
+  const auto start = std::chrono::steady_clock::now();
+  r->recognition = geometry::recogniseSurfaces(*r->mesh);
+  r->recognition_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // r is not moved from here on, so the body's references to its mesh and recognition hold
+  r->body = std::make_unique<RecoveredBody>(*r->mesh, r->recognition);
+  return r;
+}
+
+std::string recognisedKinds(const geometry::SurfaceRecognition& recognition) {
+  std::map<std::string, int> counts;
+  for (const RecognisedSurface& s : recognition.surfaces) {
+    ++counts[std::string(s.convex ? "" : "concave ") + geometry::surfaceKindName(s.kind)];
+  }
+  std::ostringstream out;
+  const char* sep = "";
+  for (const auto& [kind, n] : counts) {
+    out << sep << n << ' ' << kind << (n > 1 ? "s" : "");
+    sep = ", ";
+  }
+  if (recognition.free_form_faces > 0) {
+    out << sep << recognition.free_form_faces << " free-form faces";
+  } else if (counts.empty()) {
+    out << "nothing";
+  }
+  return out.str();
 }
 
 RecoveredContact recoveredHalfspaceContact(const TriangleMesh& mesh,

@@ -11,6 +11,8 @@
 // closed form against a plane yet) the result is the polyhedral one, and says so.
 
 #include <Eigen/Geometry>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -49,6 +51,14 @@ class RecoveredBody {
   RecoveredContact halfspaceContact(const Eigen::Isometry3d& X_WM,
                                     const Eigen::Isometry3d& X_WH) const;
 
+  /// The contact by a closed form when one applies at this pose (the part of the body that can
+  /// reach the plane lies on one sphere, or one capped cylinder); otherwise nothing, and
+  /// `reason` says why, for a caller that clips the polyhedron its own way (a simulation wants
+  /// the clip's patches).
+  std::optional<RecoveredContact> closedFormContact(const Eigen::Isometry3d& X_WM,
+                                                    const Eigen::Isometry3d& X_WH,
+                                                    std::string& reason) const;
+
  private:
   /// The surface the contact lies on when the faces in `touched` (surface indices, −1 for
   /// free-form) reach the plane; null with the reason otherwise.
@@ -69,6 +79,25 @@ class RecoveredBody {
   /// The body's whole surface when it is one sphere, or one cylinder and its two ends.
   const geometry::RecognisedSurface* whole_ = nullptr;
 };
+
+/// A mesh body's recovered surface, owned together: the mesh, what recognition found on it
+/// (and how long that took), and the body prepared for queries. Scenario bodies and dataset
+/// payloads with "surface": "recovered" hold one, made once at load.
+struct RecoveredSurface {
+  std::shared_ptr<const geometry::TriangleMesh> mesh;
+  geometry::SurfaceRecognition recognition;
+  double recognition_seconds = 0.0;  ///< wall time of recogniseSurfaces, s
+  std::unique_ptr<RecoveredBody> body;
+};
+
+/// Recognises the mesh's surfaces and prepares the body (RecoveredSurface).
+/// @throws InputError when recognition refuses the mesh (not closed, not oriented)
+std::shared_ptr<const RecoveredSurface> recoverSurface(
+    std::shared_ptr<const geometry::TriangleMesh> mesh);
+
+/// "1 sphere", "1 cylinder, 2 planes", "6 planes, 12 free-form faces": the kinds recognised,
+/// with counts, for summaries.
+std::string recognisedKinds(const geometry::SurfaceRecognition& recognition);
 
 /// One query on a body prepared for it alone (RecoveredBody).
 RecoveredContact recoveredHalfspaceContact(const geometry::TriangleMesh& mesh,
