@@ -158,10 +158,22 @@ def test_the_viewer_page_is_written_for_a_run(tmp_path):
     assert '"name":"ball"' in page and "THREE" in page
 
 
+def cli_environment():
+    """The environment for the command line: this one without what CTest sets for the
+    interpreter alone. A sanitizer build preloads the ASan runtime into the uninstrumented python
+    (VCONTACT_INTERPRETER_ONLY names those variables, python/CMakeLists.txt); the CLI links its
+    own runtime and runs with the sanitizers' defaults, leak check included."""
+    env = dict(os.environ)
+    for name in os.environ.get("VCONTACT_INTERPRETER_ONLY", "").split(","):
+        env.pop(name, None)
+    return env
+
+
 def cli_json(tmp_path, command, dataset, model, name):
     out = tmp_path / command
-    subprocess.run([BINARY, command, dataset, "--model", model, "--out", str(out)], check=True,
-                   capture_output=True)
+    run = subprocess.run([BINARY, command, dataset, "--model", model, "--out", str(out)],
+                         capture_output=True, text=True, env=cli_environment())
+    assert run.returncode == 0, f"vcontact {command} exited {run.returncode}: {run.stderr}"
     return json.loads((out / name).read_text())
 
 

@@ -97,6 +97,36 @@ CASES = [
                            ("fit", ["model.json", "fit.json", "residuals.csv"]),
                            ("diagnose", ["diagnosis.json", "model.json", "residuals.csv"]))
 ] + [
+    # A folder no file can be created in, whoever runs the test (permission bits do not stop
+    # root, /proc does): exit 2 naming the path, never "filesystem error" or exit 1.
+    cli("tessellate_out_in_unwritable_folder",
+        ["tessellate", "sphere:0.01", "--out", "/proc/vcontact-bad.stl"],
+        ["/proc/vcontact-bad.stl", "cannot create a file in folder '/proc'"],
+        outputs=["/proc/vcontact-bad.stl"]),
+    cli("simulate_out_under_unwritable_folder",
+        ["simulate", "{assets}/scenarios/ball_drop.json", "--out", "/proc/vcontact-bad/out",
+         "--quiet"], ["/proc/vcontact-bad/out", "cannot create the output folder"]),
+    cli("simulate_out_is_unwritable_folder",
+        ["simulate", "{assets}/scenarios/ball_drop.json", "--out", "/proc", "--quiet"],
+        ["/proc/", "cannot create a file in folder '/proc'"]),
+    cli("compare_out_under_unwritable_folder",
+        ["compare", "{assets}/datasets/impacts.json", "--model",
+         "{assets}/datasets/models/impacts-truth.model.json", "--out", "/proc/vcontact-bad"],
+        ["/proc/vcontact-bad", "cannot create the output folder"]),
+    cli("synth_out_in_unwritable_folder",
+        ["synth", "--profile", "impacts", "--model",
+         "{assets}/datasets/models/impacts-truth.model.json", "--samples", "200", "--out",
+         "/proc/vcontact-bad.json"],
+        ["/proc/vcontact-bad.csv", "cannot create a file in folder '/proc'"],
+        outputs=["/proc/vcontact-bad.csv", "/proc/vcontact-bad.json"]),
+] + [
+    # A full disk (/dev/full takes the open and fails every write): the write is checked.
+    cli("%s_to_dev_full" % name, args + ["--out", "/dev/full"],
+        ["/dev/full: write failed", "No space left on device"])
+    for name, args in (("tessellate", ["tessellate", "sphere:0.01"]),
+                       ("mesh_repair", ["mesh-repair", "{assets}/meshes/ball_r10mm.stl"]),
+                       ("friction_map", ["friction-map"]))
+] + [
     cli("synth_sidecar_is_a_folder", ["synth", "--profile", "impacts", "--model",
                                       "{assets}/datasets/models/impacts-truth.model.json",
                                       "--samples", "200", "--out", "d.json"],

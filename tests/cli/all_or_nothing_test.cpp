@@ -5,7 +5,6 @@
 // must exit 2 naming the file and the system's reason, and leave no file of the set behind.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -14,24 +13,17 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using vcontact::test::CommandResult;
+using vcontact::test::inQuotes;
+using vcontact::test::ScratchDir;
 
 const std::string kBinary = VCONTACT_BINARY;
 const std::string kAssets = VCONTACT_ASSETS_DIR;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("vcontact_aon_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string inQuotes(const fs::path& p) { return '"' + p.string() + '"'; }
 
 // `args` run in a child whose files may not exceed `limitKiB` (0: no limit).
 CommandResult vcontact(const std::string& args, const fs::path& dir, int limitKiB = 0) {
@@ -91,7 +83,8 @@ const ValidationCase kValidation[] = {{"compare", "residuals.csv", "report.html"
 TEST(AllOrNothing, ValidationCommandsLeaveNoFileWhenTheFirstExceedsTheSizeLimit) {
   for (const ValidationCase& c : kValidation) {
     SCOPED_TRACE(c.command);
-    const fs::path dir = scratch(std::string("limit_") + c.command);
+    const ScratchDir scratch{"aon_limit_" + std::string(c.command)};
+    const fs::path& dir = scratch.path();
     const fs::path out = dir / "out";
     const CommandResult r = vcontact(validationArgs(c.command, out), dir, kLimitKiB);
     // the first file past 16 KiB fails: for compare its first, for fit and diagnose the
@@ -100,14 +93,14 @@ TEST(AllOrNothing, ValidationCommandsLeaveNoFileWhenTheFirstExceedsTheSizeLimit)
     EXPECT_NE(r.err.find("vcontact: error: " + out.string() + "/"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(kTooLarge), std::string::npos) << r.err;
     EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-    fs::remove_all(dir);
   }
 }
 
 TEST(AllOrNothing, ValidationCommandsLeaveNoFileWhenTheLastCannotBeWritten) {
   for (const ValidationCase& c : kValidation) {
     SCOPED_TRACE(c.command);
-    const fs::path dir = scratch(std::string("full_") + c.command);
+    const ScratchDir scratch{"aon_full_" + std::string(c.command)};
+    const fs::path& dir = scratch.path();
     const fs::path out = dir / "out";
     fs::create_directories(out);
     fs::create_symlink("/dev/full", out / c.last);
@@ -115,7 +108,6 @@ TEST(AllOrNothing, ValidationCommandsLeaveNoFileWhenTheLastCannotBeWritten) {
     expectRefused(r, (out / c.last).string(), kNoSpace);
     EXPECT_FALSE(fs::exists(out / c.first));
     EXPECT_EQ(leftovers(dir, {}), (std::vector<std::string>{"out", "out/" + std::string(c.last)}));
-    fs::remove_all(dir);
   }
 }
 
@@ -127,20 +119,20 @@ std::string synthArgs(const fs::path& sidecar) {
 
 // synth writes NAME.csv, then NAME.json (the sidecar naming it).
 TEST(AllOrNothing, SynthLeavesNeitherFileWhenTheTableExceedsTheSizeLimit) {
-  const fs::path dir = scratch("synth_limit");
+  const ScratchDir scratch{"aon_synth_limit"};
+  const fs::path& dir = scratch.path();
   const CommandResult r = vcontact(synthArgs(dir / "d.json"), dir, kLimitKiB);
   expectRefused(r, (dir / "d.csv").string(), kTooLarge);
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 TEST(AllOrNothing, SynthLeavesNoTableWhenTheSidecarCannotBeWritten) {
-  const fs::path dir = scratch("synth_full");
+  const ScratchDir scratch{"aon_synth_full"};
+  const fs::path& dir = scratch.path();
   fs::create_symlink("/dev/full", dir / "d.json");
   const CommandResult r = vcontact(synthArgs(dir / "d.json"), dir);
   expectRefused(r, (dir / "d.json").string(), kNoSpace);
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{"d.json"});
-  fs::remove_all(dir);
 }
 
 // volume --field F --out J: the δ map first, then the JSON.
@@ -151,25 +143,26 @@ std::string volumeArgs(const fs::path& field, const std::string& json) {
 }
 
 TEST(AllOrNothing, VolumeLeavesNoDepthMapWhenTheJsonCannotBeWritten) {
-  const fs::path dir = scratch("volume_full");
+  const ScratchDir scratch{"aon_volume_full"};
+  const fs::path& dir = scratch.path();
   const CommandResult r = vcontact(volumeArgs(dir / "field.csv", "/dev/full"), dir);
   expectRefused(r, "/dev/full", kNoSpace);
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 TEST(AllOrNothing, VolumeLeavesNoJsonWhenTheDepthMapExceedsTheSizeLimit) {
-  const fs::path dir = scratch("volume_limit");
+  const ScratchDir scratch{"aon_volume_limit"};
+  const fs::path& dir = scratch.path();
   const CommandResult r =
       vcontact(volumeArgs(dir / "field.csv", inQuotes(dir / "v.json")), dir, kLimitKiB);
   expectRefused(r, (dir / "field.csv").string(), kTooLarge);
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 // simulate commits its CSVs with summary.json: a summary that cannot be written takes them.
 TEST(AllOrNothing, SimulateLeavesNoCsvWhenTheSummaryCannotBeWritten) {
-  const fs::path dir = scratch("simulate_full");
+  const ScratchDir scratch{"aon_simulate_full"};
+  const fs::path& dir = scratch.path();
   const fs::path out = dir / "out";
   fs::create_directories(out);
   fs::create_symlink("/dev/full", out / "summary.json");
@@ -178,12 +171,12 @@ TEST(AllOrNothing, SimulateLeavesNoCsvWhenTheSummaryCannotBeWritten) {
       dir);
   expectRefused(r, (out / "summary.json").string(), kNoSpace);
   EXPECT_EQ(leftovers(dir, {}), (std::vector<std::string>{"out", "out/summary.json"}));
-  fs::remove_all(dir);
 }
 
 // The folder a failed run created is removed again; one that was there stays.
 TEST(AllOrNothing, FailedSimulationRemovesTheOutputFolderItCreated) {
-  const fs::path dir = scratch("simulate_folder");
+  const ScratchDir scratch{"aon_simulate_folder"};
+  const fs::path& dir = scratch.path();
   const fs::path out = dir / "new" / "out";
   const CommandResult r = vcontact(
       "simulate " + inQuotes(kAssets + "/scenarios/ball_drop.json") + " --out " + inQuotes(out),
@@ -191,7 +184,6 @@ TEST(AllOrNothing, FailedSimulationRemovesTheOutputFolderItCreated) {
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find(kTooLarge), std::string::npos) << r.err;
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -15,24 +15,17 @@
 #include <string>
 
 #include "support/run_command.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using vcontact::test::CommandResult;
+using vcontact::test::inQuotes;
+using vcontact::test::ScratchDir;
 
 const std::string kBinary = VCONTACT_BINARY;
 const std::string kAssets = VCONTACT_ASSETS_DIR;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("vcontact_output_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string quoted(const fs::path& p) { return '"' + p.string() + '"'; }
 
 CommandResult vcontact(const std::string& args, const fs::path& dir) {
   return vcontact::test::runCommand('"' + kBinary + "\" " + args, dir / "stderr.txt");
@@ -69,18 +62,19 @@ void expectBadOutput(const CommandResult& r, const std::string& file, const std:
 
 // /dev/full accepts the open and fails every write with ENOSPC: the full-disk case.
 TEST(OutputGuarantees, WriteToDevFullExitsTwoNamingTheFile) {
-  const fs::path dir = scratch("devfull");
+  const ScratchDir scratch{"output_devfull"};
+  const fs::path& dir = scratch.path();
   const CommandResult r = vcontact("tessellate sphere:0.01 --out /dev/full", dir);
   expectBadOutput(r, "/dev/full", "No space left on device");
   EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
-  fs::remove_all(dir);
 }
 
 // RLIMIT_FSIZE set by the shell in the child before exec (ulimit -f counts 1024-byte blocks):
 // writes past 16 KiB fail with EFBIG instead of killing the process with SIGXFSZ. The ball
 // drop writes ~150 KiB of bodies.csv, so the run fails while writing; nothing is left.
 TEST(OutputGuarantees, SizeLimitedSimulationExitsTwoAndLeavesNoFiles) {
-  const fs::path dir = scratch("fsize");
+  const ScratchDir scratch{"output_fsize"};
+  const fs::path& dir = scratch.path();
   const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary + "\" simulate \"" +
                               kAssets + "/scenarios/ball_drop.json\" --out \"" +
                               (dir / "out").string() + "\"'";
@@ -89,24 +83,24 @@ TEST(OutputGuarantees, SizeLimitedSimulationExitsTwoAndLeavesNoFiles) {
   EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find((dir / "out").string() + "/"), std::string::npos) << r.err;
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 // The same limit on a single-file writer (a 64-segment sphere is 200 KiB of STL).
 TEST(OutputGuarantees, SizeLimitedMeshWriteLeavesNoFile) {
-  const fs::path dir = scratch("fsize_mesh");
+  const ScratchDir scratch{"output_fsize_mesh"};
+  const fs::path& dir = scratch.path();
   const fs::path out = dir / "ball.stl";
   const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary +
                               "\" tessellate sphere:0.01 --out \"" + out.string() + "\"'";
   const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
   expectBadOutput(r, out.string(), "File too large");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 // A failed write replaces nothing: the file that was there stays as it was.
 TEST(OutputGuarantees, FailedWriteKeepsThePreviousFile) {
-  const fs::path dir = scratch("keep");
+  const ScratchDir scratch{"output_keep"};
+  const fs::path& dir = scratch.path();
   const fs::path out = dir / "ball.stl";
   std::ofstream(out) << "previous";
   const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary +
@@ -115,99 +109,98 @@ TEST(OutputGuarantees, FailedWriteKeepsThePreviousFile) {
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(readAll(out), "previous");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{"ball.stl"});
-  fs::remove_all(dir);
 }
 
 // A folder that refuses new files. Permission bits do not stop root (the CI container runs as
 // root), so /proc stands for it: no regular file can be created there by anyone.
 TEST(OutputGuarantees, UnwritableFolderExitsTwoNamingTheFile) {
-  const fs::path dir = scratch("unwritable");
+  const ScratchDir scratch{"output_unwritable"};
+  const fs::path& dir = scratch.path();
   const CommandResult r = vcontact("tessellate sphere:0.01 --out /proc/vcontact-test.stl", dir);
   expectBadOutput(r, "/proc/vcontact-test.stl", "cannot create a file in folder '/proc'");
   EXPECT_FALSE(fs::exists("/proc/vcontact-test.stl"));
-  fs::remove_all(dir);
 }
 
 // The same through permission bits, where they apply (not as root).
 TEST(OutputGuarantees, ReadOnlyFolderExitsTwoWhenNotRoot) {
   if (::geteuid() == 0) GTEST_SKIP() << "root ignores permission bits";
-  const fs::path dir = scratch("readonly");
+  const ScratchDir scratch{"output_readonly"};
+  const fs::path& dir = scratch.path();
   fs::create_directories(dir / "ro");
   fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec);
   const CommandResult r =
-      vcontact("tessellate sphere:0.01 --out " + quoted(dir / "ro" / "b.stl"), dir);
+      vcontact("tessellate sphere:0.01 --out " + inQuotes(dir / "ro" / "b.stl"), dir);
   expectBadOutput(r, (dir / "ro" / "b.stl").string(), "Permission denied");
   fs::permissions(dir / "ro", fs::perms::owner_all);
   EXPECT_TRUE(fs::is_empty(dir / "ro"));
-  fs::remove_all(dir);
 }
 
 TEST(OutputGuarantees, MissingFolderExitsTwo) {
-  const fs::path dir = scratch("missing");
+  const ScratchDir scratch{"output_missing"};
+  const fs::path& dir = scratch.path();
   const fs::path out = dir / "no" / "such" / "b.stl";
-  const CommandResult r = vcontact("tessellate sphere:0.01 --out " + quoted(out), dir);
+  const CommandResult r = vcontact("tessellate sphere:0.01 --out " + inQuotes(out), dir);
   expectBadOutput(r, out.string(), "does not exist");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 TEST(OutputGuarantees, OutputPathThatIsAFolderExitsTwo) {
-  const fs::path dir = scratch("folder");
+  const ScratchDir scratch{"output_folder"};
+  const fs::path& dir = scratch.path();
   fs::create_directories(dir / "b.stl");
-  const CommandResult r = vcontact("tessellate sphere:0.01 --out " + quoted(dir / "b.stl"), dir);
+  const CommandResult r = vcontact("tessellate sphere:0.01 --out " + inQuotes(dir / "b.stl"), dir);
   expectBadOutput(r, (dir / "b.stl").string(), "is a folder; expected a file path");
   EXPECT_TRUE(fs::is_empty(dir / "b.stl"));
-  fs::remove_all(dir);
 }
 
 // simulate --out names a folder: a file there is refused, and it is left alone.
 TEST(OutputGuarantees, OutputFolderThatIsAFileExitsTwo) {
-  const fs::path dir = scratch("notfolder");
+  const ScratchDir scratch{"output_notfolder"};
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "out") << "x";
   const CommandResult r = vcontact(
-      "simulate \"" + kAssets + "/scenarios/ball_drop.json\" --out " + quoted(dir / "out"), dir);
+      "simulate \"" + kAssets + "/scenarios/ball_drop.json\" --out " + inQuotes(dir / "out"), dir);
   expectBadOutput(r, (dir / "out").string(), "is a file; expected an output folder");
   EXPECT_EQ(readAll(dir / "out"), "x");
-  fs::remove_all(dir);
 }
 
 // ---- resource guards -----------------------------------------------------------------------
 
 TEST(OutputGuarantees, TessellationBeyondTheTriangleLimitIsRefused) {
-  const fs::path dir = scratch("tess");
+  const ScratchDir scratch{"output_tess"};
+  const fs::path& dir = scratch.path();
   const CommandResult r = vcontact(
-      "tessellate sphere:0.01 --segments 100000 --rings 100000 --out " + quoted(dir / "b.stl"),
+      "tessellate sphere:0.01 --segments 100000 --rings 100000 --out " + inQuotes(dir / "b.stl"),
       dir);
   // 2 · 100000 · 99999 triangles
   expectBadOutput(r, "--segments/--rings",
                   "19999800000 triangles, more than the limit of 10000000");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 TEST(OutputGuarantees, SynthSamplesBeyondTheLimitAreRefused) {
-  const fs::path dir = scratch("synth");
+  const ScratchDir scratch{"output_synth"};
+  const fs::path& dir = scratch.path();
   const CommandResult r = vcontact("synth --profile loading --model \"" + kAssets +
                                        "/datasets/models/loading-truth.model.json\" --samples "
                                        "10000000000 --out " +
-                                       quoted(dir / "big.json"),
+                                       inQuotes(dir / "big.json"),
                                    dir);
   expectBadOutput(r, "--samples", "expected a sample count in [3, 10000000], got 10000000000");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 // 1 s at 1e9 Hz would be 2e9 rows of two bodies and one pair... refused up front.
 TEST(OutputGuarantees, SimulationRowsBeyondTheLimitAreRefused) {
-  const fs::path dir = scratch("rows");
+  const ScratchDir scratch{"output_rows"};
+  const fs::path& dir = scratch.path();
   const CommandResult r =
       vcontact("simulate \"" + kAssets + "/scenarios/ball_drop.json\" --output-rate 1e9 --out " +
-                   quoted(dir / "out"),
+                   inQuotes(dir / "out"),
                dir);
   // 0.3 s · 1e9 Hz + 1 output times, 2 bodies + 1 pair each
   expectBadOutput(r, "--output-rate", "would write 900000003 CSV rows");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
-  fs::remove_all(dir);
 }
 
 // ---- stopped simulations -------------------------------------------------------------------
@@ -258,10 +251,11 @@ double lastCompleteTime(const fs::path& csv) {
 // and the message (standard error and "status") holding each of `named` (the body, pair...).
 void expectStopped(const std::string& name, const std::string& scenario, const std::string& cause,
                    const std::vector<std::string>& named = {}, double touch = 0.010) {
-  const fs::path dir = scratch(name);
+  const ScratchDir scratch{"output_" + name};
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "s.json") << scenario;
   const CommandResult r =
-      vcontact("simulate " + quoted(dir / "s.json") + " --out " + quoted(dir / "out"), dir);
+      vcontact("simulate " + inQuotes(dir / "s.json") + " --out " + inQuotes(dir / "out"), dir);
   EXPECT_EQ(r.exitCode, 3) << r.err;
   EXPECT_NE(r.err.find("simulation stopped: t = "), std::string::npos) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(readAll(dir / "out" / "summary.json"));
@@ -282,7 +276,6 @@ void expectStopped(const std::string& name, const std::string& scenario, const s
   }
   EXPECT_EQ(leftovers(dir / "out", {}),
             (std::vector<std::string>{"bodies.csv", "pair_ball-plate.csv", "summary.json"}));
-  fs::remove_all(dir);
 }
 
 // kv = 1e3 N/m³ cannot hold 32 g: the ball sinks beyond a tenth of its size.
@@ -337,11 +330,12 @@ TEST(OutputGuarantees, BlowUpFromAbsurdStiffnessWithLooseTolerancesKeepsComplete
 TEST(OutputGuarantees, AbsurdStiffnessWithDefaultTolerancesFinishes) {
   for (const char* integrator : {"dopri5", "bdf"}) {
     SCOPED_TRACE(integrator);
-    const fs::path dir = scratch(std::string("stiff_") + integrator);
+    const ScratchDir scratch{"output_stiff_" + std::string(integrator)};
+    const fs::path& dir = scratch.path();
     std::ofstream(dir / "s.json") << ballScenario(
         "1e18", R"("integrator": ")" + std::string(integrator) + "\",");
     const CommandResult r =
-        vcontact("simulate " + quoted(dir / "s.json") + " --out " + quoted(dir / "out"), dir);
+        vcontact("simulate " + inQuotes(dir / "s.json") + " --out " + inQuotes(dir / "out"), dir);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     std::istringstream lines(readAll(dir / "out" / "bodies.csv"));
     std::string line;
@@ -354,7 +348,6 @@ TEST(OutputGuarantees, AbsurdStiffnessWithDefaultTolerancesFinishes) {
       z_max = std::max(z_max, std::stod(cell));
     }
     EXPECT_NEAR(z_max, 0.0105, 2e-6);
-    fs::remove_all(dir);
   }
 }
 

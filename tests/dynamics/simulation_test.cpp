@@ -263,7 +263,7 @@ TEST(SimulationKinematics, PrescribedKinematicsAreConsistent) {
   b.motion = dynamics::BodyMotion::kPrescribed;
   b.p_BBcm = Eigen::Vector3d(0.01, -0.02, 0.03);
   b.prescribed = {Eigen::Vector3d(0.1, 0.2, -0.3), Eigen::Vector3d(1.0, -2.0, 0.5),
-                  Eigen::Vector3d(0.001, 0.0, 0.002), 7.0};
+                  Eigen::Vector3d(0.001, 0.0, 0.002), 7.0, nullptr};  // no trajectory table
   constexpr double t = 0.123, h = 1e-6;  // s; central differences, error O(h²) ~ 1e-11
   const auto k = dynamics::scheduledKinematics(b, t);
   const auto k1 = dynamics::scheduledKinematics(b, t - h);

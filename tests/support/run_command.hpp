@@ -18,6 +18,9 @@ struct CommandResult {
   std::string out, err;
 };
 
+/// `p` in double quotes, as one word of a shell command (the tests' paths hold no '"', '$' or '`').
+inline std::string inQuotes(const std::filesystem::path& p) { return '"' + p.string() + '"'; }
+
 inline CommandResult runCommand(const std::string& command, const std::filesystem::path& errFile) {
   CommandResult r;
   FILE* pipe = popen((command + " 2>" + errFile.string()).c_str(), "r");
