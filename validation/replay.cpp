@@ -147,11 +147,8 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
   const volume::ContactPatches c = std::holds_alternative<geometry::HalfSpace>(d.plate)
                                        ? halfspace.at(d.payload, d.payload_surface.get(), X_BA)
                                        : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
-  PatchGeometry whole = patchGeometry(c.aggregate, s, X_BA);
   SampleGeometry g;
-  g.cv = whole.cv;
-  g.motion = whole.motion;
-  g.p_AoC_B = whole.p_AoC_B;
+  static_cast<PatchGeometry&>(g) = patchGeometry(c.aggregate, s, X_BA);
   g.X_BA = X_BA;
   if (c.patches.size() > 1) {
     for (const volume::ContactVolume& cv : c.patches)
@@ -286,26 +283,24 @@ Prediction Replayer::runPatches(const Model& model, int slots) {
   dynamics::PatchTracker tracker(slots);
   std::vector<PairState> states(static_cast<std::size_t>(slots));
   std::vector<volume::ContactVolume> volumes;
-  std::vector<PatchGeometry> one(1);
   dynamics::PatchMatch match;
   const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
   RestClock rest;
   for (std::size_t i = 0; i < n; ++i) {
     const SampleGeometry& g = geometry[i];
-    const std::vector<PatchGeometry>* patches = &g.patches;
-    if (g.patches.empty()) {
-      one[0] = {g.cv, g.motion, g.p_AoC_B};
-      patches = g.cv.inContact() ? &one : &g.patches;
-    }
+    // A sample of one region is its own single patch (none out of contact).
+    const bool whole = g.patches.empty();
+    const PatchGeometry* patches = whole ? &g : g.patches.data();
+    const std::size_t count = whole ? (g.cv.inContact() ? 1 : 0) : g.patches.size();
     volumes.clear();
-    for (const PatchGeometry& q : *patches) volumes.push_back(q.cv);
+    for (std::size_t j = 0; j < count; ++j) volumes.push_back(patches[j].cv);
     tracker.match(volumes, g.X_BA, X_BB, match);
     std::vector<bool> held(states.size(), false);
     Eigen::Vector3d f = Eigen::Vector3d::Zero(), tau = Eigen::Vector3d::Zero();
     double f_n = 0.0;
     const double dt = i + 1 < n ? samples[i + 1].t - samples[i].t : 0.0;
-    for (std::size_t j = 0; j < patches->size(); ++j) {
-      const PatchGeometry& q = (*patches)[j];
+    for (std::size_t j = 0; j < count; ++j) {
+      const PatchGeometry& q = patches[j];
       const int own = match.slot[j];
       PairState& state = states[static_cast<std::size_t>(match.host[j])];
       if (own >= 0) model.settle(q.cv, q.motion, state);

@@ -44,14 +44,13 @@ struct PatchGeometry {
   Eigen::Vector3d p_AoC_B = Eigen::Vector3d::Zero();  ///< payload origin → centroid, m
 };
 
-/// Geometry and relative motion of one sample, for one payload pose adjustment.
-struct SampleGeometry {
-  volume::ContactVolume cv;  ///< the whole A ∩ B as one region (the regime is described on it)
-  dynamics::RelativeMotion motion;
-  Eigen::Vector3d p_AoC_B = Eigen::Vector3d::Zero();       ///< payload origin → centroid, m
+/// Geometry and relative motion of one sample, for one payload pose adjustment: the whole
+/// A ∩ B as one region (the regime is described on it), and its patches.
+struct SampleGeometry : PatchGeometry {
   Eigen::Isometry3d X_BA = Eigen::Isometry3d::Identity();  ///< the adjusted payload pose
   /// Each connected region when there are two or more; empty when the contact is one region
-  /// (then it is `cv` itself, and a payload that never touches in two places costs nothing).
+  /// (then it is the sample's own PatchGeometry, and a payload that never touches in two
+  /// places costs nothing).
   std::vector<PatchGeometry> patches;
 };
 
