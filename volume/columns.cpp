@@ -70,6 +70,10 @@ WorldBox overlapBox(const ColumnBody& a, const ColumnBody& b) {
   return box;
 }
 
+WorldBox unite(const WorldBox& x, const WorldBox& y) {
+  return {x.lo.cwiseMin(y.lo), x.hi.cwiseMax(y.hi)};
+}
+
 /// Result of the three axis passes: the normal and a tighter box.
 struct AxisPasses {
   Vector3d areaDifference = Vector3d::Zero();  ///< ∫_{∂B∩A} n_B dA − ∫_{∂A∩B} n_A dA
@@ -86,19 +90,22 @@ struct AxisPasses {
 /// thick lying in a coordinate plane slips between the lines of the two passes across it)
 /// adds nothing to the normal: its component comes from the boundary's thin side walls, whose
 /// area vectors cancel to the order of the layer's thickness over its width.
-AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
-                      int resolution) {
+/// With `only`, the passes see region only->id alone; with `segments`, they append their wet
+/// pieces to it.
+AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& box, int resolution,
+                      const RegionFilter* only = nullptr,
+                      std::vector<WetSegment>* segments = nullptr) {
   AxisPasses out;
   for (int k = 0; k < 3; ++k) {
     const Grid g(box, Vector3d::Unit(k), resolution);
-    const GridSums s = integrate(a, b, g, nullptr);
+    const GridSums s = integrate(a, b, g, nullptr, nullptr, only, segments);
     out.areaDifference[k] = s.surfaceB - s.surfaceA;
     if (s.wetLines == 0) continue;
     // Two cells of margin on every axis: a thin rim between sampled lines, or a line just
     // missed, lies within a cell of a wet one for any region the grid resolves.
     const Vector3d margin = Vector3d::Constant(2.0 * (box.hi - box.lo).maxCoeff() / resolution);
     const WorldBox wet{g.o + s.wet.lo - margin, g.o + s.wet.hi + margin};
-    out.region = {out.region.lo.cwiseMin(wet.lo), out.region.hi.cwiseMax(wet.hi)};
+    out.region = unite(out.region, wet);
   }
   out.region = out.region.intersected(box);
   out.found = !out.region.empty();
@@ -109,23 +116,47 @@ AxisPasses axisPasses(const ColumnBody& a, const ColumnBody& b, const WorldBox& 
 // comes from the rim cells of three passes, and it tilts every column of the final grid.
 constexpr int kNormalPassFactor = 4;
 
-/// The contact normal and the box to integrate over: axis passes on the overlap box, refined
-/// until they see the region, then repeated on the region's box so that a small region is
-/// resolved. For a half-space the normal is its own (out of B into A).
-std::pair<Vector3d, WorldBox> normalAndBox(const ColumnBody& a, const ColumnBody& b, WorldBox box,
-                                           const ColumnOptions& options) {
+/// The first axis passes, from the options' first resolution up, that see the region at all.
+std::optional<AxisPasses> firstSeen(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
+                                    const ColumnOptions& options, const RegionFilter* only) {
   for (int res = options.initialResolution; res <= options.maxResolution; res *= 2) {
-    const AxisPasses coarse = axisPasses(a, b, box, res);
-    if (!coarse.found) continue;
-    const AxisPasses fine =
-        axisPasses(a, b, coarse.region, kNormalPassFactor * options.initialResolution);
-    const AxisPasses& use = fine.found ? fine : coarse;
-    if (!b.bvh) return {b.X_WB.linear().col(2), use.region};
-    if (!a.bvh) return {-a.X_WB.linear().col(2), use.region};
-    if (use.areaDifference.isZero()) break;
-    return {use.areaDifference.normalized(), use.region};
+    AxisPasses passes = axisPasses(a, b, box, res, only);
+    if (passes.found) return passes;
   }
-  return {Vector3d::Zero(), box};
+  return std::nullopt;
+}
+
+/// The normal passes' result: the normal and the box to integrate over.
+struct NormalAndBox {
+  Vector3d n = Vector3d::Zero();               ///< zero when no pass saw the region
+  Vector3d areaDifference = Vector3d::Zero();  ///< of the passes that gave n
+  WorldBox box;
+};
+
+/// The contact normal and the box to integrate over: axis passes on `box`, refined until they
+/// see the region, then repeated, finer, on the region's box so that a small region is
+/// resolved. For a half-space the normal is its own (out of B into A). `seen` (if given) are
+/// the first passes that saw it, already made; with `only`, of that region alone.
+NormalAndBox normalAndBox(const ColumnBody& a, const ColumnBody& b, const WorldBox& box,
+                          const ColumnOptions& options, const RegionFilter* only = nullptr,
+                          std::optional<AxisPasses> seen = std::nullopt) {
+  NormalAndBox out;
+  out.box = box;
+  if (!seen) seen = firstSeen(a, b, box, options, only);
+  if (!seen) return out;
+  const AxisPasses fine =
+      axisPasses(a, b, seen->region, kNormalPassFactor * options.initialResolution, only);
+  const AxisPasses& use = fine.found ? fine : *seen;
+  out.box = use.region;
+  out.areaDifference = use.areaDifference;
+  if (!b.bvh) {
+    out.n = b.X_WB.linear().col(2);
+  } else if (!a.bvh) {
+    out.n = -a.X_WB.linear().col(2);
+  } else if (!use.areaDifference.isZero()) {
+    out.n = use.areaDifference.normalized();
+  }
+  return out;
 }
 
 struct Refined {
@@ -139,16 +170,18 @@ struct Refined {
 /// Refines the grid ×2 per level until two successive level-to-level changes of V are within
 /// the tolerance; the larger of them is the estimate (one change alone can vanish by chance).
 Refined refine(const ColumnBody& a, const ColumnBody& b, const WorldBox& box, const Vector3d& n,
-               const ColumnOptions& options, bool wantDepth, bool wantLines) {
+               const ColumnOptions& options, bool wantDepth, bool wantLines,
+               const RegionFilter* only = nullptr) {
   Refined r;
   r.resolution = options.initialResolution;
   r.sums = integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr,
-                     wantLines ? &r.lines : nullptr);
+                     wantLines ? &r.lines : nullptr, only);
   double previousChange = kInf;
   while (r.resolution < options.maxResolution) {
     r.resolution *= 2;
-    const GridSums next = integrate(a, b, Grid(box, n, r.resolution),
-                                    wantDepth ? &r.depth : nullptr, wantLines ? &r.lines : nullptr);
+    const GridSums next =
+        integrate(a, b, Grid(box, n, r.resolution), wantDepth ? &r.depth : nullptr,
+                  wantLines ? &r.lines : nullptr, only);
     const double change = std::abs(next.M.m0 - r.sums.M.m0) / next.M.m0;
     r.error = std::max(change, previousChange);
     previousChange = change;
@@ -315,7 +348,47 @@ ContactVolume fixedHalfspaceContact(const ColumnBody& a, const ColumnBody& b, in
   return cv;
 }
 
-/// columnsContact, and with `patches`, the finest grid's columnPatches.
+/// The regions of two meshes, and the pair's normal and box. The fine lines laid over the
+/// whole overlap box meet any region one of their spacings across (a second, thinner region
+/// that no coarse line met among them) and their pieces, on voxels of that spacing, show how
+/// many regions there are (VoxelRegions). One region: the passes of normalAndBox over the
+/// coarse and wide bounds, and no patch list (the pair's contact is the region's). Several:
+/// each region alone (RegionFilter) with its own normal from its own axis passes, over its own
+/// box, refined to the options' tolerance; the pair's normal is that of the sum of their
+/// boundary area vectors (MODEL.md §1 over the whole of A ∩ B), its box their union.
+NormalAndBox meshPairRegions(const ColumnBody& a, const ColumnBody& b, const WorldBox& overlap,
+                             const ColumnOptions& options, std::vector<ContactVolume>& patches) {
+  NormalAndBox pair;
+  std::optional<AxisPasses> seen = firstSeen(a, b, overlap, options, nullptr);
+  if (!seen) return pair;
+  const int fineResolution = kNormalPassFactor * options.initialResolution;
+  std::vector<WetSegment> pieces;
+  const AxisPasses wide = axisPasses(a, b, overlap, fineResolution, nullptr, &pieces);
+  const double size = (overlap.hi - overlap.lo).maxCoeff() / fineResolution;
+  const VoxelRegions regions = voxelRegions(pieces, overlap, size);
+  if (regions.count <= 1) {
+    if (wide.found) seen->region = unite(seen->region, wide.region);
+    return normalAndBox(a, b, overlap, options, nullptr, seen);
+  }
+  pair.box = {Vector3d::Constant(kInf), Vector3d::Constant(-kInf)};
+  for (int id = 0; id < regions.count; ++id) {
+    const RegionFilter only{&regions, id};
+    const WorldBox box = regions.boxes[static_cast<std::size_t>(id)].intersected(overlap);
+    const NormalAndBox own = normalAndBox(a, b, box, options, &only);
+    if (own.n.isZero()) continue;
+    const Refined r = refine(a, b, own.box, own.n, options, false, false, &only);
+    if (!(r.sums.M.m0 > 0.0)) continue;
+    patches.push_back(assemble(Grid(own.box, own.n, r.resolution), r.sums, own.n));
+    patches.back().relative_error = r.error;
+    pair.areaDifference += own.areaDifference;
+    pair.box = unite(pair.box, own.box);
+  }
+  if (!pair.areaDifference.isZero()) pair.n = pair.areaDifference.normalized();
+  return pair;
+}
+
+/// columnsContact, and with `patches`, its patches: for two meshes (refined grids) the regions
+/// of meshPairRegions, otherwise the finest grid's columnPatches.
 ContactVolume columnsWithPatches(const ColumnBody& a, const ColumnBody& b,
                                  const ColumnOptions& options, DepthField* field,
                                  std::vector<ContactVolume>* patches) {
@@ -326,14 +399,21 @@ ContactVolume columnsWithPatches(const ColumnBody& a, const ColumnBody& b,
   const ContactVolume none{.method = Method::kColumns};
   const WorldBox overlap = overlapBox(a, b);
   if (overlap.empty()) return none;
-  const auto [n, box] = normalAndBox(a, b, overlap, options);
-  if (n.isZero()) return none;
-  const Refined r = refine(a, b, box, n, options, field != nullptr, patches != nullptr);
+  // A mesh on a half-space has the plane's normal for every region, and the volume grid's
+  // lines group them; so does a fixed grid, which keeps its cost.
+  const bool byRegion = a.bvh && b.bvh && !options.isFixed();
+  std::vector<ContactVolume> regionPatches;
+  const NormalAndBox nb = byRegion ? meshPairRegions(a, b, overlap, options, regionPatches)
+                                   : normalAndBox(a, b, overlap, options);
+  if (nb.n.isZero()) return none;
+  const Refined r =
+      refine(a, b, nb.box, nb.n, options, field != nullptr, patches != nullptr && !byRegion);
   if (!(r.sums.M.m0 > 0.0)) return none;
-  const Grid g(box, n, r.resolution);
+  const Grid g(nb.box, nb.n, r.resolution);
   if (field) *field = fieldOf(g, r.depth);
-  if (patches) *patches = columnPatches(g, r.lines, n, r.error);
-  ContactVolume cv = assemble(g, r.sums, n);
+  if (patches)
+    *patches = byRegion ? std::move(regionPatches) : columnPatches(g, r.lines, nb.n, r.error);
+  ContactVolume cv = assemble(g, r.sums, nb.n);
   cv.relative_error = r.error;
   return cv;
 }
@@ -387,7 +467,7 @@ ContactPatches columnsPatches(const geometry::Shape& a, const Isometry3d& X_WA,
   const ColumnPair pair = columnPair(a, X_WA, b, X_WB);
   std::vector<ContactVolume> patches;
   ContactPatches out = singlePatch(columnsWithPatches(pair.a, pair.b, options, field, &patches));
-  if (!out.inContact() || patches.size() == 1) return out;
+  if (!out.inContact() || patches.size() <= 1) return out;
   sortPatches(patches);
   out.patches = std::move(patches);
   return out;

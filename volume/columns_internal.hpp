@@ -103,8 +103,51 @@ struct GridSums {
   }
 };
 
-/// The grid's sums; with `depth` (`lines`), also δ (the line integrals) of every line.
+/// A piece of a line inside A ∩ B, from `from` to `to` (world points).
+struct WetSegment {
+  Vector3d from, to;
+};
+
+/// The connected regions of A ∩ B as seen by a set of wet segments: the voxels (cubes of side
+/// `size` from `lo`) that the segments pass through, grouped into 26-connected components
+/// (columns_regions.cpp). A region's label is its component's; the voxels within two of a
+/// labelled one carry its label too (the nearest, first in index order on a tie), so that a
+/// boundary point or a wet piece that a finer grid sees just beside the sampled voxels is still
+/// given to its region.
+struct VoxelRegions {
+  Vector3d lo = Vector3d::Zero();
+  double size = 0.0;
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();
+  std::vector<int> label;       ///< per voxel, x fastest; −1 outside every region
+  int count = 0;                ///< regions
+  std::vector<WorldBox> boxes;  ///< per region, of its labelled voxels
+
+  /// The label of the voxel holding p, −1 outside the grid or every region.
+  int labelAt(const Vector3d& p) const {
+    const Vector3d c = (p - lo) / size;
+    if (!(c.array() >= 0.0).all()) return -1;
+    const Eigen::Vector3i v = c.cast<int>();
+    if ((v.array() >= dims.array()).any()) return -1;
+    return label[static_cast<std::size_t>((v.z() * dims.y() + v.y()) * dims.x() + v.x())];
+  }
+};
+
+/// The regions of the wet segments in `box`, with voxels of side `size`.
+VoxelRegions voxelRegions(const std::vector<WetSegment>& segments, const WorldBox& box,
+                          double size);
+
+/// Which region's pieces a grid integration keeps: those whose midpoint (crossings: whose
+/// point) lies in region `id` of `regions`.
+struct RegionFilter {
+  const VoxelRegions* regions;
+  int id;
+  bool keeps(const Vector3d& p_W) const { return regions->labelAt(p_W) == id; }
+};
+
+/// The grid's sums; with `depth` (`lines`), also δ (the line integrals) of every line; with
+/// `only`, of region only->id alone; with `segments`, the wet pieces of every line appended.
 GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
-                   std::vector<double>* depth, std::vector<LineIntegrals>* lines = nullptr);
+                   std::vector<double>* depth, std::vector<LineIntegrals>* lines = nullptr,
+                   const RegionFilter* only = nullptr, std::vector<WetSegment>* segments = nullptr);
 
 }  // namespace vcontact::volume::internal

@@ -180,8 +180,21 @@ class GridCrossings {
   std::vector<Crossing> crossings_;
 };
 
-/// Sweeps the merged crossings keeping both winding numbers (inside: winding > 0).
-LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b) {
+/// One line's place in the world, for the pieces and crossings that a region filter or the
+/// segment list needs as points: p(t) = origin + t u.
+struct LineInWorld {
+  Vector3d origin, u;
+  const RegionFilter* only = nullptr;         ///< keep this region's pieces alone
+  std::vector<WetSegment>* pieces = nullptr;  ///< append every kept piece
+  Vector3d at(double t) const { return origin + t * u; }
+  bool keeps(double t) const { return !only || only->keeps(at(t)); }
+};
+
+/// Sweeps the merged crossings keeping both winding numbers (inside: winding > 0). A piece
+/// between two crossings lies in one connected region of A ∩ B, so a region filter decides it
+/// by its midpoint, and a crossing by its own point.
+LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b,
+                      const LineInWorld& line) {
   LineIntegrals r;
   int wa = 0, wb = 0;
   std::size_t i = 0, j = 0;
@@ -189,15 +202,16 @@ LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b) 
   while (i < a.size() || j < b.size()) {
     const bool fromA = j == b.size() || (i < a.size() && a[i].t <= b[j].t);
     const Crossing& c = fromA ? a[i++] : b[j++];
-    if (wa > 0 && wb > 0) {
+    if (wa > 0 && wb > 0 && line.keeps(0.5 * (tPrev + c.t))) {
       r.tFirst = std::min(r.tFirst, tPrev);
       r.tLast = c.t;
       r.L += c.t - tPrev;
       r.T1 += (c.t * c.t - tPrev * tPrev) / 2.0;
       r.T2 += (c.t * c.t * c.t - tPrev * tPrev * tPrev) / 3.0;
+      if (line.pieces) line.pieces->push_back({line.at(tPrev), line.at(c.t)});
     }
-    if (fromA && wb > 0) r.surfaceA -= c.delta;
-    if (!fromA && wa > 0) r.surfaceB -= c.delta;
+    const bool counted = (fromA ? wb : wa) > 0 && line.keeps(c.t);
+    if (counted) (fromA ? r.surfaceA : r.surfaceB) -= c.delta;
     (fromA ? wa : wb) += c.delta;
     tPrev = c.t;
   }
@@ -210,21 +224,27 @@ LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b) 
 /// 512-line grid into 128, enough for the two cores to share while the join order stays fixed.
 constexpr int kRowsPerTask = 4;
 
-/// The grid's sums; with `depth` (`lines`), also δ (the line integrals) of every line.
+/// The grid's sums; with `depth` (`lines`), also δ (the line integrals) of every line; with
+/// `only`, of region only->id alone; with `segments`, the wet pieces of every line appended.
 GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
-                   std::vector<double>* depth, std::vector<LineIntegrals>* lines) {
+                   std::vector<double>* depth, std::vector<LineIntegrals>* lines,
+                   const RegionFilter* only, std::vector<WetSegment>* segments) {
   if (depth) depth->assign(static_cast<std::size_t>(g.n) * g.n, 0.0);
   if (lines) lines->assign(static_cast<std::size_t>(g.n) * g.n, LineIntegrals{});
+  // Each row appends its pieces to its own list; the lists are joined in row order below.
+  std::vector<std::vector<WetSegment>> rowPieces(segments ? static_cast<std::size_t>(g.n) : 0);
   const GridCrossings crossA(g, a, b), crossB(g, b, a);
   // Deterministic: the rows are split into the same chunks and joined in the same order
   // whatever the threads do, so a query gives the same bits on any machine and run (the
   // plain parallel_reduce joined in scheduling order: 3e-13 relative from run to run).
-  return tbb::parallel_deterministic_reduce(
+  GridSums sums = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<int>(0, g.n, kRowsPerTask), GridSums{},
       [&](const tbb::blocked_range<int>& rows, GridSums sums) {
         for (int i = rows.begin(); i < rows.end(); ++i) {
           for (int j = 0; j < g.n; ++j) {
-            const LineIntegrals li = overlap(crossA.at(i, j), crossB.at(i, j));
+            const LineInWorld line{g.o + g.offset(i, j), g.u, only,
+                                   segments ? &rowPieces[static_cast<std::size_t>(i)] : nullptr};
+            const LineIntegrals li = overlap(crossA.at(i, j), crossB.at(i, j), line);
             sums.add(li, g.offset(i, j), g.u, g.cellArea());
             if (depth) (*depth)[static_cast<std::size_t>(i) * g.n + j] = li.L;
             if (lines) (*lines)[static_cast<std::size_t>(i) * g.n + j] = li;
@@ -233,6 +253,10 @@ GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
         return sums;
       },
       [](GridSums x, const GridSums& y) { return x += y; });
+  for (const std::vector<WetSegment>& row : rowPieces) {
+    segments->insert(segments->end(), row.begin(), row.end());
+  }
+  return sums;
 }
 
 }  // namespace vcontact::volume::internal

@@ -1,7 +1,7 @@
 // The patches of the bundled peg-in-hole (assets/scenarios/peg_jam.json: a 64-gon peg tilted
-// 5° in a 64-gon hole) at poses of its run: fast and cgal count the same patches. They also
-// see specks, real for the polyhedra (a corner of the peg through a facet of the
-// hole, within the facets' sagitta), which the dispatcher leaves out (kPatchVolumeFloor).
+// 5° in a 64-gon hole) at poses of its run: fast, cgal and columns count the same patches. fast and
+// cgal also see specks, real for the polyhedra (a corner of the peg through a facet of the hole,
+// within the facets' sagitta), which the dispatcher leaves out (kPatchVolumeFloor).
 
 #include <gtest/gtest.h>
 
@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "columns_agreement.hpp"
 #include "io/mesh_io.hpp"
 #include "volume/cgal_reference.hpp"
 #include "volume/contact.hpp"
@@ -70,9 +71,7 @@ Isometry3d placed(const PegPose& pose) {
   return X;
 }
 
-// fast and cgal through the dispatcher: the same bearing patches at every pose. (columns is
-// left out: it lays its lines along one normal for the pair, which for two patches on
-// opposite walls runs nearly along both walls, and it splits them into many; a known limit.)
+// fast and cgal through the dispatcher: the same bearing patches at every pose.
 TEST(PegInHolePatches, ExactMethodsCountTheSamePatches) {
   const geometry::Shape peg = asset("peg_d10.stl"), block = asset("block_hole_d10.stl");
   for (const PegPose& pose : pegPoses()) {
@@ -81,6 +80,23 @@ TEST(PegInHolePatches, ExactMethodsCountTheSamePatches) {
           computeContact(peg, placed(pose), block, Isometry3d::Identity(), {m});
       EXPECT_EQ(c.patches.size(), std::size_t(pose.patches)) << methodName(m) << " t = " << pose.t;
     }
+  }
+}
+
+// columns finds the regions from its axis passes and integrates each along its own normal:
+// the same patches as fast, each to columns' own accuracy (columns_agreement.hpp). The pair's
+// normal of two opposite walls runs nearly along both, so a grid along it alone would see them
+// edge-on; and at t = 0.01 s the second, thinner patch is one that no line of the first passes
+// meets.
+TEST(PegInHolePatches, ColumnsFindsTheSamePatchesAsFast) {
+  const geometry::Shape peg = asset("peg_d10.stl"), block = asset("block_hole_d10.stl");
+  for (const PegPose& pose : pegPoses()) {
+    SCOPED_TRACE(pose.t);
+    const ContactPatches fast =
+        computeContact(peg, placed(pose), block, Isometry3d::Identity(), {Method::kFast});
+    const ContactPatches columns =
+        computeContact(peg, placed(pose), block, Isometry3d::Identity(), {Method::kColumns});
+    test::expectColumnsAgree(fast, columns, 0.01);
   }
 }
 
