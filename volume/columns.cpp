@@ -367,6 +367,9 @@ NormalAndBox meshPairRegions(const ColumnBody& a, const ColumnBody& b, const Wor
   const double size = (overlap.hi - overlap.lo).maxCoeff() / fineResolution;
   const VoxelRegions regions = voxelRegions(pieces, overlap, size);
   if (regions.count <= 1) {
+    // The fine passes over the coarse bound, grown by what the wide lines saw beyond it: where
+    // the coarse bound held it all, the passes columnsContact made before it looked for
+    // regions, and so the same normal and box.
     if (wide.found) seen->region = unite(seen->region, wide.region);
     return normalAndBox(a, b, overlap, options, nullptr, seen);
   }

@@ -8,6 +8,10 @@
 // per level) until two successive level-to-level changes of V are within the requested
 // tolerance, and the larger of them is reported as the error estimate.
 //
+// Between two meshes the first axis passes also run over the whole overlap box at the fine
+// passes' resolution, so that a second, thinner region that no coarse line meets still counts
+// (and gives the regions of columnsPatches).
+//
 // The normal comes from three passes along the world axes: a line along e_k crossing
 // ∂A inside B at a face with normal n_A contributes sign(n_A·e_k) dS to
 // (∫_{∂A∩B} n_A dA)_k (and likewise for ∂B inside A), so
@@ -61,11 +65,19 @@ ContactVolume columnsContact(const geometry::Shape& a, const Eigen::Isometry3d& 
                              DepthField* field, const ColumnOptions& options = {});
 
 /// The patches of A and B by columns, and the method table's backend of `columns`
-/// (methods.hpp): columnsContact as the aggregate, and the wet lines of its finest grid grouped
-/// into patches (lines joined to the four neighbours whose wet spans along n overlap), each
-/// summed alone with the pair's normal n (not its own boundary's), area = its lines × dS,
-/// depth = its largest δ, and the pair's error estimate. Two regions crossed by the same
-/// lines are one patch.
+/// (methods.hpp), with columnsContact as the aggregate.
+/// - Two meshes (refined grids): the regions of A ∩ B are the 26-connected groups of the voxels
+///   (1/64 of the overlap box) that the wet pieces of three axis passes over the whole overlap
+///   box pass through; each region is then integrated alone, with the normal of its own axis
+///   passes (MODEL.md §1 over its own boundary) and its own grid refined to the tolerance, so
+///   that two regions on opposite walls, whose pair normal runs along both, are each seen face
+///   on. Regions closer than about two voxels are one patch; one a line spacing of those passes
+///   across can be missed (fast and cgal find every region exactly).
+/// - A mesh on a half-space, or a fixed grid: the wet lines of the finest grid grouped into
+///   patches (lines joined to the four neighbours whose wet spans along n overlap), each summed
+///   alone with the pair's normal n, and the pair's error estimate. Two regions crossed by the
+///   same lines are one patch.
+/// Each patch: area = its lines × dS, depth = its largest δ.
 /// @param[out] field  the δ map of the finest grid, if not null
 /// @throws InputError when the pair is not handled, naming both shapes
 ContactPatches columnsPatches(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,

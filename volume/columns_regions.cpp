@@ -48,10 +48,12 @@ class VoxelGrid {
   Eigen::Vector3i dims_;
 };
 
-/// Marks the voxels a segment passes through (sampled at half a voxel, both ends included).
+/// Marks voxels along a segment, sampled at most a voxel apart, both ends included: two
+/// samples within a voxel's side of each other lie in the same or 26-adjacent voxels, so the
+/// marks of one segment are connected.
 void mark(const WetSegment& s, VoxelRegions& r, const VoxelGrid& grid, std::vector<char>& marked) {
   const double length = (s.to - s.from).norm();
-  const int steps = 1 + static_cast<int>(std::ceil(2.0 * length / r.size));
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / r.size)));
   for (int k = 0; k <= steps; ++k) {
     const Vector3d p = s.from + (s.to - s.from) * (double(k) / steps);
     const Eigen::Vector3i v = ((p - r.lo) / r.size).array().floor().cast<int>();
