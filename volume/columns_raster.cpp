@@ -193,8 +193,24 @@ struct LineInWorld {
 /// Sweeps the merged crossings keeping both winding numbers (inside: winding > 0). A piece
 /// between two crossings lies in one connected region of A ∩ B, so a region filter decides it
 /// by its midpoint, and a crossing by its own point.
-LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b,
-                      const LineInWorld& line) {
+/// A line whose every piece and crossing counts, and whose pieces are not listed: the plain
+/// integration compiles to the sweep alone.
+struct AnyLine {
+  bool keeps(double) const { return true; }
+  void list(double, double) const {}
+};
+
+/// A line seen through a region filter or listing its pieces (LineInWorld).
+struct TrackedLine {
+  LineInWorld line;
+  bool keeps(double t) const { return line.keeps(t); }
+  void list(double t0, double t1) const {
+    if (line.pieces) line.pieces->push_back({line.at(t0), line.at(t1)});
+  }
+};
+
+template <class Line>
+LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b, const Line& line) {
   LineIntegrals r;
   int wa = 0, wb = 0;
   std::size_t i = 0, j = 0;
@@ -208,7 +224,7 @@ LineIntegrals overlap(std::span<const Crossing> a, std::span<const Crossing> b,
       r.L += c.t - tPrev;
       r.T1 += (c.t * c.t - tPrev * tPrev) / 2.0;
       r.T2 += (c.t * c.t * c.t - tPrev * tPrev * tPrev) / 3.0;
-      if (line.pieces) line.pieces->push_back({line.at(tPrev), line.at(c.t)});
+      line.list(tPrev, c.t);
     }
     const bool counted = (fromA ? wb : wa) > 0 && line.keeps(c.t);
     if (counted) (fromA ? r.surfaceA : r.surfaceB) -= c.delta;
@@ -237,22 +253,29 @@ GridSums integrate(const ColumnBody& a, const ColumnBody& b, const Grid& g,
   // Deterministic: the rows are split into the same chunks and joined in the same order
   // whatever the threads do, so a query gives the same bits on any machine and run (the
   // plain parallel_reduce joined in scheduling order: 3e-13 relative from run to run).
-  GridSums sums = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<int>(0, g.n, kRowsPerTask), GridSums{},
-      [&](const tbb::blocked_range<int>& rows, GridSums sums) {
-        for (int i = rows.begin(); i < rows.end(); ++i) {
-          for (int j = 0; j < g.n; ++j) {
-            const LineInWorld line{g.o + g.offset(i, j), g.u, only,
-                                   segments ? &rowPieces[static_cast<std::size_t>(i)] : nullptr};
-            const LineIntegrals li = overlap(crossA.at(i, j), crossB.at(i, j), line);
-            sums.add(li, g.offset(i, j), g.u, g.cellArea());
-            if (depth) (*depth)[static_cast<std::size_t>(i) * g.n + j] = li.L;
-            if (lines) (*lines)[static_cast<std::size_t>(i) * g.n + j] = li;
+  // The line kind is chosen once per grid (lineAt), so that the plain integration's sweep
+  // carries no test for a filter or a list.
+  const auto reduce = [&](const auto& lineAt) {
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<int>(0, g.n, kRowsPerTask), GridSums{},
+        [&](const tbb::blocked_range<int>& rows, GridSums sums) {
+          for (int i = rows.begin(); i < rows.end(); ++i) {
+            for (int j = 0; j < g.n; ++j) {
+              const LineIntegrals li = overlap(crossA.at(i, j), crossB.at(i, j), lineAt(i, j));
+              sums.add(li, g.offset(i, j), g.u, g.cellArea());
+              if (depth) (*depth)[static_cast<std::size_t>(i) * g.n + j] = li.L;
+              if (lines) (*lines)[static_cast<std::size_t>(i) * g.n + j] = li;
+            }
           }
-        }
-        return sums;
-      },
-      [](GridSums x, const GridSums& y) { return x += y; });
+          return sums;
+        },
+        [](GridSums x, const GridSums& y) { return x += y; });
+  };
+  const GridSums sums = only || segments ? reduce([&](int i, int j) {
+    return TrackedLine{{g.o + g.offset(i, j), g.u, only,
+                        segments ? &rowPieces[static_cast<std::size_t>(i)] : nullptr}};
+  })
+                                         : reduce([](int, int) { return AnyLine{}; });
   for (const std::vector<WetSegment>& row : rowPieces) {
     segments->insert(segments->end(), row.begin(), row.end());
   }
