@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <memory>
-#include <numbers>
 #include <string>
 
 #include "columns_agreement.hpp"
@@ -46,16 +45,7 @@ TEST(ColumnsPatches, TiltedPegBearsOnOppositeWalls) {
 // with a tangential normal, none shared by two patches.
 TEST(ColumnsPatches, KeyedShaftTurnedInItsHub) {
   const double a = 0.0041, L = 0.0149, gap = 0.0002, w = 0.0051;
-  TriangleMesh block = geometry::tessellateBox(Vector3d(0.0071, w, 0.0121));
-  block.vertices.rowwise() += Eigen::RowVector3d(0.0101, a + gap + 0.5 * w, 0.0);
-  std::vector<TriangleMesh> blocks(4, block);
-  for (int k = 1; k < 4; ++k) {
-    const Eigen::Matrix3d R(Eigen::AngleAxisd(k * std::numbers::pi / 2, Vector3d::UnitZ()));
-    blocks[static_cast<std::size_t>(k)].vertices = block.vertices * R.transpose();
-  }
-  const geometry::Shape hub = shape(
-      test::twoShells(test::twoShells(blocks[0], blocks[1]), test::twoShells(blocks[2], blocks[3])),
-      "hub");
+  const geometry::Shape hub = shape(test::keyedHub(a, gap, w), "hub");
   const geometry::Shape shaft = shape(test::keyedShaft(a, L, 0.0203), "shaft");
   const Isometry3d X_WH = test::randomPose(17);
   const Isometry3d X_WS = X_WH * Isometry3d(Eigen::AngleAxisd(0.03, Vector3d::UnitZ()));

@@ -152,16 +152,7 @@ TEST(FastMeshMeshPatches, DumbbellEndsMatchEachSphereAlone) {
 TEST(FastMeshMeshPatches, KeyedShaftTurnedInItsHub) {
   const double a = 0.0041, L = 0.0149, gap = 0.0002, w = 0.0051;
   const Body shaft(test::keyedShaft(a, L, 0.0203));
-  // The block beside the +y flank of the +x key, then the others by quarter turns.
-  TriangleMesh block = geometry::tessellateBox(Vector3d(0.0071, w, 0.0121));
-  block.vertices.rowwise() += Eigen::RowVector3d(0.0101, a + gap + 0.5 * w, 0.0);
-  std::vector<TriangleMesh> blocks(4, block);
-  for (int k = 1; k < 4; ++k) {
-    const Eigen::Matrix3d R(Eigen::AngleAxisd(k * std::numbers::pi / 2, Vector3d::UnitZ()));
-    blocks[static_cast<std::size_t>(k)].vertices = block.vertices * R.transpose();
-  }
-  const Body hub(test::twoShells(test::twoShells(blocks[0], blocks[1]),
-                                 test::twoShells(blocks[2], blocks[3])));
+  const Body hub(test::keyedHub(a, gap, w));
   const Isometry3d X_WH = test::randomPose(17);
   const Isometry3d X_WS = X_WH * Isometry3d(Eigen::AngleAxisd(0.03, Vector3d::UnitZ()));
   const ContactPatches fast = meshMeshContact(shaft.bvh, shaft.topo, X_WS, hub.bvh, hub.topo, X_WH);

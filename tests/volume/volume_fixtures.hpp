@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include "geometry/tessellate.hpp"
@@ -157,6 +158,20 @@ inline geometry::TriangleMesh twoShells(const geometry::TriangleMesh& a,
   m.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
   m.triangles << a.triangles, (b.triangles.array() + static_cast<int>(a.vertices.rows())).matrix();
   return m;
+}
+
+/// The hub of keyedShaft(a, ·, ·): four blocks of width w (across the flank), 7.1 mm radially
+/// from x = 10.1 mm and 12.1 mm along z, one beside the leading (+y) flank of the +x key with
+/// `gap` clearance, the others by quarter turns about z. One mesh of four shells.
+inline geometry::TriangleMesh keyedHub(double a, double gap, double w) {
+  geometry::TriangleMesh block = geometry::tessellateBox(Eigen::Vector3d(0.0071, w, 0.0121));
+  block.vertices.rowwise() += Eigen::RowVector3d(0.0101, a + gap + 0.5 * w, 0.0);
+  std::vector<geometry::TriangleMesh> blocks(4, block);
+  for (int k = 1; k < 4; ++k) {
+    const Eigen::Matrix3d R(Eigen::AngleAxisd(k * std::numbers::pi / 2, Eigen::Vector3d::UnitZ()));
+    blocks[static_cast<std::size_t>(k)].vertices = block.vertices * R.transpose();
+  }
+  return twoShells(twoShells(blocks[0], blocks[1]), twoShells(blocks[2], blocks[3]));
 }
 
 /// Box centred at the origin with every face split into n × n cells (2 triangles each), so a
