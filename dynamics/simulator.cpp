@@ -276,18 +276,20 @@ void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
   std::copy(rates, rates + kBodyStates, d);
 }
 
-Snapshot Simulator::snapshot(const State& x, double t) {
+// The output at (x, t) in output_, whose vectors keep their capacity from one output time to
+// the next: copying the pairs' figures costs no allocation once their sizes have settled.
+const Snapshot& Simulator::snapshot(const State& x, double t) {
   if (x != last_x_) {
-    State dxdt(x.size());
-    rhs(x, dxdt, t);
+    snapshot_dxdt_.resize(x.size());
+    rhs(x, snapshot_dxdt_, t);
   }
-  Snapshot s;
-  s.t = t;
-  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) s.bodies.push_back(kinematics(x, i, t));
-  s.pairs = last_pairs_;
-  for (std::size_t k = 0; k < s.pairs.size(); ++k) fillDepths(k, s.pairs[k]);
-  s.loads = last_loads_;
-  return s;
+  output_.t = t;
+  output_.bodies.resize(scenario_.bodies.size());
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) output_.bodies[i] = kinematics(x, i, t);
+  output_.pairs = last_pairs_;
+  for (std::size_t k = 0; k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
+  output_.loads = last_loads_;
+  return output_;
 }
 
 // Rescales every free body's quaternion to unit length; returns the largest | |q| − 1 | found.
@@ -469,6 +471,7 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   };
 
   non_finite_effect_.clear();
+  query_depths_ = false;  // a run that stopped in a discrete step may have left it set
   recovered_->resetCounts();
   State x = x0_;
   State dxdt(x.size());
@@ -477,7 +480,7 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   rhs(x, dxdt, t);
   guard_kin_.resize(scenario_.bodies.size());
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
-  const Snapshot first = snapshot(x, t);  // with the depths, which the guard's bound uses
+  const Snapshot& first = snapshot(x, t);  // with the depths, which the guard's bound uses
   energy_guard_.emplace(scenario_, guard_kin_, first.pairs);
   output(first);
   try {

@@ -64,9 +64,10 @@ int patchSlots(const Scenario& s, const ContactPair& p) {
 
 // Pair k's contact at kin_: queried, or its contact when apart when the broad phase
 // screened it out. The force evaluations skip the exact depth (kSkip: the model does not
-// use it, and for `fast` it costs several times the rest of the query); kDeepest is an
-// output sample's query (fillDepths), made without the depth field and the pair's cache so
-// that it leaves the run's state as it was, and not counted as a contact evaluation.
+// use it, and for `fast` it costs several times the rest of the query) unless
+// query_depths_ asks for it; kDeepest is an output sample's query (fillDepths), made without
+// the depth field and the pair's cache so that it leaves the run's state as it was, and not
+// counted as a contact evaluation.
 volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode depth) {
   const ContactPair& pair = scenario_.pairs[k];
   if (reuse_contacts_) return last_contact_[k];
@@ -79,10 +80,11 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
   const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
   const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0, depth};
+  volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0, depth};
   if (depth == volume::DepthMode::kDeepest) {
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
   }
+  if (query_depths_) query.depth = volume::DepthMode::kDeepest;
   ++contact_count_;
   volume::ContactPatches contact = recovered_->contact(k, X_WA, kin_[pair.b].X_WB, [&] {
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,

@@ -114,6 +114,37 @@ TEST(PatchSimulation, OutputSamplesCarryTheExactDepth) {
   }
 }
 
+// The discrete stepper's step that lands on an output time asks for the depth in its one query
+// (instead of a second query for the output): each output's depths are those of a direct
+// query at its pose, to the bit, while the peg slides along the hole.
+TEST(PatchSimulation, DiscreteOutputsCarryTheExactDepth) {
+  const auto hole = meshShape(ring(5.05 * kMm, 10 * kMm, 10 * kMm, 64), "ring");
+  const auto peg = meshShape(geometry::tessellateCylinder(5 * kMm, 20 * kMm, 64), "peg");
+  const Eigen::Isometry3d X_WA =
+      placed(Vector3d::Zero(), Eigen::AngleAxisd(0.02, Vector3d::UnitX()).toRotationMatrix());
+  dynamics::Scenario s =
+      heldPair(peg, X_WA, hole, volume::Method::kFast, Vector3d(0.0, 0.0, 0.1));  // 0.1 m/s
+  s.settings.integrator = dynamics::Integrator::kDiscrete;
+  s.settings.step = 1e-3;
+  s.settings.output_rate_hz = 1000.0;
+  s.settings.duration = 3e-3;
+  const std::vector<dynamics::Snapshot> outputs = run(s);
+  ASSERT_EQ(outputs.size(), 4u);
+  for (const dynamics::Snapshot& o : outputs) {
+    const PairOutput& p = o.pairs.front();
+    const volume::ContactPatches direct = volume::computeContact(
+        peg, o.bodies[1].X_WB, hole, Eigen::Isometry3d::Identity(), {volume::Method::kFast});
+    ASSERT_EQ(p.patches.size(), 2u) << "t = " << o.t;
+    ASSERT_EQ(direct.patches.size(), 2u);
+    EXPECT_GT(p.cv.depth, 0.0);
+    EXPECT_EQ(p.cv.depth, direct.aggregate.depth) << "t = " << o.t;
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(p.patches[i].cv.volume, direct.patches[i].volume) << "the same pose";
+      EXPECT_EQ(p.patches[i].cv.depth, direct.patches[i].depth) << "t = " << o.t;
+    }
+  }
+}
+
 TEST(PatchSimulation, TurnedKeyedShaftGetsATorqueAboutItsAxisAndNoForceAcross) {
   // A square shaft (circumradius 9.9 mm) turned 1° in a square hole (10 mm): each of its four
   // edges presses into the wall ahead of it, 0.05 mm deep.
