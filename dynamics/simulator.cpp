@@ -278,7 +278,8 @@ void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
 
 // The output at (x, t) in output_, whose vectors keep their capacity from one output time to
 // the next: copying the pairs' figures costs no allocation once their sizes have settled.
-const Snapshot& Simulator::snapshot(const State& x, double t) {
+// With `depths`, the depths the force evaluation left out are filled in (fillDepths).
+const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
   if (x != last_x_) {
     snapshot_dxdt_.resize(x.size());
     rhs(x, snapshot_dxdt_, t);
@@ -287,7 +288,7 @@ const Snapshot& Simulator::snapshot(const State& x, double t) {
   output_.bodies.resize(scenario_.bodies.size());
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) output_.bodies[i] = kinematics(x, i, t);
   output_.pairs = last_pairs_;
-  for (std::size_t k = 0; k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
+  for (std::size_t k = 0; depths && k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
   output_.loads = last_loads_;
   return output_;
 }
@@ -480,7 +481,7 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   rhs(x, dxdt, t);
   guard_kin_.resize(scenario_.bodies.size());
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
-  const Snapshot& first = snapshot(x, t);  // with the depths, which the guard's bound uses
+  const Snapshot& first = snapshot(x, t, true);  // with the depths, which the guard's bound uses
   energy_guard_.emplace(scenario_, guard_kin_, first.pairs);
   output(first);
   try {
@@ -533,7 +534,7 @@ void Simulator::runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_o
     if (settle(x, t)) rhs(x, dxdt, t);
     if (t >= t_target - kOutputTimeSlack * interval) {
       t = t_target;
-      on_output(snapshot(x, t));
+      on_output(snapshot(x, t, output_depths_));
       ++next_output;
     }
     on_progress(t);
@@ -587,7 +588,7 @@ void Simulator::runBdf(State& x, double& t, const OutputFn& on_output,
       const double t_out = std::min(static_cast<double>(next_output) * interval, set.duration);
       if (t_out > t + kOutputTimeSlack * interval) break;
       bdf.interpolate(std::min(t_out, t), x_out.data());
-      on_output(snapshot(x_out, t_out));
+      on_output(snapshot(x_out, t_out, output_depths_));
       ++next_output;
       if (t_out >= set.duration) break;
     }

@@ -70,7 +70,7 @@ void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
     normaliseQuaternions(x);
     // The step's one contact query, at the new state; on an output time with the exact
     // depths the output writes, which spares snapshot() a second query (fillDepths).
-    query_depths_ = lands;
+    query_depths_ = lands && output_depths_;
     rhs(x, dxdt, t);
     query_depths_ = false;
     check(x, t);
@@ -80,7 +80,7 @@ void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
       reuse_contacts_ = false;
     }
     if (lands) {
-      on_output(snapshot(x, t));
+      on_output(snapshot(x, t, output_depths_));
       ++next_output;
     }
     on_progress(t);

@@ -145,6 +145,38 @@ TEST(PatchSimulation, DiscreteOutputsCarryTheExactDepth) {
   }
 }
 
+// A caller that writes no depth turns the output's depth query off: the outputs after t = 0
+// then carry the force evaluation's NaN; the one at t = 0 (which the blow-up guard reads) and
+// everything else are as with it on, with both integrators that use the shortcut.
+TEST(PatchSimulation, OutputDepthsOffLeaveDepthOutAndNothingElse) {
+  const auto hole = meshShape(ring(5.05 * kMm, 10 * kMm, 10 * kMm, 64), "ring");
+  const auto peg = meshShape(geometry::tessellateCylinder(5 * kMm, 20 * kMm, 64), "peg");
+  const Eigen::Isometry3d X_WA =
+      placed(Vector3d::Zero(), Eigen::AngleAxisd(0.02, Vector3d::UnitX()).toRotationMatrix());
+  for (const auto integrator : {dynamics::Integrator::kDopri5, dynamics::Integrator::kDiscrete}) {
+    dynamics::Scenario s = heldPair(peg, X_WA, hole, volume::Method::kFast, Vector3d(0, 0, 0.1));
+    s.settings.integrator = integrator;
+    s.settings.duration = 2e-3;
+    const std::vector<dynamics::Snapshot> with = run(s);
+    dynamics::Simulator sim(s);
+    sim.setOutputDepths(false);
+    std::vector<dynamics::Snapshot> without;
+    dynamics::SimulationSummary summary;
+    sim.run([&](const dynamics::Snapshot& o) { without.push_back(o); }, [](double) {}, summary);
+    ASSERT_EQ(without.size(), 3u);
+    ASSERT_EQ(with.size(), 3u);
+    EXPECT_EQ(without[0].pairs.front().cv.depth, with[0].pairs.front().cv.depth);
+    for (std::size_t j = 0; j < 3; ++j) {
+      const PairOutput &a = with[j].pairs.front(), &b = without[j].pairs.front();
+      EXPECT_GT(a.cv.depth, 0.0);
+      EXPECT_EQ(std::isnan(b.cv.depth), j > 0) << "t = " << with[j].t << ": only t = 0 has it";
+      EXPECT_EQ(b.cv.volume, a.cv.volume);
+      EXPECT_EQ(b.result.wrench.f_W, a.result.wrench.f_W);
+      EXPECT_EQ(b.state.vector(0), a.state.vector(0));
+    }
+  }
+}
+
 TEST(PatchSimulation, TurnedKeyedShaftGetsATorqueAboutItsAxisAndNoForceAcross) {
   // A square shaft (circumradius 9.9 mm) turned 1° in a square hole (10 mm): each of its four
   // edges presses into the wall ahead of it, 0.05 mm deep.
