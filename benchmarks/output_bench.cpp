@@ -1,17 +1,19 @@
 // The cost of a simulation's output (issue 18, item 4: writing output at most 10 % of a run):
 // output/<scenario>/<integrator>/<sink> runs the same simulation with
 //
-// - `none`: an output callback that does nothing (the run still builds each output Snapshot,
-//   depths included, since Simulator::run hands every output time to the callback);
-// - `csv`: report::SimulationCsvWriter into a new scratch folder, committed at the end as
-//   `vcontact simulate` does (the summary.json aside). The folder is removed between runs
-//   outside the timing: replacing the files of an earlier run costs the file system more
-//   than writing them (ext4 writes a replaced file's data out at the rename), which is not the
-//   writer's cost.
+// - `none`: an output callback that does nothing, and no exact depths for the output
+//   (Simulator::setOutputDepths(false)): what the run costs without its output;
+// - `csv`: report::SimulationCsvWriter, with the depths its pair files hold (for `fast` pairs
+//   a query with the depth pass at every output time), into a new scratch folder committed at
+//   the end as `vcontact simulate` does (summary.json aside). The folder is removed between
+//   runs outside the timing: replacing the files of an earlier run costs the file system more
+//   than writing them (ext4 writes a replaced file's data out at the rename), which is not
+//   the writer's cost.
 //
-// The share of the run spent formatting and writing is 1 − time(none) / time(csv), read from
-// one run of the binary. Counters: real_time_factor (simulated seconds per CPU second),
-// outputs (output times) and, for csv, bytes (the CSV bytes of one run).
+// The share of the run spent on its output (depths, formatting, writing) is
+// 1 − time(none) / time(csv), read from one run of the binary. Counters: real_time_factor
+// (simulated seconds per CPU second), outputs (output times) and, for csv, bytes (the CSV bytes of
+// one run).
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -89,6 +91,7 @@ void output(benchmark::State& state, const std::string& name, const Variant& var
       fs::remove_all(dir, ec);
       state.ResumeTiming();
     } else {
+      sim.setOutputDepths(false);  // nothing is written, so no output needs the exact depth
       sim.run([&](const Snapshot&) { ++outputs; }, [](double) {}, summary);
     }
     simulated += summary.simulated_time;

@@ -47,7 +47,12 @@ void CsvBuffer::append(std::string_view s) {
 
 void CsvBuffer::first(double x) {
   char* at = reserve(kMaxNumberChars);
-  size_ = static_cast<std::size_t>(writeNumber(at, x) - buffer_.data());
+  if (std::memcmp(&x, &first_, sizeof x) != 0) {
+    first_ = x;
+    first_size_ = static_cast<std::size_t>(writeNumber(first_text_, x) - first_text_);
+  }
+  std::memcpy(at, first_text_, first_size_);
+  size_ += first_size_;
 }
 
 void CsvBuffer::number(double x) {

@@ -28,7 +28,8 @@ class CsvBuffer {
  public:
   /// Empties the buffer; keeps the capacity.
   void clear() { size_ = 0; }
-  /// The first field of a row: the number without a comma.
+  /// The first field of a row: the number without a comma. Every row of an output time starts
+  /// with its time: the text of the latest first field is kept and copied when it repeats.
   void first(double x);
   /// ",x"
   void number(double x);
@@ -48,6 +49,9 @@ class CsvBuffer {
 
   std::string buffer_;  ///< its size() is the capacity; the first size_ characters are the text
   std::size_t size_ = 0;
+  double first_ = 0.0;                        ///< the latest first field (compared bit for bit) ...
+  char first_text_[kMaxNumberChars] = {'0'};  ///< ... and its text
+  std::size_t first_size_ = 1;
 };
 
 }  // namespace vcontact::report

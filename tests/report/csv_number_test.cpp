@@ -144,6 +144,18 @@ TEST(CsvBuffer, BuildsRowsWithCommasAndKeepsItsCapacity) {
   EXPECT_EQ(row.view().data(), before);  // no new allocation for a shorter text
 }
 
+// first() keeps the text of the latest first field; a repeat is copied, anything else (even
+// -0 after 0, which compare equal as doubles) is written anew.
+TEST(CsvBuffer, FirstFieldsRepeatAndChange) {
+  CsvBuffer row;
+  for (double t : {0.0, -0.0, -0.0, 0.0, 0.0005, 0.0005, 0.001, 1e-300}) {
+    row.first(t);
+    row.endRow();
+  }
+  // 0.0005 is "5e-04" in std::to_chars' shortest form (5 characters against 6)
+  EXPECT_EQ(row.view(), "0\n-0\n-0\n0\n5e-04\n5e-04\n0.001\n1e-300\n");
+}
+
 TEST(CsvBuffer, GrowsForLongRows) {
   CsvBuffer row;
   std::string expected = "0";
