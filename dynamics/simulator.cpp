@@ -276,23 +276,6 @@ void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
   std::copy(rates, rates + kBodyStates, d);
 }
 
-// The output at (x, t) in output_, whose vectors keep their capacity from one output time to
-// the next: copying the pairs' figures costs no allocation once their sizes have settled.
-// With `depths`, the depths the force evaluation left out are filled in (fillDepths).
-const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
-  if (x != last_x_) {
-    snapshot_dxdt_.resize(x.size());
-    rhs(x, snapshot_dxdt_, t);
-  }
-  output_.t = t;
-  output_.bodies.resize(scenario_.bodies.size());
-  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) output_.bodies[i] = kinematics(x, i, t);
-  output_.pairs = last_pairs_;
-  for (std::size_t k = 0; depths && k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
-  output_.loads = last_loads_;
-  return output_;
-}
-
 // Rescales every free body's quaternion to unit length; returns the largest | |q| − 1 | found.
 double Simulator::normaliseQuaternions(State& x) const {
   double drift = 0.0;

@@ -1,5 +1,6 @@
 // The contact pairs' part of Simulator: each pair's query, its patches' forces on the two
-// bodies and the discrete updates of its patches' states (simulator.hpp).
+// bodies, the discrete updates of its patches' states, and the output snapshot with the
+// pairs' depths (simulator.hpp).
 
 #include <algorithm>
 #include <cmath>
@@ -92,6 +93,23 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
   });
   if (!last_contact_.empty()) last_contact_[k] = contact;
   return contact;
+}
+
+// The output at (x, t) in output_, whose vectors keep their capacity from one output time to
+// the next: copying the pairs' figures costs no allocation once their sizes have settled.
+// With `depths`, the depths the force evaluation left out are filled in (fillDepths).
+const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
+  if (x != last_x_) {
+    snapshot_dxdt_.resize(x.size());
+    rhs(x, snapshot_dxdt_, t);
+  }
+  output_.t = t;
+  output_.bodies.resize(scenario_.bodies.size());
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) output_.bodies[i] = kinematics(x, i, t);
+  output_.pairs = last_pairs_;
+  for (std::size_t k = 0; depths && k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
+  output_.loads = last_loads_;
+  return output_;
 }
 
 // The depths the force evaluation left out (NaN, QueryOptions::depth) in pair k's output
