@@ -83,6 +83,7 @@ void runSimulate(const SimulateOptions& o) {
   applyOutputOptions(o, file);
   printRecognition(file.scenario, o.quiet);
   dynamics::Simulator sim(file.scenario);
+  sim.setOutputDepths(file.outputs.pairs);  // the depth column is in the pair files only
   report::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
   io::Progress progress("simulate", file.scenario.settings.duration, "s", o.quiet);
   dynamics::SimulationSummary summary;

@@ -276,20 +276,6 @@ void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
   std::copy(rates, rates + kBodyStates, d);
 }
 
-Snapshot Simulator::snapshot(const State& x, double t) {
-  if (x != last_x_) {
-    State dxdt(x.size());
-    rhs(x, dxdt, t);
-  }
-  Snapshot s;
-  s.t = t;
-  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) s.bodies.push_back(kinematics(x, i, t));
-  s.pairs = last_pairs_;
-  for (std::size_t k = 0; k < s.pairs.size(); ++k) fillDepths(k, s.pairs[k]);
-  s.loads = last_loads_;
-  return s;
-}
-
 // Rescales every free body's quaternion to unit length; returns the largest | |q| − 1 | found.
 double Simulator::normaliseQuaternions(State& x) const {
   double drift = 0.0;
@@ -469,6 +455,7 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   };
 
   non_finite_effect_.clear();
+  query_depths_ = false;  // a run that stopped in a discrete step may have left it set
   recovered_->resetCounts();
   State x = x0_;
   State dxdt(x.size());
@@ -477,7 +464,7 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   rhs(x, dxdt, t);
   guard_kin_.resize(scenario_.bodies.size());
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) guard_kin_[i] = kinematics(x, i, t);
-  const Snapshot first = snapshot(x, t);  // with the depths, which the guard's bound uses
+  const Snapshot& first = snapshot(x, t, true);  // with the depths, which the guard's bound uses
   energy_guard_.emplace(scenario_, guard_kin_, first.pairs);
   output(first);
   try {
@@ -530,7 +517,7 @@ void Simulator::runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_o
     if (settle(x, t)) rhs(x, dxdt, t);
     if (t >= t_target - kOutputTimeSlack * interval) {
       t = t_target;
-      on_output(snapshot(x, t));
+      on_output(snapshot(x, t, output_depths_));
       ++next_output;
     }
     on_progress(t);
@@ -584,7 +571,7 @@ void Simulator::runBdf(State& x, double& t, const OutputFn& on_output,
       const double t_out = std::min(static_cast<double>(next_output) * interval, set.duration);
       if (t_out > t + kOutputTimeSlack * interval) break;
       bdf.interpolate(std::min(t_out, t), x_out.data());
-      on_output(snapshot(x_out, t_out));
+      on_output(snapshot(x_out, t_out, output_depths_));
       ++next_output;
       if (t_out >= set.duration) break;
     }

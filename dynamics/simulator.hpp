@@ -141,6 +141,12 @@ class Simulator {
   void run(const std::function<void(const Snapshot&)>& on_output,
            const std::function<void(double t)>& on_progress, SimulationSummary& summary);
 
+  /// Whether the output snapshots carry the exact depth of the pairs whose force evaluations
+  /// leave it out (`fast`; ContactVolume::depth NaN otherwise): a second query of each such pair
+  /// at every output time, several times the cost of a step's query. On by default; a caller
+  /// that writes no depth (no pair files) turns it off. The snapshot at t = 0 has it always.
+  void setOutputDepths(bool on) { output_depths_ = on; }
+
   using State = std::vector<double>;
 
  private:
@@ -179,7 +185,7 @@ class Simulator {
   void bodyRates(std::size_t i, const State& x, State& dxdt) const;
   void screenPairs();
   bool rhsFinite(const double* x, double* dxdt, double t);
-  Snapshot snapshot(const State& x, double t);
+  const Snapshot& snapshot(const State& x, double t, bool depths);
   BodyKinematics kinematics(const State& x, std::size_t body, double t) const;
   bool settle(State& x, double t);
   bool settlePairs(State& x, double t);
@@ -236,6 +242,10 @@ class Simulator {
   // the step's system, kept between steps to avoid allocations.
   std::vector<volume::ContactPatches> last_contact_;
   bool reuse_contacts_ = false;
+  /// The force evaluation's queries compute the exact depth too (DepthMode::kDeepest): the
+  /// discrete step that lands on an output time, whose contacts the output reads.
+  bool query_depths_ = false;
+  bool output_depths_ = true;  ///< setOutputDepths()
   std::vector<int> column_;  ///< per body, its first column in the step's system, −1 if not free
   std::vector<DiscretePatch> step_patches_;
   std::size_t step_patch_count_ = 0;
@@ -246,6 +256,8 @@ class Simulator {
   std::vector<BodyKinematics> load_kin_;  ///< assembleLoads()' perturbed kinematics
   long rhs_count_ = 0;
   long contact_count_ = 0;
+  Snapshot output_;      ///< snapshot()'s result, reused from one output time to the next
+  State snapshot_dxdt_;  ///< snapshot()'s scratch for the rates of an interpolated state
 };
 
 }  // namespace vcontact::dynamics

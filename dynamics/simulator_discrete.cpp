@@ -68,7 +68,11 @@ void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
     t = lands ? t_target : t + h;
     ++summary.steps;
     normaliseQuaternions(x);
-    rhs(x, dxdt, t);  // the step's one contact query, at the new state
+    // The step's one contact query, at the new state; on an output time with the exact
+    // depths the output writes, which spares snapshot() a second query (fillDepths).
+    query_depths_ = lands && output_depths_;
+    rhs(x, dxdt, t);
+    query_depths_ = false;
     check(x, t);
     if (settlePairs(x, t)) {
       reuse_contacts_ = true;
@@ -76,7 +80,7 @@ void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
       reuse_contacts_ = false;
     }
     if (lands) {
-      on_output(snapshot(x, t));
+      on_output(snapshot(x, t, output_depths_));
       ++next_output;
     }
     on_progress(t);

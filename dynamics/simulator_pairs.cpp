@@ -1,5 +1,6 @@
 // The contact pairs' part of Simulator: each pair's query, its patches' forces on the two
-// bodies and the discrete updates of its patches' states (simulator.hpp).
+// bodies, the discrete updates of its patches' states, and the output snapshot with the
+// pairs' depths (simulator.hpp).
 
 #include <algorithm>
 #include <cmath>
@@ -64,9 +65,10 @@ int patchSlots(const Scenario& s, const ContactPair& p) {
 
 // Pair k's contact at kin_: queried, or its contact when apart when the broad phase
 // screened it out. The force evaluations skip the exact depth (kSkip: the model does not
-// use it, and for `fast` it costs several times the rest of the query); kDeepest is an
-// output sample's query (fillDepths), made without the depth field and the pair's cache so
-// that it leaves the run's state as it was, and not counted as a contact evaluation.
+// use it, and for `fast` it costs several times the rest of the query) unless
+// query_depths_ asks for it; kDeepest is an output sample's query (fillDepths), made without
+// the depth field and the pair's cache so that it leaves the run's state as it was, and not
+// counted as a contact evaluation.
 volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode depth) {
   const ContactPair& pair = scenario_.pairs[k];
   if (reuse_contacts_) return last_contact_[k];
@@ -79,10 +81,11 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
   const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
   const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-  const volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0, depth};
+  volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0, depth};
   if (depth == volume::DepthMode::kDeepest) {
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
   }
+  if (query_depths_) query.depth = volume::DepthMode::kDeepest;
   ++contact_count_;
   volume::ContactPatches contact = recovered_->contact(k, X_WA, kin_[pair.b].X_WB, [&] {
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
@@ -90,6 +93,23 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
   });
   if (!last_contact_.empty()) last_contact_[k] = contact;
   return contact;
+}
+
+// The output at (x, t) in output_, whose vectors keep their capacity from one output time to
+// the next: copying the pairs' figures costs no allocation once their sizes have settled.
+// With `depths`, the depths the force evaluation left out are filled in (fillDepths).
+const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
+  if (x != last_x_) {
+    snapshot_dxdt_.resize(x.size());
+    rhs(x, snapshot_dxdt_, t);
+  }
+  output_.t = t;
+  output_.bodies.resize(scenario_.bodies.size());
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) output_.bodies[i] = kinematics(x, i, t);
+  output_.pairs = last_pairs_;
+  for (std::size_t k = 0; depths && k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
+  output_.loads = last_loads_;
+  return output_;
 }
 
 // The depths the force evaluation left out (NaN, QueryOptions::depth) in pair k's output

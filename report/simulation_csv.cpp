@@ -2,36 +2,19 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 
 #include "geometry/error.hpp"
+#include "report/csv_number.hpp"
 
 namespace vcontact::report {
 namespace {
 
-// Shortest round-trip form of a double (std::to_chars): exact, and several times faster than
-// stream formatting, which dominated the cost of a simulation at high output rates.
-void put(std::string& row, double x) {
-  char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, x).ptr;
-  row.push_back(',');
-  row.append(buf, end);
-}
-
-void put(std::string& row, const Eigen::Vector3d& v) {
-  put(row, v.x());
-  put(row, v.y());
-  put(row, v.z());
-}
-
-// The row's first field (time), without the leading comma.
-std::string startRow(double t) {
-  std::string row;
-  put(row, t);
-  row.erase(0, 1);
-  return row;
+void put(CsvBuffer& row, const Eigen::Vector3d& v) {
+  row.number(v.x());
+  row.number(v.y());
+  row.number(v.z());
 }
 
 void putHeader3(std::ostream& o, const std::string& prefix) {
@@ -50,15 +33,20 @@ void putContactHeader(std::ostream& f, const dynamics::ContactPair& pair) {
   for (const auto& name : pair.model.stateLayout().valueNames()) f << ',' << name;
 }
 
-void putContact(std::string& row, const volume::ContactVolume& cv, const dynamics::ContactResult& r,
+void putContact(CsvBuffer& row, const volume::ContactVolume& cv, const dynamics::ContactResult& r,
                 const dynamics::PairState& state, int state_size) {
-  for (double x : {cv.volume, cv.depth, cv.area, cv.r_gyr}) put(row, x);
+  for (double x : {cv.volume, cv.depth, cv.area, cv.r_gyr}) row.number(x);
   put(row, cv.p_WC);
   put(row, cv.n_W);
   put(row, r.wrench.f_W);
   put(row, r.wrench.tau_W);
-  for (double x : {r.f_n, r.s, r.mu_max}) put(row, x);
-  for (int i = 0; i < state_size; ++i) put(row, state[i]);
+  for (double x : {r.f_n, r.s, r.mu_max}) row.number(x);
+  for (int i = 0; i < state_size; ++i) row.number(state[i]);
+}
+
+// The buffer's text onto the file, in one write.
+void flush(const CsvBuffer& text, std::ostream& f) {
+  f.write(text.view().data(), static_cast<std::streamsize>(text.view().size()));
 }
 
 }  // namespace
@@ -113,65 +101,77 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
 }
 
 void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
-  if (outputs_.bodies) {
-    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-      const dynamics::BodyKinematics& k = s.bodies[i];
-      const Eigen::Quaterniond q(k.X_WB.linear());
-      std::string row = startRow(s.t);
-      row += ',' + scenario_.bodies[i].name;
-      put(row, k.X_WB.translation());
-      put(row, q.w());
-      put(row, q.vec());
-      put(row, k.pointVelocity(k.X_WB.translation()));
-      put(row, k.w_WB);
-      *bodies_ << row << '\n';
-    }
-  }
+  if (outputs_.bodies) writeBodies(s);
   if (loads_) writeLoads(s);
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const dynamics::PairOutput& p = s.pairs[k];
     const int state_size = scenario_.pairs[k].model.stateLayout().size();
-    std::string row = startRow(s.t);
-    putContact(row, p.cv, p.result, p.state, state_size);
+    text_.clear();
+    text_.first(s.t);
+    putContact(text_, p.cv, p.result, p.state, state_size);
     if (outputs_.shares) {
       for (const auto& share : p.result.shares) {
-        put(row, share.f_W);
-        put(row, share.tau_W);
+        put(text_, share.f_W);
+        put(text_, share.tau_W);
       }
     }
-    *pairs_[k] << row << '\n';
+    text_.endRow();
+    flush(text_, *pairs_[k]);
     if (patches_[k]) writePatches(s.t, p, state_size, *patches_[k]);
   }
   checkWrites();
+}
+
+void SimulationCsvWriter::writeBodies(const dynamics::Snapshot& s) {
+  text_.clear();
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const dynamics::BodyKinematics& k = s.bodies[i];
+    const Eigen::Quaterniond q(k.X_WB.linear());
+    text_.first(s.t);
+    text_.text(scenario_.bodies[i].name);
+    put(text_, k.X_WB.translation());
+    text_.number(q.w());
+    put(text_, q.vec());
+    put(text_, k.pointVelocity(k.X_WB.translation()));
+    put(text_, k.w_WB);
+    text_.endRow();
+  }
+  flush(text_, *bodies_);
 }
 
 // One row per load, then per spring: the wrench on its body (a spring's body a) with the
 // force at (px, py, pz).
 void SimulationCsvWriter::writeLoads(const dynamics::Snapshot& s) {
   const std::size_t n_loads = scenario_.loads.size();
+  text_.clear();
   for (std::size_t k = 0; k < s.loads.size(); ++k) {
     const bool load = k < n_loads;
     const std::string& name = load ? scenario_.loads[k].name : scenario_.springs[k - n_loads].name;
     const std::size_t body = load ? scenario_.loads[k].body : scenario_.springs[k - n_loads].a;
-    std::string row = startRow(s.t);
-    row += ',' + name + ',' + scenario_.bodies[body].name;
-    put(row, s.loads[k].p_W);
-    put(row, s.loads[k].wrench.f_W);
-    put(row, s.loads[k].wrench.tau_W);
-    *loads_ << row << '\n';
+    text_.first(s.t);
+    text_.text(name);
+    text_.text(scenario_.bodies[body].name);
+    put(text_, s.loads[k].p_W);
+    put(text_, s.loads[k].wrench.f_W);
+    put(text_, s.loads[k].wrench.tau_W);
+    text_.endRow();
   }
+  flush(text_, *loads_);
 }
 
 // One row per patch, in the query's order (patch = its index).
 void SimulationCsvWriter::writePatches(double t, const dynamics::PairOutput& p, int state_size,
                                        std::ostream& f) {
+  text_.clear();
   for (std::size_t i = 0; i < p.patches.size(); ++i) {
     const dynamics::PatchOutput& patch = p.patches[i];
-    std::string row = startRow(t);
-    row += ',' + std::to_string(i) + ',' + std::to_string(patch.slot);
-    putContact(row, patch.cv, patch.result, patch.state, state_size);
-    f << row << '\n';
+    text_.first(t);
+    text_.integer(static_cast<long>(i));
+    text_.integer(patch.slot);
+    putContact(text_, patch.cv, patch.result, patch.state, state_size);
+    text_.endRow();
   }
+  flush(text_, f);
 }
 
 // On a failed write every file is given up, not only the one that failed: a run's files

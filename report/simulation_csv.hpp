@@ -13,6 +13,7 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "io/output_file.hpp"
+#include "report/csv_number.hpp"
 
 namespace vcontact::report {
 
@@ -40,6 +41,7 @@ class SimulationCsvWriter {
  private:
   std::ostream& open(const std::string& path);
   void checkWrites();
+  void writeBodies(const dynamics::Snapshot& s);
   void writeLoads(const dynamics::Snapshot& s);
   void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ostream& f);
 
@@ -52,6 +54,9 @@ class SimulationCsvWriter {
   std::vector<std::ostream*> patches_;  ///< per pair, its patch file; null when it has none
   std::ostream* loads_ = nullptr;       ///< loads.csv, when written
   std::vector<std::string> files_;
+  /// One output time's rows of one file, written to it at once; reused from file to file and
+  /// from row to row (no allocation per row)
+  CsvBuffer text_;
 };
 
 /// Rows a run writes: (output times, t = 0 included) × (bodies in bodies.csv + pairs + the

@@ -114,6 +114,69 @@ TEST(PatchSimulation, OutputSamplesCarryTheExactDepth) {
   }
 }
 
+// The discrete stepper's step that lands on an output time asks for the depth in its one query
+// (instead of a second query for the output): each output's depths are those of a direct
+// query at its pose, to the bit, while the peg slides along the hole.
+TEST(PatchSimulation, DiscreteOutputsCarryTheExactDepth) {
+  const auto hole = meshShape(ring(5.05 * kMm, 10 * kMm, 10 * kMm, 64), "ring");
+  const auto peg = meshShape(geometry::tessellateCylinder(5 * kMm, 20 * kMm, 64), "peg");
+  const Eigen::Isometry3d X_WA =
+      placed(Vector3d::Zero(), Eigen::AngleAxisd(0.02, Vector3d::UnitX()).toRotationMatrix());
+  dynamics::Scenario s =
+      heldPair(peg, X_WA, hole, volume::Method::kFast, Vector3d(0.0, 0.0, 0.1));  // 0.1 m/s
+  s.settings.integrator = dynamics::Integrator::kDiscrete;
+  s.settings.step = 1e-3;
+  s.settings.output_rate_hz = 1000.0;
+  s.settings.duration = 3e-3;
+  const std::vector<dynamics::Snapshot> outputs = run(s);
+  ASSERT_EQ(outputs.size(), 4u);
+  for (const dynamics::Snapshot& o : outputs) {
+    const PairOutput& p = o.pairs.front();
+    const volume::ContactPatches direct = volume::computeContact(
+        peg, o.bodies[1].X_WB, hole, Eigen::Isometry3d::Identity(), {volume::Method::kFast});
+    ASSERT_EQ(p.patches.size(), 2u) << "t = " << o.t;
+    ASSERT_EQ(direct.patches.size(), 2u);
+    EXPECT_GT(p.cv.depth, 0.0);
+    EXPECT_EQ(p.cv.depth, direct.aggregate.depth) << "t = " << o.t;
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(p.patches[i].cv.volume, direct.patches[i].volume) << "the same pose";
+      EXPECT_EQ(p.patches[i].cv.depth, direct.patches[i].depth) << "t = " << o.t;
+    }
+  }
+}
+
+// A caller that writes no depth turns the output's depth query off: the outputs after t = 0
+// then carry the force evaluation's NaN; the one at t = 0 (which the blow-up guard reads) and
+// everything else are as with it on, with both integrators that use the shortcut.
+TEST(PatchSimulation, OutputDepthsOffLeaveDepthOutAndNothingElse) {
+  const auto hole = meshShape(ring(5.05 * kMm, 10 * kMm, 10 * kMm, 64), "ring");
+  const auto peg = meshShape(geometry::tessellateCylinder(5 * kMm, 20 * kMm, 64), "peg");
+  const Eigen::Isometry3d X_WA =
+      placed(Vector3d::Zero(), Eigen::AngleAxisd(0.02, Vector3d::UnitX()).toRotationMatrix());
+  for (const auto integrator : {dynamics::Integrator::kDopri5, dynamics::Integrator::kDiscrete}) {
+    dynamics::Scenario s = heldPair(peg, X_WA, hole, volume::Method::kFast, Vector3d(0, 0, 0.1));
+    s.settings.integrator = integrator;
+    s.settings.duration = 2e-3;
+    const std::vector<dynamics::Snapshot> with = run(s);
+    dynamics::Simulator sim(s);
+    sim.setOutputDepths(false);
+    std::vector<dynamics::Snapshot> without;
+    dynamics::SimulationSummary summary;
+    sim.run([&](const dynamics::Snapshot& o) { without.push_back(o); }, [](double) {}, summary);
+    ASSERT_EQ(without.size(), 3u);
+    ASSERT_EQ(with.size(), 3u);
+    EXPECT_EQ(without[0].pairs.front().cv.depth, with[0].pairs.front().cv.depth);
+    for (std::size_t j = 0; j < 3; ++j) {
+      const PairOutput &a = with[j].pairs.front(), &b = without[j].pairs.front();
+      EXPECT_GT(a.cv.depth, 0.0);
+      EXPECT_EQ(std::isnan(b.cv.depth), j > 0) << "t = " << with[j].t << ": only t = 0 has it";
+      EXPECT_EQ(b.cv.volume, a.cv.volume);
+      EXPECT_EQ(b.result.wrench.f_W, a.result.wrench.f_W);
+      EXPECT_EQ(b.state.vector(0), a.state.vector(0));
+    }
+  }
+}
+
 TEST(PatchSimulation, TurnedKeyedShaftGetsATorqueAboutItsAxisAndNoForceAcross) {
   // A square shaft (circumradius 9.9 mm) turned 1° in a square hole (10 mm): each of its four
   // edges presses into the wall ahead of it, 0.05 mm deep.
