@@ -55,16 +55,11 @@ TEST(ColumnsPatches, KeyedShaftTurnedInItsHub) {
 // Two spheres of one body pressed into a plate mesh: one cap each.
 TEST(ColumnsPatches, DumbbellEnds) {
   const double R = 0.0103, d = 0.0017, half = 0.031;
-  TriangleMesh left = geometry::tessellateSphere(R, 48, 24);
-  TriangleMesh right = left;
-  left.vertices.col(0).array() -= half;
-  right.vertices.col(0).array() += half;
-  TriangleMesh plate = geometry::tessellateBox(Vector3d(0.2, 0.2, 0.05));
-  plate.vertices.rowwise() += Eigen::RowVector3d(0.0, 0.0, -0.025);
+  const auto [left, right] = test::dumbbellEnds(R, half);
   const Isometry3d X_WH = test::randomPose(16);
   const Isometry3d X_WM = X_WH * test::translation({0.004, -0.007, R - d});
   expectSameAsFast(shape(test::twoShells(left, right), "dumbbell"), X_WM,
-                   shape(std::move(plate), "plate"), X_WH, 2, R);
+                   shape(test::plateTopAtZero(), "plate"), X_WH, 2, R);
 }
 
 }  // namespace

@@ -37,11 +37,7 @@ struct Body {
 
 /// A plate of two triangles a face whose top face is z_H = 0 and which holds every foot.
 const Body& plate() {
-  static const Body b([] {
-    TriangleMesh m = geometry::tessellateBox(Vector3d(0.2, 0.2, 0.05));
-    m.vertices.rowwise() += Eigen::RowVector3d(0.0, 0.0, -0.025);
-    return m;
-  }());
+  static const Body b(test::plateTopAtZero());
   return b;
 }
 
@@ -129,10 +125,7 @@ TEST(FastMeshMeshPatches, TiltedPegBearsOnOppositeWalls) {
 // the exact clip of its sphere alone by the plate's top plane.
 TEST(FastMeshMeshPatches, DumbbellEndsMatchEachSphereAlone) {
   const double R = 0.0103, d = 0.0017, half = 0.031;
-  TriangleMesh left = geometry::tessellateSphere(R, 48, 24);
-  TriangleMesh right = left;
-  left.vertices.col(0).array() -= half;
-  right.vertices.col(0).array() += half;
+  const auto [left, right] = test::dumbbellEnds(R, half);
   const Body dumbbell(test::twoShells(left, right));
   const Body leftAlone(left), rightAlone(right);
   const Isometry3d X_WH = test::randomPose(16);

@@ -174,6 +174,22 @@ inline geometry::TriangleMesh keyedHub(double a, double gap, double w) {
   return twoShells(twoShells(blocks[0], blocks[1]), twoShells(blocks[2], blocks[3]));
 }
 
+/// A plate 0.2 × 0.2 × 0.05 m of two triangles a face, its top face the plane z = 0.
+inline geometry::TriangleMesh plateTopAtZero() {
+  geometry::TriangleMesh m = geometry::tessellateBox(Eigen::Vector3d(0.2, 0.2, 0.05));
+  m.vertices.rowwise() += Eigen::RowVector3d(0.0, 0.0, -0.025);
+  return m;
+}
+
+/// A dumbbell's two ends: spheres of radius R (48 × 24 facets) centred at x = ∓half.
+inline std::array<geometry::TriangleMesh, 2> dumbbellEnds(double R, double half) {
+  std::array<geometry::TriangleMesh, 2> ends{geometry::tessellateSphere(R, 48, 24),
+                                             geometry::tessellateSphere(R, 48, 24)};
+  ends[0].vertices.col(0).array() -= half;
+  ends[1].vertices.col(0).array() += half;
+  return ends;
+}
+
 /// Box centred at the origin with every face split into n × n cells (2 triangles each), so a
 /// flat contact covers many small triangles.
 inline geometry::TriangleMesh subdividedBox(const Eigen::Vector3d& size, int n) {
