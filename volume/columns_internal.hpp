@@ -114,6 +114,11 @@ struct WetSegment {
 /// labelled one carry its label too (the nearest, first in index order on a tie), so that a
 /// boundary point or a wet piece that a finer grid sees just beside the sampled voxels is still
 /// given to its region.
+/// The index of voxel v in a grid of `dims` voxels stored x fastest, then y, then z.
+inline std::size_t voxelIndex(const Eigen::Vector3i& dims, const Eigen::Vector3i& v) {
+  return static_cast<std::size_t>((v.z() * dims.y() + v.y()) * dims.x() + v.x());
+}
+
 struct VoxelRegions {
   Vector3d lo = Vector3d::Zero();
   double size = 0.0;
@@ -128,7 +133,7 @@ struct VoxelRegions {
     if (!(c.array() >= 0.0).all()) return -1;
     const Eigen::Vector3i v = c.cast<int>();
     if ((v.array() >= dims.array()).any()) return -1;
-    return label[static_cast<std::size_t>((v.z() * dims.y() + v.y()) * dims.x() + v.x())];
+    return label[voxelIndex(dims, v)];
   }
 };
 

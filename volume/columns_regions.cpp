@@ -31,9 +31,7 @@ std::array<Eigen::Vector3i, 26> neighbourOffsets() {
 class VoxelGrid {
  public:
   explicit VoxelGrid(const VoxelRegions& r) : dims_(r.dims) {}
-  std::size_t index(const Eigen::Vector3i& v) const {
-    return static_cast<std::size_t>((v.z() * dims_.y() + v.y()) * dims_.x() + v.x());
-  }
+  std::size_t index(const Eigen::Vector3i& v) const { return voxelIndex(dims_, v); }
   Eigen::Vector3i voxel(std::size_t i) const {
     const int x = static_cast<int>(i % static_cast<std::size_t>(dims_.x()));
     const std::size_t yz = i / static_cast<std::size_t>(dims_.x());
