@@ -35,7 +35,8 @@ Dataset swayingDrive(std::size_t n, double mass) {
     d.columns["x"][k] = s.X_BA.translation().x();
     d.columns["vx"][k] = s.v_BA.x();
   }
-  d.inertia = PayloadInertia{mass, Eigen::Vector3d(1e-4, 1e-4, 2e-4).asDiagonal(), {}};
+  d.inertia =
+      PayloadInertia{mass, Eigen::Vector3d(1e-4, 1e-4, 2e-4).asDiagonal(), Eigen::Vector3d::Zero()};
   return d;
 }
 
