@@ -54,8 +54,22 @@ Columns pairColumns() {
           {"torque", {{}, 3}}, {"f_n", {{}, 1}},      {"s", {{}, 1}},      {"mu_max", {{}, 1}}};
 }
 
-void record(const dynamics::Snapshot& s, std::vector<Columns>& bodies,
-            std::vector<Columns>& pairs) {
+// A load's or spring's wrench on its body, as loads.csv writes it: the point where it acts,
+// the force and the torque about that point, in W.
+Columns loadColumns() {
+  return {{"t", {{}, 1}}, {"p", {{}, 3}}, {"force", {{}, 3}}, {"torque", {{}, 3}}};
+}
+
+// The scenario's loads, then its springs: the order of Snapshot::loads.
+std::vector<std::string> loadNames(const dynamics::Scenario& scenario) {
+  std::vector<std::string> names;
+  for (const auto& l : scenario.loads) names.push_back(l.name);
+  for (const auto& s : scenario.springs) names.push_back(s.name);
+  return names;
+}
+
+void record(const dynamics::Snapshot& s, std::vector<Columns>& bodies, std::vector<Columns>& pairs,
+            std::vector<Columns>& loads) {
   const Eigen::Matrix<double, 1, 1> t(s.t);
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const auto& k = s.bodies[i];
@@ -83,6 +97,13 @@ void record(const dynamics::Snapshot& s, std::vector<Columns>& bodies,
     c[10].second.values.push_back(p.result.s);
     c[11].second.values.push_back(p.result.mu_max);
   }
+  for (std::size_t k = 0; k < s.loads.size(); ++k) {
+    auto& c = loads[k];
+    c[0].second.values.push_back(s.t);
+    c[1].second.add(s.loads[k].p_W);
+    c[2].second.add(s.loads[k].wrench.f_W);
+    c[3].second.add(s.loads[k].wrench.tau_W);
+  }
 }
 
 // Runs the scenario; with `out`, also writes what `vcontact simulate --out` writes there.
@@ -90,6 +111,8 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
   dynamics::Simulator sim(s.file.scenario);
   std::vector<Columns> bodies(sim.scenario().bodies.size(), bodyColumns());
   std::vector<Columns> pairs(sim.scenario().pairs.size(), pairColumns());
+  const std::vector<std::string> names = loadNames(sim.scenario());
+  std::vector<Columns> loads(names.size(), loadColumns());
   std::unique_ptr<report::SimulationCsvWriter> writer;
   if (out)
     writer = std::make_unique<report::SimulationCsvWriter>(*out, sim.scenario(), s.file.outputs);
@@ -100,7 +123,7 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
     try {
       sim.run(
           [&](const dynamics::Snapshot& snap) {
-            record(snap, bodies, pairs);
+            record(snap, bodies, pairs, loads);
             if (writer) writer->write(snap);
           },
           [](double) {}, summary);
@@ -112,13 +135,15 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
   const nlohmann::json j =
       writer ? report::finishSimulationOutput(*writer, *out, summary, s.path, stop)
              : report::simulationSummaryJson(summary, s.path, stop);
-  py::dict result, b, p;
+  py::dict result, b, p, l;
   for (std::size_t i = 0; i < bodies.size(); ++i)
     b[py::str(sim.scenario().bodies[i].name)] = released(bodies[i]);
   for (std::size_t k = 0; k < pairs.size(); ++k)
     p[py::str(sim.scenario().pairs[k].name)] = released(pairs[k]);
+  for (std::size_t k = 0; k < loads.size(); ++k) l[py::str(names[k])] = released(loads[k]);
   result["bodies"] = b;
   result["pairs"] = p;
+  result["loads"] = l;
   result["summary"] = toPython(j);
   return result;
 }

@@ -149,6 +149,28 @@ def test_ball_drop_runs_and_writes_what_simulate_writes(tmp_path):
     assert os.path.samefile(summary["scenario"], s.path)
 
 
+def test_peg_insertion_hands_over_the_drive_as_loads_csv_writes_it(tmp_path):
+    s = vcontact.Scenario.load(os.path.join(ASSETS, "scenarios", "peg_insertion.json"))
+    r = s.run(out=tmp_path)
+    drive = r["loads"]["drive"]
+    n = len(drive["t"])
+    assert n == 121 and drive["force"].shape == (n, 3) and drive["torque"].shape == (n, 3)
+    assert drive["p"].shape == (n, 3)
+    # The drive's force is limited to 5 N (the scenario's "max_force"); at 0.12 s the target is
+    # 3.5 mm below where the peg rests, so the limit holds. The limit scales the force
+    # vector, so its norm is 5 N to rounding.
+    assert np.linalg.norm(drive["force"][-1]) == pytest.approx(5.0, rel=1e-12)
+    assert drive["force"][-1, 2] < -4.99
+    csv = np.genfromtxt(tmp_path / "loads.csv", delimiter=",", names=True, dtype=None,
+                        encoding="utf-8")
+    rows = csv[csv["load"] == "drive"]
+    np.testing.assert_array_equal(rows["t"], drive["t"])  # the same numbers, to the bit
+    np.testing.assert_array_equal(rows["fz"], drive["force"][:, 2])
+    np.testing.assert_array_equal(rows["tauy"], drive["torque"][:, 1])
+    np.testing.assert_array_equal(rows["px"], drive["p"][:, 0])
+    assert r["loads"].keys() == {"drive"}
+
+
 def test_the_viewer_page_is_written_for_a_run(tmp_path):
     if not os.path.exists("/usr/share/javascript/three/three.min.js"):
         pytest.fail("libjs-three is not installed (scripts/setup.sh installs it)")
