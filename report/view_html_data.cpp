@@ -192,6 +192,31 @@ nlohmann::json pairJson(const fs::path& dir, const dynamics::ContactPair& pair, 
           {"wrench", wrench},  {"patches", patches}, {"per_patch", perPatch}};
 }
 
+// loads.csv: per load and spring, in the order of their first row, one flat
+// [px py pz fx fy fz ...] per output time (the point where the force acts, and the force).
+nlohmann::json loadsJson(const fs::path& file, std::size_t frames) {
+  const CsvTable t = readCsv(file);
+  const int name = t.requireColumn("load");
+  const auto c = columns(t, {"px", "py", "pz", "fx", "fy", "fz"});
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> rows;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    const std::string& load = t.rows[r][static_cast<std::size_t>(name)];
+    auto [it, added] = rows.try_emplace(load);
+    if (added) order.push_back(load);
+    for (int col : c) it->second.push_back(t.number(r, col));
+  }
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::string& load : order) {
+    if (rows[load].size() != 6 * frames) {
+      throw InputError(t.path, "load '" + load + "' lacks a row at some of the " +
+                                   std::to_string(frames) + " output times of bodies.csv");
+    }
+    out.push_back({{"name", load}, {"rows", rows[load]}});
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json viewData(const ViewOptions& o, std::vector<std::string>& warnings) {
@@ -219,6 +244,13 @@ nlohmann::json viewData(const ViewOptions& o, std::vector<std::string>& warnings
       continue;
     }
     data["pairs"].push_back(pairJson(dir, pair, frames, warnings));
+  }
+  data["loads"] = nlohmann::json::array();
+  const bool hasLoads = !file.scenario.loads.empty() || !file.scenario.springs.empty();
+  if (fs::exists(dir / "loads.csv")) {
+    data["loads"] = loadsJson(dir / "loads.csv", frames);
+  } else if (hasLoads) {  // "outputs": {"loads": false}
+    warnings.push_back("loads.csv absent: the loads and springs are not shown");
   }
   return data;
 }

@@ -115,6 +115,36 @@ const char* viewScript() {
     return pool[j];
   };
 
+  // Loads and springs (loads.csv): an orange arrow from the point where the force acts, along
+  // the force, as long as its magnitude is against the largest of the run's loads.
+  let maxLoad = 0;
+  data.loads.forEach((l) => {
+    for (let j = 0; j < l.rows.length; j += 6)
+      maxLoad = Math.max(maxLoad, Math.hypot(l.rows[j + 3], l.rows[j + 4], l.rows[j + 5]));
+  });
+  const loadArrows = data.loads.map(() => {
+    const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xff8c00);
+    [arrow.line, arrow.cone].forEach((part) => { part.material.depthTest = false; part.renderOrder = 2; });
+    scene.add(arrow);
+    return arrow;
+  });
+  const showLoads = () => {
+    let shown = 0;
+    data.loads.forEach((l, k) => {
+      const r = l.rows.slice(6 * frame, 6 * frame + 6);
+      const f = new THREE.Vector3(r[3], r[4], r[5]);
+      const size = f.length();
+      loadArrows[k].visible = size > 0;
+      if (size === 0) return;
+      const len = Math.max(0.6 * radius * size / maxLoad, 0.05 * radius);
+      loadArrows[k].position.set(r[0], r[1], r[2]);
+      loadArrows[k].setDirection(f.normalize());
+      loadArrows[k].setLength(len, 0.3 * len, 0.15 * len);
+      ++shown;
+    });
+    document.body.dataset.loads = String(shown);
+  };
+
   let frame = 0;
   const setFrame = (i) => {
     frame = Math.max(0, Math.min(frames - 1, i));
@@ -143,6 +173,7 @@ const char* viewScript() {
     });
     document.body.dataset.frame = String(frame);
     document.body.dataset.markers = String(shown);
+    showLoads();
     slider.value = String(frame);
     clock.textContent = 't = ' + times[frame].toFixed(4) + ' s';
     drawPlot();

@@ -122,6 +122,27 @@ TEST_F(ViewCli, BallDropPlaysInHeadlessChromium) {
   EXPECT_NE(png0, png1);
 }
 
+TEST_F(ViewCli, PegInsertionShowsItsDriveForce) {
+  if (!fs::exists(kChromium) || !fs::exists(kThreeJs))
+    GTEST_SKIP() << "chromium or libjs-three is not installed (scripts/setup.sh installs both)";
+  const std::string scenario = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/peg_insertion.json";
+  ASSERT_EQ(
+      vcontact("simulate " + scenario + " --out " + (dir_ / "out").string() + " --quiet").exitCode,
+      0);
+  const CommandResult v =
+      vcontact("view " + (dir_ / "out").string() + " --out " + (dir_ / "view.html").string());
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  // The drive's 121 rows of loads.csv go into the page, six numbers each.
+  EXPECT_NE(readText(dir_ / "view.html").find("\"loads\":[{\"name\":\"drive\""), std::string::npos);
+  // At 0.12 s the drive pushes the peg onto the hole's floor with its limit, 5 N: one arrow.
+  const CommandResult end = chromium("--virtual-time-budget=3000 --dump-dom", "#t=0.12");
+  ASSERT_EQ(end.exitCode, 0) << end.err;
+  EXPECT_EQ(attribute(end.out, "ready"), "1") << end.out.substr(0, 400);
+  EXPECT_EQ(attribute(end.out, "errors"), "0") << attribute(end.out, "error-text");
+  EXPECT_EQ(attribute(end.out, "loads"), "1");
+  EXPECT_EQ(attribute(end.out, "frame"), "120");
+}
+
 TEST_F(ViewCli, RefusesAFolderWithoutASimulation) {
   const CommandResult r =
       vcontact("view " + dir_.string() + " --out " + (dir_ / "view.html").string());
