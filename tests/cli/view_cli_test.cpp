@@ -53,6 +53,16 @@ class ViewCli : public ::testing::Test {
                             (dir_ / "view.html").string() + page + '"';
     return runCommand(cmd, dir_ / "chromium.txt");
   }
+  // Runs the bundled scenario NAME into out/ and writes its page, view.html.
+  void simulateAndView(const std::string& name) {
+    const std::string scenario = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/" + name + ".json";
+    const CommandResult s =
+        vcontact("simulate " + scenario + " --out " + (dir_ / "out").string() + " --quiet");
+    ASSERT_EQ(s.exitCode, 0) << s.err;
+    const CommandResult v =
+        vcontact("view " + (dir_ / "out").string() + " --out " + (dir_ / "view.html").string());
+    ASSERT_EQ(v.exitCode, 0) << v.err;
+  }
   // The page's data-NAME attribute on <body>, as --dump-dom prints it.
   static std::string attribute(const std::string& dom, const std::string& name) {
     std::smatch m;
@@ -65,13 +75,7 @@ class ViewCli : public ::testing::Test {
 TEST_F(ViewCli, BallDropPlaysInHeadlessChromium) {
   if (!fs::exists(kChromium) || !fs::exists(kThreeJs))
     GTEST_SKIP() << "chromium or libjs-three is not installed (scripts/setup.sh installs both)";
-  const std::string scenario = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/ball_drop.json";
-  ASSERT_EQ(
-      vcontact("simulate " + scenario + " --out " + (dir_ / "out").string() + " --quiet").exitCode,
-      0);
-  const CommandResult v =
-      vcontact("view " + (dir_ / "out").string() + " --out " + (dir_ / "view.html").string());
-  ASSERT_EQ(v.exitCode, 0) << v.err;
+  ASSERT_NO_FATAL_FAILURE(simulateAndView("ball_drop"));
   const std::string html = readText(dir_ / "view.html");
   EXPECT_EQ(html.find("<script src"), std::string::npos);  // everything inlined: no server
   EXPECT_NE(html.find("REVISION"), std::string::npos);     // three.js is in the page
@@ -125,13 +129,7 @@ TEST_F(ViewCli, BallDropPlaysInHeadlessChromium) {
 TEST_F(ViewCli, PegInsertionShowsItsDriveForce) {
   if (!fs::exists(kChromium) || !fs::exists(kThreeJs))
     GTEST_SKIP() << "chromium or libjs-three is not installed (scripts/setup.sh installs both)";
-  const std::string scenario = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/peg_insertion.json";
-  ASSERT_EQ(
-      vcontact("simulate " + scenario + " --out " + (dir_ / "out").string() + " --quiet").exitCode,
-      0);
-  const CommandResult v =
-      vcontact("view " + (dir_ / "out").string() + " --out " + (dir_ / "view.html").string());
-  ASSERT_EQ(v.exitCode, 0) << v.err;
+  ASSERT_NO_FATAL_FAILURE(simulateAndView("peg_insertion"));
   // The drive's 121 rows of loads.csv go into the page, six numbers each.
   EXPECT_NE(readText(dir_ / "view.html").find("\"loads\":[{\"name\":\"drive\""), std::string::npos);
   // At 0.12 s the drive pushes the peg onto the hole's floor with its limit, 5 N: one arrow.
