@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Compares the last output time of `vcontact simulate` runs with a reference run of the same
 scenario (docs/DISCRETE.md §4): per free body, the distance between the body-frame origins
-(µm), the angle between the attitudes (mrad, the rotation taking one to the other), and the
+(µm; in brackets its vertical part, the run's z minus the reference's), the angle between the attitudes (mrad, the rotation taking one to the other), and the
 speed |v| and angular speed |w| of each run at that time.
 
   python3 scripts/rest_pose_table.py REFERENCE_DIR RUN_DIR [RUN_DIR ...]
@@ -54,7 +54,7 @@ def main():
     head = "| body | reference: v mm/s, w rad/s |"
     rule = "|---|---|"
     for folder, _ in runs:
-        head += f" {folder}: Δp µm, Δθ mrad, v mm/s, w rad/s |"
+        head += f" {folder}: Δp µm (Δz), Δθ mrad, v mm/s, w rad/s |"
         rule += "---|"
     print(f"t = {t_ref} s\n\n{head}\n{rule}")
     for body, r in ref.items():
@@ -64,7 +64,8 @@ def main():
         for _, rows in runs:
             q = rows[body]
             dp = math.dist([r[k] for k in "xyz"], [q[k] for k in "xyz"])
-            line += (f" {1e6 * dp:.3g}, {1e3 * angle(r, q):.3g}, "
+            dz = q["z"] - r["z"]
+            line += (f" {1e6 * dp:.3g} ({1e6 * dz:+.2g}), {1e3 * angle(r, q):.3g}, "
                      f"{1e3 * norm(q, ('vx', 'vy', 'vz')):.3g}, {norm(q, ('wx', 'wy', 'wz')):.3g} |")
         print(line)
 
