@@ -122,6 +122,11 @@ void registerPair(const std::string& name, const std::string& label, const Varia
     first.duration = 0.02;  // the approach and the jam's first contact, not the long creep
     registerPair("peg_jam", label, first);
   }
+  // Ten 2k-triangle parts in a bin, 55 pairs, 100 Hz output: discrete only (its Dormand–Prince
+  // run takes many minutes, docs/DISCRETE.md §4).
+  for (const auto& [label, v] : integrators) {
+    if (v.integrator == Integrator::kDiscrete) registerPair("bin_of_ten", label, v);
+  }
   return true;
 }();
 

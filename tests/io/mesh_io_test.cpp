@@ -253,7 +253,7 @@ TEST_F(MeshFiles, ShapeJsonTakesRepairAndAUnitName) {
 }
 
 TEST(BundledMeshes, ReadWithoutWarnings) {
-  for (const auto& dir : {"meshes", "scenarios/meshes"}) {
+  for (const auto& dir : {"meshes", "scenarios/meshes", "scenarios/meshes/bin"}) {
     for (const auto& entry : fs::directory_iterator(fs::path(VCONTACT_ASSETS_DIR) / dir)) {
       if (entry.path().extension() != ".stl") continue;
       SCOPED_TRACE(entry.path().string());
