@@ -47,7 +47,7 @@ Eigen::Quaterniond rotated(const Eigen::Quaterniond& q, const Eigen::Vector3d& w
 
 }  // namespace
 
-void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
+void Simulator::runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on_output,
                             const ProgressFn& on_progress, SimulationSummary& summary) {
   const SimulationSettings& set = scenario_.settings;
   for (const ContactPair& p : scenario_.pairs) {
@@ -59,26 +59,13 @@ void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
   }
   const double interval = 1.0 / set.output_rate_hz;
   long next_output = 1;
-  State dxdt(x.size());
+  resolve_dt_ = 0.0;
   while (t < set.duration) {
     const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
     const bool lands = t_target - t <= set.step * (1.0 + kOutputTimeSlack);
     const double h = lands ? t_target - t : set.step;
-    discreteStep(x, t, h);
-    t = lands ? t_target : t + h;
+    discreteInterval(x, dxdt, t, h, lands ? t_target : t + h, lands, summary);
     ++summary.steps;
-    normaliseQuaternions(x);
-    // The step's one contact query, at the new state; on an output time with the exact
-    // depths the output writes, which spares snapshot() a second query (fillDepths).
-    query_depths_ = lands && output_depths_;
-    rhs(x, dxdt, t);
-    query_depths_ = false;
-    check(x, t);
-    if (settlePairs(x, t)) {
-      reuse_contacts_ = true;
-      rhs(x, dxdt, t);
-      reuse_contacts_ = false;
-    }
     if (lands) {
       on_output(snapshot(x, t, output_depths_));
       ++next_output;
@@ -173,6 +160,7 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
   dp.pair = k;
   dp.slot = slot;
   dp.p_c = cv.p_WC;
+  dp.n = cv.n_W;
   const int size = pair.model.stateLayout().size();
   const PairState state =
       PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k] + host * size)], size);

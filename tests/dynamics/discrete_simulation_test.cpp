@@ -23,8 +23,12 @@ using Eigen::Vector3d;
 constexpr double kG = 9.81;
 constexpr double kSide = 0.02;  // m, cube edge
 
-Scenario discrete(Scenario s, double h, double duration, double rate = 1000.0) {
+// The plain step unless `mode` says otherwise: these tests are of the linearly implicit step
+// itself (discrete_impacts_test.cpp has those of the resolved impacts).
+Scenario discrete(Scenario s, double h, double duration, double rate = 1000.0,
+                  dynamics::ImpactMode mode = dynamics::ImpactMode::kImplicit) {
   s.settings.integrator = Integrator::kDiscrete;
+  s.settings.impacts = mode;
   s.settings.step = h;
   s.settings.duration = duration;
   s.settings.output_rate_hz = rate;
