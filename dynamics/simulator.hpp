@@ -262,6 +262,8 @@ class Simulator {
   bool query_depths_ = false;
   bool output_depths_ = true;  ///< setOutputDepths()
   std::vector<int> column_;  ///< per body, its first column in the step's system, −1 if not free
+  /// Per body, whether the step has no contact patch, load or spring on it (free flight).
+  std::vector<char> in_flight_;
   std::vector<DiscretePatch> step_patches_;
   std::size_t step_patch_count_ = 0;
   Eigen::MatrixXd step_matrix_;

@@ -107,6 +107,9 @@ void Simulator::discreteStep(State& x, double t, double h) {
     step_rhs_.segment<3>(c + 3) = I_W * w + h * (torque_[i] - w.cross(I_W * w));
   }
   assembleLoads(t, h);
+  in_flight_.assign(nb, 1);
+  for (const ExternalLoad& l : scenario_.loads) in_flight_[l.body] = 0;
+  for (const BodySpring& s : scenario_.springs) in_flight_[s.a] = in_flight_[s.b] = 0;
   // the contact patches
   step_patch_count_ = 0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
@@ -132,9 +135,13 @@ void Simulator::discreteStep(State& x, double t, double h) {
     double* s = &x[static_cast<std::size_t>(offset_[i])];
     const Eigen::Vector3d v = next_kin_[i].v_WBcm, w = next_kin_[i].w_WB;
     const Eigen::Quaterniond q = rotated(Eigen::Quaterniond(s[3], s[4], s[5], s[6]), w, h);
-    const double next[kBodyStates] = {s[0] + h * v.x(),
-                                      s[1] + h * v.y(),
-                                      s[2] + h * v.z(),
+    // In free flight the force is constant over the step (gravity), so the trapezoid rule
+    // moves the centre of mass exactly; in contact the displacement is h v⁺, with which (1.3)
+    // linearised the stiffness (docs/DISCRETE.md §1).
+    const Eigen::Vector3d u = in_flight_[i] ? Eigen::Vector3d(0.5 * (kin_[i].v_WBcm + v)) : v;
+    const double next[kBodyStates] = {s[0] + h * u.x(),
+                                      s[1] + h * u.y(),
+                                      s[2] + h * u.z(),
                                       q.w(),
                                       q.x(),
                                       q.y(),
@@ -155,6 +162,7 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
                               const State& x, double h) {
   if (!cv.inContact()) return;
   const ContactPair& pair = scenario_.pairs[k];
+  in_flight_[pair.a] = in_flight_[pair.b] = 0;
   if (step_patch_count_ == step_patches_.size()) step_patches_.emplace_back();
   DiscretePatch& dp = step_patches_[step_patch_count_++];
   dp.pair = k;
