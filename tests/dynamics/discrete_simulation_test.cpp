@@ -181,7 +181,7 @@ TEST(DiscreteSimulation, FrictionlessElasticBounceNeverGainsEnergy) {
 
 // Stiffness and damping (a = 1 s/m, ball_drop's model without friction): backward Euler
 // converges to the exact restitution of MODEL.md §5 at first order in h. At h = 1 µs (a
-// tenth of the impact's ~25 µs) it is 2 % low; the Richardson extrapolation 2 e(h) − e(2h)
+// 280th of the impact's 0.28 ms) it is 2 % low; the Richardson extrapolation 2 e(h) − e(2h)
 // is within 1 % (docs/DISCRETE.md §5 tabulates e(h)).
 TEST(DiscreteSimulation, DampedDropRestitutionConvergesToTheExactRelation) {
   Model m = Model::withEffects({"stiffness", "damping"});
