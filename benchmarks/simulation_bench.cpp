@@ -2,7 +2,8 @@
 // simulate/<scenario> with the scenario's own integrator, simulate/<scenario>/<integrator> as
 // the A/B pair of Dormand–Prince and BDF on the same scenario, and
 // simulate/<scenario>/discrete_<h> for the fixed-step discrete integrator against the
-// Dormand–Prince run (docs/DISCRETE.md §4). Counters: real_time_factor
+// Dormand–Prince run (docs/DISCRETE.md §4), its impacts resolved (the default) or, with the
+// suffix _implicit, left to the plain step (§5). Counters: real_time_factor
 // (simulated seconds per CPU second), steps, contact evaluations (Jacobians' included) and
 // Jacobians per run, output samples, and the final height of the last body (m) as a sanity
 // figure beside the time.
@@ -20,6 +21,7 @@
 
 namespace {
 
+using vcontact::dynamics::ImpactMode;
 using vcontact::dynamics::Integrator;
 using vcontact::dynamics::SimulationSummary;
 using vcontact::dynamics::Simulator;
@@ -67,15 +69,18 @@ double largestSpeed(const Snapshot& s) {
 
 // The discrete stepper at step h against the Dormand–Prince reference of the same scenario,
 // in the same process: counters rest_diff_m (largest distance between the bodies' final
-// centres of mass), final_speed_m_s and ref_speed_m_s (largest final speed of a body).
-// Without `with_reference` (bin_of_ten, whose Dormand–Prince run takes many minutes) only the
-// time, the counts and final_speed_m_s.
-void discrete(benchmark::State& state, const std::string& name, double h, bool with_reference) {
+// centres of mass), final_speed_m_s and ref_speed_m_s (largest final speed of a body),
+// resolved_steps, impacts and first_restitution (of the run's first impact, 0 without one).
+// Without `with_reference` (bin_of_ten, whose Dormand–Prince run takes many minutes) neither
+// rest_diff_m nor ref_speed_m_s.
+void discrete(benchmark::State& state, const std::string& name, double h, bool with_reference,
+              ImpactMode mode) {
   vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
   file.scenario.settings.integrator = Integrator::kDiscrete;
   file.scenario.settings.step = h;
-  double simulated = 0.0;
-  long steps = 0, contacts = 0;
+  file.scenario.settings.impacts = mode;
+  double simulated = 0.0, restitution = 0.0;
+  long steps = 0, contacts = 0, resolved = 0, impacts = 0;
   Snapshot last;
   for (auto _ : state) {
     Simulator sim(file.scenario);
@@ -84,10 +89,16 @@ void discrete(benchmark::State& state, const std::string& name, double h, bool w
     simulated += summary.simulated_time;
     steps = summary.steps;
     contacts = summary.contact_evaluations;
+    resolved = summary.resolved_steps;
+    impacts = static_cast<long>(summary.impacts.size());
+    restitution = summary.impacts.empty() ? 0.0 : summary.impacts.front().restitution;
   }
   state.counters["real_time_factor"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["contact_evals"] = static_cast<double>(contacts);
+  state.counters["resolved_steps"] = static_cast<double>(resolved);
+  state.counters["impacts"] = static_cast<double>(impacts);
+  state.counters["first_restitution"] = restitution;
   state.counters["final_speed_m_s"] = largestSpeed(last);
   state.counters["final_z_m"] = last.bodies.back().p_WBcm.z();
   if (!with_reference) return;
@@ -146,10 +157,13 @@ void registerScenario(const std::string& name) {
   for (const char* name : {"ball_drop", "tippe_top", "cad_tray_drop", "bin_of_ten"}) {
     const bool with_reference = std::string(name) != "bin_of_ten";
     for (const auto& [suffix, h] : {std::pair{"1ms", 1e-3}, std::pair{"0.5ms", 5e-4}}) {
-      benchmark::RegisterBenchmark(
-          ("simulate/" + std::string(name) + "/discrete_" + suffix).c_str(), discrete,
-          std::string(name), h, with_reference)
-          ->Unit(benchmark::kMillisecond);
+      for (const auto& [mode_suffix, mode] :
+           {std::pair{"", ImpactMode::kResolve}, std::pair{"_implicit", ImpactMode::kImplicit}}) {
+        benchmark::RegisterBenchmark(
+            ("simulate/" + std::string(name) + "/discrete_" + suffix + mode_suffix).c_str(),
+            discrete, std::string(name), h, with_reference, mode)
+            ->Unit(benchmark::kMillisecond);
+      }
     }
   }
   // Two meshes, fast method, 2 kHz output: the CAD-part target (>= 1x at 1 kHz).

@@ -68,6 +68,12 @@ enum class Integrator {
 constexpr double kMinDiscreteStep = 1e-6;
 constexpr double kMaxDiscreteStep = 1e-2;
 
+/// What the discrete integrator does with an impact shorter than its step (docs/DISCRETE.md §5).
+enum class ImpactMode {
+  kResolve,  ///< integrate such a step's interval by Dormand–Prince, then resume fixed steps
+  kImplicit  ///< the plain linearly implicit step throughout (dissipates the impact)
+};
+
 struct SimulationSettings {
   Integrator integrator = Integrator::kDopri5;
   double duration = 1.0;           ///< s
@@ -80,6 +86,8 @@ struct SimulationSettings {
   /// s, the fixed step of Integrator::kDiscrete, in [kMinDiscreteStep, kMaxDiscreteStep]
   /// (shortened only to land on output times and the end).
   double step = 1e-3;
+  /// Integrator::kDiscrete only ("impacts": "resolve" or "implicit").
+  ImpactMode impacts = ImpactMode::kResolve;
   /// Stop when a pair's mean penetration V/A exceeds this fraction of the smaller body's size.
   double max_penetration_fraction = 0.1;
 };

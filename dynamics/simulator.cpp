@@ -452,6 +452,8 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     summary.contact_evaluations = contact_count_ - contacts_start;
     summary.surface_bodies = recovered_->bodies();
     summary.surface_pairs = recovered_->pairs();
+    impacts_.finish(t);
+    summary.impacts = impacts_.impacts();
   };
 
   non_finite_effect_.clear();
@@ -467,11 +469,16 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   const Snapshot& first = snapshot(x, t, true);  // with the depths, which the guard's bound uses
   energy_guard_.emplace(scenario_, guard_kin_, first.pairs);
   output(first);
+  // An impact settles once the normal speed stays below the speed at which the discrete
+  // stepper resolves impacts (at h = 1 ms at least) for five such steps.
+  const double scale = std::max(scenario_.settings.step, 1e-3);
+  impacts_.reset(scenario_, impactThreshold(scale), 5.0 * scale);
+  impacts_.observe(t, kin_, last_pairs_);
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {
       runBdf(x, t, output, on_progress, summary);
     } else if (scenario_.settings.integrator == Integrator::kDiscrete) {
-      runDiscrete(x, t, output, on_progress, summary);
+      runDiscrete(x, dxdt, t, output, on_progress, summary);
     } else {
       runDopri5(x, dxdt, t, output, on_progress, summary);
     }
@@ -515,6 +522,7 @@ void Simulator::runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_o
     if (x != last_x_) rhs(x, dxdt, t);
     check(x, t);
     if (settle(x, t)) rhs(x, dxdt, t);
+    impacts_.observe(t, kin_, last_pairs_);
     if (t >= t_target - kOutputTimeSlack * interval) {
       t = t_target;
       on_output(snapshot(x, t, output_depths_));

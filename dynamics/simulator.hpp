@@ -31,6 +31,7 @@
 
 #include "dynamics/discrete_jacobian.hpp"
 #include "dynamics/energy_guard.hpp"
+#include "dynamics/impact_tracker.hpp"
 #include "dynamics/patch_tracker.hpp"
 #include "dynamics/recovered_pairs.hpp"
 #include "dynamics/scenario.hpp"
@@ -46,6 +47,7 @@ struct DiscretePatch {
   std::size_t pair = 0;
   int slot = -1;  ///< its own state slot, −1 when none
   Eigen::Vector3d p_c = Eigen::Vector3d::Zero();
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
   PatchStep step;
 };
 
@@ -118,6 +120,12 @@ struct SimulationSummary {
   /// empty when no body has "surface": "recovered".
   std::vector<SurfaceBodyUse> surface_bodies;
   std::vector<SurfacePairUse> surface_pairs;
+  /// The impacts of the pairs (dynamics/impact_tracker.hpp); dopri5 and discrete runs.
+  std::vector<ImpactRecord> impacts;
+  /// Discrete runs: the steps whose interval was integrated by Dormand–Prince to resolve an
+  /// impact, and the accepted Dormand–Prince steps they took (docs/DISCRETE.md §5).
+  long resolved_steps = 0;
+  long resolution_substeps = 0;
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
 
@@ -156,12 +164,19 @@ class Simulator {
                  const ProgressFn& on_progress, SimulationSummary& summary);
   void runBdf(State& x, double& t, const OutputFn& on_output, const ProgressFn& on_progress,
               SimulationSummary& summary);
-  void runDiscrete(State& x, double& t, const OutputFn& on_output, const ProgressFn& on_progress,
-                   SimulationSummary& summary);
+  void runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on_output,
+                   const ProgressFn& on_progress, SimulationSummary& summary);
   void discreteStep(State& x, double t, double h);
   void assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
                      const State& x, double h);
   void updateDiscreteStates(State& x, double h);
+  void discreteInterval(State& x, State& dxdt, double& t, double h, double t1, bool lands,
+                        SimulationSummary& summary);
+  double impactThreshold(double h) const;
+  double impactDuration(std::size_t k) const;
+  bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool onsets_only, double h) const;
+  void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
+  void stepImpulses(double h);
   void assembleLoads(double t, double h);
   void loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
                  Vector6d out[2]) const;
@@ -247,6 +262,8 @@ class Simulator {
   bool query_depths_ = false;
   bool output_depths_ = true;  ///< setOutputDepths()
   std::vector<int> column_;  ///< per body, its first column in the step's system, −1 if not free
+  /// Per body, whether the step has no contact patch, load or spring on it (free flight).
+  std::vector<char> in_flight_;
   std::vector<DiscretePatch> step_patches_;
   std::size_t step_patch_count_ = 0;
   Eigen::MatrixXd step_matrix_;
@@ -254,6 +271,15 @@ class Simulator {
   Eigen::VectorXd step_rhs_, step_twist_;
   std::vector<BodyKinematics> next_kin_;  ///< the bodies at the step's end (prescribed ones)
   std::vector<BodyKinematics> load_kin_;  ///< assembleLoads()' perturbed kinematics
+  // Impacts (simulator_discrete_impacts.cpp): the step's start, kept to take it again by
+  // Dormand–Prince when it brought a pair into an impact; the normal impulse of each pair over
+  // the latest discrete step; the latest accepted step of the resolutions.
+  State start_x_, start_dxdt_;
+  std::vector<BodyKinematics> start_kin_;
+  std::vector<char> start_contact_;
+  std::vector<double> step_impulse_;
+  double resolve_dt_ = 0.0;
+  ImpactTracker impacts_;
   long rhs_count_ = 0;
   long contact_count_ = 0;
   Snapshot output_;      ///< snapshot()'s result, reused from one output time to the next

@@ -47,7 +47,7 @@ Eigen::Quaterniond rotated(const Eigen::Quaterniond& q, const Eigen::Vector3d& w
 
 }  // namespace
 
-void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
+void Simulator::runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on_output,
                             const ProgressFn& on_progress, SimulationSummary& summary) {
   const SimulationSettings& set = scenario_.settings;
   for (const ContactPair& p : scenario_.pairs) {
@@ -59,26 +59,13 @@ void Simulator::runDiscrete(State& x, double& t, const OutputFn& on_output,
   }
   const double interval = 1.0 / set.output_rate_hz;
   long next_output = 1;
-  State dxdt(x.size());
+  resolve_dt_ = 0.0;
   while (t < set.duration) {
     const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
     const bool lands = t_target - t <= set.step * (1.0 + kOutputTimeSlack);
     const double h = lands ? t_target - t : set.step;
-    discreteStep(x, t, h);
-    t = lands ? t_target : t + h;
+    discreteInterval(x, dxdt, t, h, lands ? t_target : t + h, lands, summary);
     ++summary.steps;
-    normaliseQuaternions(x);
-    // The step's one contact query, at the new state; on an output time with the exact
-    // depths the output writes, which spares snapshot() a second query (fillDepths).
-    query_depths_ = lands && output_depths_;
-    rhs(x, dxdt, t);
-    query_depths_ = false;
-    check(x, t);
-    if (settlePairs(x, t)) {
-      reuse_contacts_ = true;
-      rhs(x, dxdt, t);
-      reuse_contacts_ = false;
-    }
     if (lands) {
       on_output(snapshot(x, t, output_depths_));
       ++next_output;
@@ -120,6 +107,9 @@ void Simulator::discreteStep(State& x, double t, double h) {
     step_rhs_.segment<3>(c + 3) = I_W * w + h * (torque_[i] - w.cross(I_W * w));
   }
   assembleLoads(t, h);
+  in_flight_.assign(nb, 1);
+  for (const ExternalLoad& l : scenario_.loads) in_flight_[l.body] = 0;
+  for (const BodySpring& s : scenario_.springs) in_flight_[s.a] = in_flight_[s.b] = 0;
   // the contact patches
   step_patch_count_ = 0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
@@ -145,9 +135,13 @@ void Simulator::discreteStep(State& x, double t, double h) {
     double* s = &x[static_cast<std::size_t>(offset_[i])];
     const Eigen::Vector3d v = next_kin_[i].v_WBcm, w = next_kin_[i].w_WB;
     const Eigen::Quaterniond q = rotated(Eigen::Quaterniond(s[3], s[4], s[5], s[6]), w, h);
-    const double next[kBodyStates] = {s[0] + h * v.x(),
-                                      s[1] + h * v.y(),
-                                      s[2] + h * v.z(),
+    // In free flight the force is constant over the step (gravity), so the trapezoid rule
+    // moves the centre of mass exactly; in contact the displacement is h v⁺, with which (1.3)
+    // linearised the stiffness (docs/DISCRETE.md §1).
+    const Eigen::Vector3d u = in_flight_[i] ? Eigen::Vector3d(0.5 * (kin_[i].v_WBcm + v)) : v;
+    const double next[kBodyStates] = {s[0] + h * u.x(),
+                                      s[1] + h * u.y(),
+                                      s[2] + h * u.z(),
                                       q.w(),
                                       q.x(),
                                       q.y(),
@@ -168,11 +162,13 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
                               const State& x, double h) {
   if (!cv.inContact()) return;
   const ContactPair& pair = scenario_.pairs[k];
+  in_flight_[pair.a] = in_flight_[pair.b] = 0;
   if (step_patch_count_ == step_patches_.size()) step_patches_.emplace_back();
   DiscretePatch& dp = step_patches_[step_patch_count_++];
   dp.pair = k;
   dp.slot = slot;
   dp.p_c = cv.p_WC;
+  dp.n = cv.n_W;
   const int size = pair.model.stateLayout().size();
   const PairState state =
       PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k] + host * size)], size);

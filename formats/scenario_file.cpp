@@ -227,6 +227,16 @@ dynamics::SimulationSettings readSettings(const Reader& r) {
     }
   }
   s.step = r.number("step", s.step, dynamics::kMinDiscreteStep, dynamics::kMaxDiscreteStep);
+  if (r.has("impacts")) {
+    const std::string mode = r.text("impacts");
+    if (mode == "resolve") {
+      s.impacts = dynamics::ImpactMode::kResolve;
+    } else if (mode == "implicit") {
+      s.impacts = dynamics::ImpactMode::kImplicit;
+    } else {
+      r.fail("impacts", "expected \"resolve\" or \"implicit\"");
+    }
+  }
   if (!r.has("tolerances")) return s;
   const Reader t = r.child("tolerances");
   t.allowOnly({"abs", "rel", "initial_step", "max_step", "min_step", "max_penetration_fraction"});
@@ -457,8 +467,8 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir) {
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
-  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "gravity", "tolerances",
-               "bodies", "models", "pairs", "contacts", "loads", "springs", "outputs",
+  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "impacts", "gravity",
+               "tolerances", "bodies", "models", "pairs", "contacts", "loads", "springs", "outputs",
                "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");

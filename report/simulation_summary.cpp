@@ -30,6 +30,22 @@ nlohmann::json surfacesJson(const dynamics::SimulationSummary& s) {
   return {{"bodies", bodies}, {"pairs", pairs}};
 }
 
+// "impacts": one object per impact of a pair (dynamics/impact_tracker.hpp).
+nlohmann::json impactsJson(const dynamics::SimulationSummary& s) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const dynamics::ImpactRecord& r : s.impacts) {
+    out.push_back({{"pair", r.pair},
+                   {"start_s", r.start},
+                   {"duration_s", r.duration},
+                   {"normal_impulse_Ns", r.impulse},
+                   {"approach_speed_m_s", r.approach_speed},
+                   {"separation_speed_m_s", r.separation_speed},
+                   {"restitution", r.restitution},
+                   {"outcome", r.outcome}});
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
@@ -49,6 +65,11 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
                         {"mean", s.patches_mean},
                         {"without_slot", s.patches_without_slot}}}};
   if (!s.surface_bodies.empty()) j["surfaces"] = surfacesJson(s);
+  j["impacts"] = impactsJson(s);
+  if (s.resolved_steps > 0) {
+    j["resolved_steps"] = s.resolved_steps;
+    j["resolution_substeps"] = s.resolution_substeps;
+  }
   if (stop) {
     j["stopped_at_s"] = stop->time;
     j["stop_cause"] = dynamics::stopCauseName(stop->cause);

@@ -23,8 +23,12 @@ using Eigen::Vector3d;
 constexpr double kG = 9.81;
 constexpr double kSide = 0.02;  // m, cube edge
 
-Scenario discrete(Scenario s, double h, double duration, double rate = 1000.0) {
+// The plain step unless `mode` says otherwise: these tests are of the linearly implicit step
+// itself (discrete_impacts_test.cpp has those of the resolved impacts).
+Scenario discrete(Scenario s, double h, double duration, double rate = 1000.0,
+                  dynamics::ImpactMode mode = dynamics::ImpactMode::kImplicit) {
   s.settings.integrator = Integrator::kDiscrete;
+  s.settings.impacts = mode;
   s.settings.step = h;
   s.settings.duration = duration;
   s.settings.output_rate_hz = rate;
@@ -177,7 +181,7 @@ TEST(DiscreteSimulation, FrictionlessElasticBounceNeverGainsEnergy) {
 
 // Stiffness and damping (a = 1 s/m, ball_drop's model without friction): backward Euler
 // converges to the exact restitution of MODEL.md §5 at first order in h. At h = 1 µs (a
-// tenth of the impact's ~25 µs) it is 2 % low; the Richardson extrapolation 2 e(h) − e(2h)
+// 280th of the impact's 0.28 ms) it is 2 % low; the Richardson extrapolation 2 e(h) − e(2h)
 // is within 1 % (docs/DISCRETE.md §5 tabulates e(h)).
 TEST(DiscreteSimulation, DampedDropRestitutionConvergesToTheExactRelation) {
   Model m = Model::withEffects({"stiffness", "damping"});
