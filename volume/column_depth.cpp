@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace vcontact::volume {
 namespace {
@@ -20,6 +21,17 @@ constexpr double kReach = 1e-12;
 /// its edges. Above it the plane's height is evaluated and clamped to the face's own range,
 /// so a steep face's large slope does no harm.
 constexpr double kWall = 1e-12;
+/// The boxes of the quick rejections are grown by this many τ: a segment beyond 2τ of a point
+/// (or of another segment) is beyond τ by far more than the rounding of the exact formulas
+/// (a few ε of the coordinates, against τ = 1e-12 of them), which would reject it as well.
+constexpr double kBoxGrowth = 2.0;
+/// Faces are filed in blocks of kBlock × kBlock cells: a face's projection covers many cells
+/// (a flat contact's faces are large against its segments), and a vertex column passes over
+/// the faces of its block whose box misses it at the cost of a comparison.
+constexpr int kBlock = 4;
+/// The test |den| > τ·√m of crossingDepth decided on squares where they differ by more than
+/// this fraction (a few ulps of rounding either way), by the square root in the band between.
+constexpr double kSquareBand = 1e-9;
 
 double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -34,6 +46,13 @@ void ColumnDepth::add(std::uint64_t faceKey, const Vector3d& n_f, const Vector3d
 
 int ColumnDepth::Grid::col(double x) const {
   return std::clamp(static_cast<int>(std::floor((x - x0) / hx)), 0, nx - 1);
+}
+
+/// Face block (r, c) of kBlock × kBlock cells as a bin index; with `count`, the number of
+/// blocks.
+int ColumnDepth::blockOf(int r, int c, bool count) const {
+  const int bx = (grid_.nx + kBlock - 1) / kBlock, by = (grid_.ny + kBlock - 1) / kBlock;
+  return count ? bx * by : r * bx + c;
 }
 
 int ColumnDepth::Grid::row(double y) const {
@@ -55,7 +74,8 @@ void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
   for (std::size_t k = 0; k < order_.size(); ++k) {
     const Input& in = input_[static_cast<std::size_t>(order_[k])];
     const Vector3d p = in.p - o, q = in.q - o;
-    const Seg s{{u.dot(p), v.dot(p)}, {u.dot(q), v.dot(q)}, n.dot(p), n.dot(q), 0};
+    const Vector2d a(u.dot(p), v.dot(p)), b(u.dot(q), v.dot(q));
+    const Seg s{a, b, n.dot(p), n.dot(q), 0, 0, a.cwiseMin(b), a.cwiseMax(b), (b - a).norm()};
     if (k == 0 || in.key != input_[static_cast<std::size_t>(order_[k - 1])].key) {
       const double c = in.n_f.dot(n);
       const int seg = static_cast<int>(segs_.size());
@@ -78,6 +98,7 @@ void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
     segs_.push_back(s);
     segs_.back().face = static_cast<int>(faces_.size()) - 1;
   }
+  for (Seg& s : segs_) s.side = faces_[static_cast<std::size_t>(s.face)].side;
 }
 
 /// About one cell per segment over the projections' bounding box (τ added around it).
@@ -126,10 +147,10 @@ void ColumnDepth::fileSegment(int index) {
 void ColumnDepth::fileFace(int index) {
   const Face& f = faces_[static_cast<std::size_t>(index)];
   if (f.side == 0) return;
-  const int r0 = grid_.row(f.bmin.y()), r1 = grid_.row(f.bmax.y());
-  const int c0 = grid_.col(f.bmin.x()), c1 = grid_.col(f.bmax.x());
+  const int r0 = grid_.row(f.bmin.y()) / kBlock, r1 = grid_.row(f.bmax.y()) / kBlock;
+  const int c0 = grid_.col(f.bmin.x()) / kBlock, c1 = grid_.col(f.bmax.x()) / kBlock;
   for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) facePairs_.emplace_back(r * grid_.nx + c, index);
+    for (int c = c0; c <= c1; ++c) facePairs_.emplace_back(blockOf(r, c), index);
   }
 }
 
@@ -170,9 +191,14 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h) const {
     hi = std::max(hi, z);
   };
   const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
+  const double g = kBoxGrowth * tau_;
   // Edges within τ: the heights over the part of each that lies within τ of the column.
   for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
+    if ((x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
+        (x.y() > s.hi.y() + g)) {
+      continue;
+    }
     const Vector2d d = s.b - s.a, w = x - s.a;
     const double L2 = d.squaredNorm();
     if (L2 == 0.0) {  // an edge along n
@@ -188,55 +214,121 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h) const {
     reach(s.ha + t1 * (s.hb - s.ha));
   }
   // The top and bottom faces whose projection holds x: the column meets their planes there.
-  for (int k = faceStart_[cell]; k < faceStart_[cell + 1]; ++k) {
+  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
+  for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
     const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
     if (holds(F, x)) reach(std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi));
   }
   return hi - lo;
 }
 
+/// Is segment t farther than g from the line of s, all on one side (cross products against
+/// s's direction, of length `len`)?
+bool ColumnDepth::beyondLine(const Seg& s, const Seg& t, double g) {
+  const Vector2d ds = s.b - s.a;
+  const double c1 = cross2(ds, t.a - s.a), c2 = cross2(ds, t.b - s.a), limit = g * s.len;
+  return ((c1 > limit) & (c2 > limit)) | ((c1 < -limit) & (c2 < -limit));
+}
+
+/// Are s and t one segment (a crossing line t_A ∩ t_B bounds a face of each body: one is a
+/// top face, the other a bottom one)? Then dt = ±ds exactly, and crossingDepth's den is 0, or
+/// its rounding with a fused multiply-add (ε|ds|², far below τ|ds|): it would skip them.
+bool ColumnDepth::sameEnds(const Seg& s, const Seg& t) {
+  return (s.a == t.b && s.b == t.a) || (s.a == t.a && s.b == t.b);
+}
+
 /// The largest height difference of a top edge over a bottom edge where their projections
-/// cross within the cell.
+/// cross within the cell (the cell's list holds its top edges first, then its bottom edges).
+/// A pair is evaluated with s the edge of lower index, as every pass of the grid sees it.
+/// Pairs whose boxes, grown by 2τ, miss each other, or of which one edge lies beyond 2τ of the
+/// other's line, are passed over: where the formulas below accept a pair, its crossing point
+/// lies on s and within τ of t, both to a rounding far below τ, so the edges come within
+/// about τ of each other, and of each other's lines.
 double ColumnDepth::crossingsIn(int cell) const {
+  const int first = segStart_[cell], last = segStart_[cell + 1];
+  int bottoms = first;
+  while (bottoms < last && segs_[static_cast<std::size_t>(cellSegs_[bottoms])].side > 0) {
+    ++bottoms;
+  }
+  int walls = bottoms;
+  while (walls < last && segs_[static_cast<std::size_t>(cellSegs_[walls])].side < 0) ++walls;
   double best = 0.0;
-  for (int i = segStart_[cell]; i < segStart_[cell + 1]; ++i) {
-    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[i])];
-    const int side = faces_[static_cast<std::size_t>(s.face)].side;
-    if (side == 0) continue;
-    for (int j = i + 1; j < segStart_[cell + 1]; ++j) {
-      const Seg& t = segs_[static_cast<std::size_t>(cellSegs_[j])];
-      if (faces_[static_cast<std::size_t>(t.face)].side != -side) continue;
-      const Vector2d ds = s.b - s.a, dt = t.b - t.a, w = t.a - s.a;
-      const double den = cross2(ds, dt), dt2 = dt.squaredNorm();
-      // Edges that stay within τ of each other's line over their length (sin α · length ≤ τ):
-      // δ is linear along their overlap, whose ends are vertex columns, which see the other
-      // edge within τ. Skipped here, where their crossing would be ill-conditioned.
-      if (!(std::abs(den) > tau_ * std::sqrt(std::min(ds.squaredNorm(), dt2)))) continue;
-      const double a = cross2(w, dt) / den;
-      if (a < 0.0 || a > 1.0) continue;
-      // t's height at the foot of s's crossing point on t: both at one column (to τ) even
-      // where the rounding moves the crossing along the edges
-      const Vector2d x = s.a + a * ds;
-      const double b = (x - t.a).dot(dt) / dt2;
-      if (b < 0.0 || b > 1.0 || (t.a + b * dt - x).norm() > tau_) continue;
-      const double hs = s.ha + a * (s.hb - s.ha), ht = t.ha + b * (t.hb - t.ha);
-      best = std::max(best, side > 0 ? hs - ht : ht - hs);
+  const double g = kBoxGrowth * tau_;
+  for (int i = first; i < bottoms; ++i) {
+    const Seg& top = segs_[static_cast<std::size_t>(cellSegs_[i])];
+    const Vector2d lo = top.lo.array() - g, hi = top.hi.array() + g;
+    for (int j = bottoms; j < walls; ++j) {
+      const Seg& bottom = segs_[static_cast<std::size_t>(cellSegs_[j])];
+      if ((bottom.hi.x() < lo.x()) | (bottom.lo.x() > hi.x()) | (bottom.hi.y() < lo.y()) |
+              (bottom.lo.y() > hi.y()) ||
+          sameEnds(top, bottom) || beyondLine(top, bottom, g) || beyondLine(bottom, top, g)) {
+        continue;
+      }
+      const bool topFirst = cellSegs_[i] < cellSegs_[j];
+      best = std::max(best, crossingDepth(topFirst ? top : bottom, topFirst ? bottom : top));
     }
   }
   return best;
 }
 
+/// The height of the top edge over the bottom one where the projections of s and t (one of
+/// each) cross, or 0 where they do not.
+double ColumnDepth::crossingDepth(const Seg& s, const Seg& t) const {
+  const Vector2d ds = s.b - s.a, dt = t.b - t.a, w = t.a - s.a;
+  const double den = cross2(ds, dt), dt2 = dt.squaredNorm();
+  // Edges that stay within τ of each other's line over their length (sin α · length ≤ τ):
+  // δ is linear along their overlap, whose ends are vertex columns, which see the other
+  // edge within τ. Skipped here, where their crossing would be ill-conditioned.
+  const double m = std::min(ds.squaredNorm(), dt2), den2 = den * den, tau2m = tau_ * tau_ * m;
+  if (den2 <= (1.0 - kSquareBand) * tau2m) return 0.0;
+  if (den2 < (1.0 + kSquareBand) * tau2m && !(std::abs(den) > tau_ * std::sqrt(m))) return 0.0;
+  const double a = cross2(w, dt) / den;
+  if (a < 0.0 || a > 1.0) return 0.0;
+  // t's height at the foot of s's crossing point on t: both at one column (to τ) even
+  // where the rounding moves the crossing along the edges
+  const Vector2d x = s.a + a * ds;
+  const double b = (x - t.a).dot(dt) / dt2;
+  if (b < 0.0 || b > 1.0 || (t.a + b * dt - x).norm() > tau_) return 0.0;
+  const double hs = s.ha + a * (s.hb - s.ha), ht = t.ha + b * (t.hb - t.ha);
+  return s.side > 0 ? hs - ht : ht - hs;
+}
+
+/// The column through every distinct first end of a segment (the ends of a face's loops are
+/// the first ends of its segments): equal ends (the same computed point, filed by several
+/// faces) give the same column, evaluated once.
+double ColumnDepth::vertexColumns() {
+  vertices_.resize(segs_.size());
+  for (std::size_t i = 0; i < vertices_.size(); ++i) vertices_[i] = static_cast<int>(i);
+  const auto key = [this](int i) {
+    const Seg& s = segs_[static_cast<std::size_t>(i)];
+    return std::tuple(s.a.x(), s.a.y(), s.ha);
+  };
+  std::sort(vertices_.begin(), vertices_.end(), [&](int i, int j) { return key(i) < key(j); });
+  double best = 0.0;
+  for (std::size_t k = 0; k < vertices_.size(); ++k) {
+    if (k > 0 && key(vertices_[k]) == key(vertices_[k - 1])) continue;
+    const Seg& s = segs_[static_cast<std::size_t>(vertices_[k])];
+    best = std::max(best, columnSpanAt(s.a, s.ha));
+  }
+  return best;
+}
+
 double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) {
+  last_ = {n, o, scale};
   if (input_.empty()) return 0.0;
   tau_ = kReach * scale;
   project(n, o);
   buildGrid();
-  for (int s = 0; s < static_cast<int>(segs_.size()); ++s) fileSegment(s);
+  // Top edges first, then bottom ones, then walls': each cell's list keeps that order.
+  for (const int side : {1, -1, 0}) {
+    for (int s = 0; s < static_cast<int>(segs_.size()); ++s) {
+      if (segs_[static_cast<std::size_t>(s)].side == side) fileSegment(s);
+    }
+  }
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) fileFace(f);
   toCsr(segPairs_, grid_.nx * grid_.ny, segStart_, cellSegs_);
-  toCsr(facePairs_, grid_.nx * grid_.ny, faceStart_, cellFaces_);
-  double best = 0.0;
-  for (const Seg& s : segs_) best = std::max(best, columnSpanAt(s.a, s.ha));
+  toCsr(facePairs_, blockOf(0, 0, true), faceStart_, cellFaces_);
+  double best = vertexColumns();
   for (int c = 0; c < grid_.nx * grid_.ny; ++c) best = std::max(best, crossingsIn(c));
   return best;
 }

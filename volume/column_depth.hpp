@@ -24,8 +24,14 @@
 // the cells its projected bounding box covers. A vertex column looks at the segments and faces
 // of its own cell only, and a crossing is sought among the segments that share a cell, so the
 // pass is linear in the segment count for pieces of similar size (a lens seen along n: two
-// triangulated caps over one disk, each cell holding a few faces of each). The buffers are
-// kept from query to query.
+// triangulated caps over one disk, each cell holding a few faces of each). Before the exact
+// formulas, a segment whose bounding box (grown by 2τ) misses the vertex, or a top/bottom pair
+// whose boxes miss each other, is passed over: such a segment lies more than 2τ from the
+// point, far beyond the formulas' rounding, so they would reject it too and the answer is the
+// same bit for bit (each candidate's value is a min, max or difference of the same numbers,
+// whatever the grid or the order). A vertex shared by several segments (a crossing on the
+// pieces of two faces, a corner of a whole face) is one column, evaluated once. The buffers
+// are kept from query to query.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -49,15 +55,28 @@ class ColumnDepth {
   ///               rounding of the points (a few ε of it) sets the tolerance τ
   double deepest(const Eigen::Vector3d& n, const Eigen::Vector3d& o, double scale);
 
- private:
+  /// A segment as add() took it.
   struct Input {
     std::uint64_t key;
     Eigen::Vector3d n_f, p, q;
   };
+  /// The segments added since clear(), in order, and the arguments of the last deepest(): a
+  /// test replays a query's pass through another implementation with them.
+  const std::vector<Input>& inputs() const { return input_; }
+  struct Arguments {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero(), o = Eigen::Vector3d::Zero();
+    double scale = 0.0;
+  };
+  const Arguments& lastArguments() const { return last_; }
+
+ private:
   struct Seg {
-    Eigen::Vector2d a, b;  ///< projection on the plate
-    double ha, hb;         ///< heights along n
-    int face;              ///< dense face index
+    Eigen::Vector2d a, b;    ///< projection on the plate
+    double ha, hb;           ///< heights along n
+    int face;                ///< dense face index
+    int side;                ///< its face's side (Face::side)
+    Eigen::Vector2d lo, hi;  ///< bounding box of a, b
+    double len;              ///< |b − a|
   };
   struct Face {
     double slope_u, slope_v;     ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
@@ -79,11 +98,16 @@ class ColumnDepth {
   void buildGrid();
   void fileSegment(int s);
   void fileFace(int f);
+  int blockOf(int r, int c, bool count = false) const;
   void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
              std::vector<int>& items);
   bool holds(const Face& f, const Eigen::Vector2d& x) const;
   double columnSpanAt(const Eigen::Vector2d& x, double h) const;
   double crossingsIn(int cell) const;
+  double crossingDepth(const Seg& s, const Seg& t) const;
+  static bool beyondLine(const Seg& s, const Seg& t, double g);
+  static bool sameEnds(const Seg& s, const Seg& t);
+  double vertexColumns();
 
   std::vector<Input> input_;
   std::vector<int> order_;
@@ -92,8 +116,11 @@ class ColumnDepth {
   Grid grid_;
   double tau_ = 0.0;
   std::vector<std::pair<int, int>> segPairs_, facePairs_;  ///< (cell, item) before CSR
-  std::vector<int> segStart_, cellSegs_, faceStart_, cellFaces_;
-  std::vector<int> next_;  ///< CSR fill cursor
+  std::vector<int> segStart_, cellSegs_;
+  std::vector<int> faceStart_, cellFaces_;  ///< by block of cells (fileFace)
+  std::vector<int> next_;                   ///< CSR fill cursor
+  std::vector<int> vertices_;  ///< segment indices sorted by their first end (vertexColumns)
+  Arguments last_;
 };
 
 }  // namespace vcontact::volume

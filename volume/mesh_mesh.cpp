@@ -310,6 +310,13 @@ Vector3d Intersector::contactNormal(const Vector3d& nSum, double areaSum,
   return body_[1].X_WM.linear().col(2);
 }
 
+Scratch& threadScratch() {
+  thread_local Scratch scratch;
+  return scratch;
+}
+
+const ColumnDepth& lastDepthPass() { return threadScratch().depth; }
+
 }  // namespace internal
 
 using internal::Isometry3d;
@@ -322,7 +329,7 @@ ContactPatches meshMeshContact(const MeshBvh& a, const MeshTopology& topoA, cons
   // A closed mesh has every edge in two faces: 2 E = 3 F (an open one has more edges).
   assert(2 * topoA.edges().size() == 3 * std::size_t(a.mesh().triangleCount()));
   assert(2 * topoB.edges().size() == 3 * std::size_t(b.mesh().triangleCount()));
-  thread_local internal::Scratch scratch;
+  internal::Scratch& scratch = internal::threadScratch();
   internal::Intersector query(internal::Body{a, topoA, X_WA, scratch.sides[0]},
                               internal::Body{b, topoB, X_WB, scratch.sides[1]}, scratch);
   return query.run(cache, deepest);

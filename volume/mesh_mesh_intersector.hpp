@@ -141,6 +141,13 @@ struct Scratch {
   ColumnDepth depth;
 };
 
+/// This thread's scratch memory of meshMeshContact.
+Scratch& threadScratch();
+
+/// The depth pass of this thread's last meshMeshContact that ran one (its segments and
+/// arguments: ColumnDepth::inputs, lastArguments), for tests that replay it.
+const ColumnDepth& lastDepthPass();
+
 /// A mesh placed in W for one query.
 struct Body {
   const MeshBvh& bvh;
