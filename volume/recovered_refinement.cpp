@@ -184,9 +184,10 @@ RecoveredContact refinedHalfspaceContact(const RecoveredBody& body, const std::v
 }
 
 std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
-                                  const RecoveredBody& b, const Eigen::Isometry3d& X_WB) {
+                                  const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
+                                  double depth) {
   const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
-  const double grow = a.margin() + b.margin();
+  const double grow = a.margin() + b.margin() + depth;
   const geometry::MeshBvh& tree = b.bvh();
   std::vector<int> faces;
   for (int f = 0; f < static_cast<int>(a.mesh().triangleCount()); ++f) {
@@ -216,8 +217,19 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
 RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
                                           const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
                                           const RefinementOptions& options) {
-  const Zone za = zoneOf(a, facesWithinReach(a, X_WA, b, X_WB));
-  const Zone zb = zoneOf(b, facesWithinReach(b, X_WB, a, X_WA));
+  // A face of one body may lie inside the other as deep as the true surfaces overlap, beyond
+  // the reach of the other's faces' boxes: the boxes grow by the polyhedra's overlap depth
+  // and both chord margins, 1.5 times (the polyhedra's depth misses the true one by at most
+  // the margins; the factor covers a face whose box is tight to its chord).
+  const ContactVolume poly =
+      meshMeshContact(a.bvh(), geometry::MeshTopology(a.mesh()), X_WA, b.bvh(),
+                      geometry::MeshTopology(b.mesh()), X_WB, nullptr, true)
+          .aggregate;
+  const double depth = poly.inContact() && std::isfinite(poly.depth)
+                           ? 1.5 * (poly.depth + a.margin() + b.margin())
+                           : 0.0;
+  const Zone za = zoneOf(a, facesWithinReach(a, X_WA, b, X_WB, depth));
+  const Zone zb = zoneOf(b, facesWithinReach(b, X_WB, a, X_WA, depth));
   std::vector<PatchPart> parts;
   addParts(a, za, "A", parts);
   addParts(b, zb, "B", parts);

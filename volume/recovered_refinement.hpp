@@ -44,9 +44,12 @@ RecoveredContact refinedHalfspaceContact(const RecoveredBody& body, const std::v
                                          const RefinementOptions& options = {});
 
 /// The faces of `a` that can reach `b`: those whose box in B's frame, grown by both bodies'
-/// margins (how far outside its mesh each true surface may lie), overlaps the box of a face of b.
+/// margins (how far outside its mesh each true surface may lie) and by `depth`, overlaps the
+/// box of a face of b. `depth` must bound how far inside b a face of a may lie (a face of a
+/// bore wall wholly inside a pin pressed into it touches no face of the pin).
 std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
-                                  const RecoveredBody& b, const Eigen::Isometry3d& X_WB);
+                                  const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
+                                  double depth);
 
 /// Two meshes on their recovered surfaces (a pin in a bore): both bodies' faces within reach
 /// of the other refined, the exact `fast` method (mesh_mesh.hpp) on the two refinements.
