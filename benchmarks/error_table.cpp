@@ -2,17 +2,24 @@
 // CSV: the error is the mesh's, not the clip's (the clip is exact for the polyhedron); beside
 // it, the error of the same mesh on its recovered surface (docs/SURFACES.md).
 //   usage: vcontact_error_table OUTPUT_DIR
-// writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv.
+// writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv, and
+// for the refined recovered surfaces (no closed form: volume/recovered_refinement.hpp)
+// faceting_error_pin_in_bore.csv and faceting_error_chamfered_pin.csv.
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <iostream>
 #include <string>
 
+#include "geometry/mesh_topology.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/mesh_io.hpp"
 #include "volume/analytic.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/mesh_mesh.hpp"
+#include "volume/recovered_refinement.hpp"
 #include "volume/recovered_surface.hpp"
 
 namespace {
@@ -55,6 +62,104 @@ void writeTable(const std::string& path, const std::string& shape, const int (&r
   std::cout << "wrote " << path << '\n';
 }
 
+// Area of a circular segment of height h on radius ρ, stable for h ≪ ρ.
+double segment(double rho, double h) {
+  if (h <= 0.0) return 0.0;
+  return rho * rho * 2.0 * std::asin(std::sqrt(h / (2.0 * rho))) -
+         (rho - h) * std::sqrt(h * (2.0 * rho - h));
+}
+
+// A pin of radius r, length L along z from 0, 45° chamfers c, 64 segments.
+vcontact::geometry::TriangleMesh chamferedPin(double r, double L, double c) {
+  return vcontact::geometry::tessellateRevolution({{r - c, 0.0}, {r, c}, {r, L - c}, {r - c, L}},
+                                                  64);
+}
+
+void writeRefinedRow(std::ofstream& f, const std::string& shape, long triangles, double ratio,
+                     double poly, double exact, const vcontact::volume::RecoveredContact& r,
+                     double seconds) {
+  f << shape << ',' << triangles << ',' << ratio << ',' << poly << ',' << exact << ','
+    << (poly - exact) / exact << ',' << r.representation << ',' << r.cv.volume << ','
+    << (r.cv.volume - exact) / exact << ',' << r.level << ',' << r.converged << ','
+    << r.volume_error_bound / exact << ',' << seconds << '\n';
+}
+
+const char* kRefinedHeader =
+    "shape,triangles,d_over_r,V_mesh_m3,V_exact_m3,V_rel_error,representation,V_recovered_m3,"
+    "V_recovered_rel_error,level,converged,error_bound_rel,recovered_seconds\n";
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The chamfered pin (r 5 mm, 30 mm, 0.5 mm chamfers) in the bundled block's 5.1 mm bore, axes
+// parallel, pressed sideways by d along the block's 20 mm: V = 20 mm times the pin's disk
+// outside the bore's (the pin's segment beyond the circles' crossing chord less the bore's).
+void writePinInBore(const std::string& path, const std::string& assets) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  f.precision(10);
+  f << kRefinedHeader;
+  const vcontact::geometry::TriangleMesh block =
+      vcontact::io::readMesh(assets + "/scenarios/meshes/block_hole_d10.stl").mesh;
+  const double r = 0.005, R = 0.0051;
+  const vcontact::geometry::TriangleMesh pin = chamferedPin(r, 0.03, 0.0005);
+  const auto recB = vcontact::geometry::recogniseSurfaces(block);
+  const auto recA = vcontact::geometry::recogniseSurfaces(pin);
+  const vcontact::volume::RecoveredBody a(pin, recA), b(block, recB);
+  const vcontact::geometry::MeshBvh ta(pin), tb(block);
+  const vcontact::geometry::MeshTopology topoA(pin), topoB(block);
+  for (double ratio : {1e-4, 1e-3, 1e-2}) {
+    const double d = ratio * r, e = R - r + d;
+    const double hB = (r - R + e) * (r + R - e) / (2.0 * e);
+    const double exact = 0.02 * (segment(r, hB + d) - segment(R, hB));
+    Isometry3d X = Isometry3d::Identity();
+    X.translation() = Vector3d(e * std::cos(0.3), e * std::sin(0.3), -0.025);
+    const double poly = vcontact::volume::meshMeshContact(ta, topoA, X, tb, topoB,
+                                                          Isometry3d::Identity(), nullptr, false)
+                            .aggregate.volume;
+    const auto start = std::chrono::steady_clock::now();
+    const auto rc = vcontact::volume::recoveredMeshMeshContact(a, X, b, Isometry3d::Identity());
+    writeRefinedRow(f, "pin_in_bore", pin.triangleCount() + block.triangleCount(), ratio, poly,
+                    exact, rc, secondsSince(start));
+  }
+  std::cout << "wrote " << path << '\n';
+}
+
+// The same pin lying on its side on a plate, a vertex row down: the straight part's segment
+// times its length, and each chamfer's sections (segment of height d − t on radius r − t),
+// by Simpson's rule after t = d(1 − u²).
+void writeChamferedPin(const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  f.precision(10);
+  f << kRefinedHeader;
+  const double r = 0.005, L = 0.03, c = 0.0005;
+  const vcontact::geometry::TriangleMesh pin = chamferedPin(r, L, c);
+  const auto rec = vcontact::geometry::recogniseSurfaces(pin);
+  const vcontact::volume::RecoveredBody body(pin, rec);
+  for (double ratio : {1e-4, 1e-3, 1e-2}) {
+    const double d = ratio * r;
+    double sum = 0.0;
+    const int n = 20000;
+    for (int i = 0; i <= n; ++i) {
+      const double u = static_cast<double>(i) / n, t = d * (1.0 - u * u);
+      sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * segment(r - t, d - t) * 2 * d * u;
+    }
+    const double exact = (L - 2 * c) * segment(r, d) + 2.0 * sum / (3.0 * n);
+    Isometry3d X = Isometry3d::Identity();
+    X.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitY()).toRotationMatrix();
+    X.translation() = Vector3d(0, 0, r - d);
+    const double poly =
+        vcontact::volume::meshHalfspaceContact(pin, X, Isometry3d::Identity()).volume;
+    const auto start = std::chrono::steady_clock::now();
+    const auto rc = body.halfspaceContact(X, Isometry3d::Identity());
+    writeRefinedRow(f, "chamfered_pin", pin.triangleCount(), ratio, poly, exact, rc,
+                    secondsSince(start));
+  }
+  std::cout << "wrote " << path << '\n';
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,5 +197,7 @@ int main(int argc, char** argv) {
       [&](const Isometry3d& X) {
         return vcontact::volume::cylinderHalfspace(kRadius, kLength, X, H);
       });
+  writeChamferedPin(dir + "/faceting_error_chamfered_pin.csv");
+  writePinInBore(dir + "/faceting_error_pin_in_bore.csv", VCONTACT_ASSETS_DIR);
   return 0;
 }

@@ -3,18 +3,25 @@
 // surface. Cases: a 10,000-triangle sphere and a 512-triangle cylinder on their side, whole
 // bodies of one closed form; the same sphere with a free-form patch on top, so that each
 // query scans the vertices for the faces that reach the plane; and the rolling ball of
-// assets/scenarios/ball_roll_recovered.json.
+// assets/scenarios/ball_roll_recovered.json. Refined cases (volume/recovered_refinement.hpp):
+// a chamfered pin on its side on a plate, and the pin pressed into the bundled block's bore
+// (surface/pin_in_bore: the fast method on the polyhedra against the refined pair).
 
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
 
 #include "geometry/bvh.hpp"
+#include "geometry/mesh_topology.hpp"
 #include "geometry/surface_recognition.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/mesh_io.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/mesh_mesh.hpp"
+#include "volume/recovered_refinement.hpp"
 #include "volume/recovered_surface.hpp"
 
 namespace {
@@ -85,6 +92,66 @@ void registerCase(const std::string& name, std::function<std::shared_ptr<Case>()
                                });
 }
 
+// A pin (r 5 mm, 64 segments, chamfered) in the bundled block's 5.1 mm bore, pressed sideways
+// by d/r = 1e-3: the fast method on the two polyhedra against the two refined meshes.
+struct PinInBore {
+  TriangleMesh pin, block;
+  vcontact::geometry::SurfaceRecognition recPin, recBlock;
+  std::unique_ptr<vcontact::volume::RecoveredBody> a, b;
+  std::unique_ptr<vcontact::geometry::MeshBvh> ta, tb;
+  std::unique_ptr<vcontact::geometry::MeshTopology> topoA, topoB;
+  Isometry3d X_BA = Isometry3d::Identity();
+};
+
+std::shared_ptr<PinInBore> makePinInBore() {
+  auto c = std::make_shared<PinInBore>();
+  const double r = 0.005, e = 0.0051 - r + 1e-3 * r;
+  c->pin = vcontact::geometry::tessellateRevolution(
+      {{r - 5e-4, 0.0}, {r, 5e-4}, {r, 0.0295}, {r - 5e-4, 0.03}}, 64);
+  const std::filesystem::path assets =
+      std::filesystem::path(__FILE__).parent_path().parent_path() / "assets";
+  c->block = vcontact::io::readMesh((assets / "scenarios/meshes/block_hole_d10.stl").string()).mesh;
+  c->recPin = vcontact::geometry::recogniseSurfaces(c->pin);
+  c->recBlock = vcontact::geometry::recogniseSurfaces(c->block);
+  c->a = std::make_unique<vcontact::volume::RecoveredBody>(c->pin, c->recPin);
+  c->b = std::make_unique<vcontact::volume::RecoveredBody>(c->block, c->recBlock);
+  c->ta = std::make_unique<vcontact::geometry::MeshBvh>(c->pin);
+  c->tb = std::make_unique<vcontact::geometry::MeshBvh>(c->block);
+  c->topoA = std::make_unique<vcontact::geometry::MeshTopology>(c->pin);
+  c->topoB = std::make_unique<vcontact::geometry::MeshTopology>(c->block);
+  c->X_BA.translation() = Eigen::Vector3d(e * std::cos(0.3), e * std::sin(0.3), -0.025);
+  return c;
+}
+
+void registerPinInBore() {
+  const auto once = [c = std::make_shared<std::shared_ptr<PinInBore>>()] {
+    if (!*c) *c = makePinInBore();
+    return *c;
+  };
+  const Isometry3d I = Isometry3d::Identity();
+  benchmark::RegisterBenchmark("surface/pin_in_bore/mesh", [=](benchmark::State& s) {
+    const auto c = once();
+    vcontact::volume::ContactPatches p;
+    for (auto _ : s) {
+      p = vcontact::volume::meshMeshContact(*c->ta, *c->topoA, c->X_BA, *c->tb, *c->topoB, I,
+                                            nullptr, false);
+      benchmark::DoNotOptimize(p);
+    }
+    s.counters["V"] = p.aggregate.volume;
+  });
+  benchmark::RegisterBenchmark("surface/pin_in_bore/recovered", [=](benchmark::State& s) {
+    const auto c = once();
+    vcontact::volume::RecoveredContact r;
+    for (auto _ : s) {
+      r = vcontact::volume::recoveredMeshMeshContact(*c->a, c->X_BA, *c->b, I);
+      benchmark::DoNotOptimize(r);
+    }
+    s.counters["V"] = r.cv.volume;
+    s.counters["level"] = r.level;
+    s.SetLabel(r.representation);
+  });
+}
+
 [[maybe_unused]] const bool kRegistered = [] {
   registerCase("sphere10k", [] {
     return prepare(vcontact::geometry::tessellateSphere(kRadius, 100, 50), Isometry3d::Identity());
@@ -104,6 +171,18 @@ void registerCase(const std::string& name, std::function<std::shared_ptr<Case>()
     rolled.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()).toRotationMatrix();
     return prepare(vcontact::geometry::tessellateSphere(kRadius, 40, 26), rolled, 1.41378e-4);
   });
+  // Pin r = R, 30 mm, 0.5 mm chamfers, 64 segments, on its side with a vertex row down: the
+  // cylinder and both chamfer cones reach the plate, refined (no closed form for the cones).
+  registerCase("chamfered_pin_side", [] {
+    Isometry3d side = Isometry3d::Identity();
+    side.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    return prepare(
+        vcontact::geometry::tessellateRevolution(
+            {{kRadius - 5e-4, 0.0}, {kRadius, 5e-4}, {kRadius, 0.0295}, {kRadius - 5e-4, 0.03}},
+            64),
+        side);
+  });
+  registerPinInBore();
   return true;
 }();
 

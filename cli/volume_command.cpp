@@ -12,6 +12,7 @@
 #include "report/depth_map_csv.hpp"
 #include "volume/contact.hpp"
 #include "volume/methods.hpp"
+#include "volume/recovered_refinement.hpp"
 #include "volume/recovered_surface.hpp"
 
 namespace vcontact::cli {
@@ -84,30 +85,69 @@ std::string methodHelp() {
   return help;
 }
 
-/// --surface recovered: the mesh A's recognised surfaces against the half-space B.
+/// --surface recovered: the mesh A's recognised surfaces against the half-space B, or two
+/// meshes on their recognised surfaces (volume/recovered_refinement.hpp).
 volume::RecoveredContact recoveredContact(const VolumeOptions& o, const io::ParsedShape& a,
                                           const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
                                           const Eigen::Isometry3d& X_WB) {
-  const auto* mesh = std::get_if<geometry::Mesh>(&a.shape);
-  if (!mesh || !std::holds_alternative<geometry::HalfSpace>(b.shape) || !o.method.empty() ||
-      !o.field.empty()) {
+  const auto* meshA = std::get_if<geometry::Mesh>(&a.shape);
+  const auto* meshB = std::get_if<geometry::Mesh>(&b.shape);
+  if (!meshA || !(meshB || std::holds_alternative<geometry::HalfSpace>(b.shape)) ||
+      !o.method.empty() || !o.field.empty()) {
     throw InputError("--surface recovered",
-                     "takes a mesh A on a half-space B, without --method or --field (the pair "
-                     "of two meshes is not recovered yet)");
+                     "takes a mesh A on a half-space B, or two meshes, without --method or "
+                     "--field");
   }
-  try {
-    return volume::recoveredHalfspaceContact(*mesh->mesh, geometry::recogniseSurfaces(*mesh->mesh),
-                                             X_WA, X_WB);
-  } catch (const InputError& e) {
-    throw e.withSource(o.a);
-  }
+  const auto recognise = [](const geometry::TriangleMesh& m, const std::string& source) {
+    try {
+      return geometry::recogniseSurfaces(m);
+    } catch (const InputError& e) {
+      throw e.withSource(source);
+    }
+  };
+  const geometry::SurfaceRecognition recA = recognise(*meshA->mesh, o.a);
+  if (!meshB) return volume::recoveredHalfspaceContact(*meshA->mesh, recA, X_WA, X_WB);
+  const geometry::SurfaceRecognition recB = recognise(*meshB->mesh, o.b);
+  const volume::RecoveredBody bodyA(*meshA->mesh, recA), bodyB(*meshB->mesh, recB);
+  return volume::recoveredMeshMeshContact(bodyA, X_WA, bodyB, X_WB);
+}
+
+/// "refined" when any part of the body was refined, else "mesh" (its faces as they are).
+std::string bodyRepresentation(const volume::RecoveredContact& r, const std::string& body) {
+  for (const volume::PatchPart& p : r.parts)
+    if (p.body == body && p.representation == "refined") return "refined";
+  return "mesh";
 }
 
 nlohmann::json recoveredJson(const volume::RecoveredContact& r) {
   nlohmann::json j = {{"representation", r.representation},
                       {"volume_error_bound_m3", r.volume_error_bound}};
   if (!r.reason.empty()) j["reason"] = r.reason;
+  if (r.representation == "refined" || !r.parts.empty()) {
+    j["level"] = r.level;
+    j["converged"] = r.converged;
+    j["bodies"] = {{"a", bodyRepresentation(r, "A")}, {"b", bodyRepresentation(r, "B")}};
+    nlohmann::json parts = nlohmann::json::array();
+    for (const volume::PatchPart& p : r.parts)
+      parts.push_back({{"body", p.body},
+                       {"surface", p.surface},
+                       {"faces", p.faces},
+                       {"representation", p.representation}});
+    j["parts"] = parts;
+  }
   return j;
+}
+
+void printRecovered(const volume::RecoveredContact& r) {
+  std::cout << "surface: " << r.representation << (r.reason.empty() ? "" : " (" + r.reason + ")")
+            << ", |V error| <= " << r.volume_error_bound << " m^3\n";
+  if (r.parts.empty()) return;
+  std::cout << "  refinement level " << r.level << (r.converged ? "" : " (level cap reached)")
+            << "; A: " << bodyRepresentation(r, "A") << ", B: " << bodyRepresentation(r, "B")
+            << '\n';
+  for (const volume::PatchPart& p : r.parts)
+    std::cout << "  " << p.body << ": " << p.surface << ", " << p.faces << " faces, "
+              << p.representation << '\n';
 }
 
 void runVolume(const VolumeOptions& o) {
@@ -141,11 +181,7 @@ void runVolume(const VolumeOptions& o) {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
               << report::toTable(contact);
-    if (recovered) {
-      std::cout << "surface: " << recovered->representation
-                << (recovered->reason.empty() ? "" : " (" + recovered->reason + ")")
-                << ", |V error| <= " << recovered->volume_error_bound << " m^3\n";
-    }
+    if (recovered) printRecovered(*recovered);
   }
 }
 
@@ -168,8 +204,10 @@ void addVolumeCommand(CLI::App& app) {
                       ", the first that takes the pair unless --method says)");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");
   cmd->add_option("--surface", opts->surface,
-                  "mesh: the polyhedron; recovered: a mesh A's recognised sphere or capped "
-                  "cylinder against a half-space B, by closed form (docs/SURFACES.md)")
+                  "mesh: the polyhedron; recovered: a mesh A's recognised surfaces against a "
+                  "half-space B (closed form for a sphere or capped cylinder, else local "
+                  "refinement), or two meshes on their recognised surfaces, refined where they "
+                  "can touch (docs/SURFACES.md)")
       ->check(CLI::IsMember({"mesh", "recovered"}))
       ->capture_default_str();
   cmd->add_flag("--repair", opts->repair, "repair mesh files first (as mesh-repair does)");

@@ -125,4 +125,29 @@ TriangleMesh tessellateTorus(double majorRadius, double tubeRadius, int segments
   return b.build();
 }
 
+TriangleMesh tessellateRevolution(const std::vector<Eigen::Vector2d>& profile, int segments) {
+  require(segments >= 3 && profile.size() >= 2, "tessellateRevolution: segments >= 3, 2 points");
+  for (std::size_t i = 0; i < profile.size(); ++i)
+    require(profile[i].x() > 0.0 && (i == 0 || profile[i].y() > profile[i - 1].y()),
+            "tessellateRevolution: radii > 0 and z increasing");
+  Builder b;
+  const int bottom = b.add({0, 0, profile.front().y()});
+  const int top = b.add({0, 0, profile.back().y()});
+  const int n = segments;
+  const int first = static_cast<int>(b.v.size());  // vertex (ring i, angle j): first + i·n + j
+  for (const Eigen::Vector2d& rz : profile)
+    for (int j = 0; j < n; ++j) {
+      const double a = 2.0 * M_PI * j / n;
+      b.add({rz.x() * std::cos(a), rz.x() * std::sin(a), rz.y()});
+    }
+  const auto at = [&](std::size_t i, int j) { return first + static_cast<int>(i) * n + j % n; };
+  for (int j = 0; j < n; ++j) {
+    for (std::size_t i = 0; i + 1 < profile.size(); ++i)
+      b.quad(at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+    b.tri(bottom, at(0, j + 1), at(0, j));
+    b.tri(top, at(profile.size() - 1, j), at(profile.size() - 1, j + 1));
+  }
+  return b.build();
+}
+
 }  // namespace vcontact::geometry

@@ -2,6 +2,8 @@
 // Closed, outward-oriented triangle meshes of the primitives, for tests, benchmarks and the
 // bundled assets. Vertices lie on the exact surface, so the polyhedron is inscribed.
 
+#include <vector>
+
 #include "geometry/primitives.hpp"
 #include "geometry/triangle_mesh.hpp"
 
@@ -20,5 +22,11 @@ TriangleMesh tessellateBox(const Eigen::Vector3d& size);
 
 /// Torus about the z axis: major radius R, tube radius r. Triangles: 2·segments·tubeSegments.
 TriangleMesh tessellateTorus(double majorRadius, double tubeRadius, int segments, int tubeSegments);
+
+/// Solid of revolution about the z axis: `profile` lists (radius, z) from the bottom rim to the
+/// top rim (radii > 0, z increasing), `segments` around; the two ends are flat fans about a
+/// centre vertex. A cylinder with chamfered ends: (r − c, 0), (r, c), (r, L − c), (r − c, L).
+/// Triangles: 2·segments·profile.size().
+TriangleMesh tessellateRevolution(const std::vector<Eigen::Vector2d>& profile, int segments);
 
 }  // namespace vcontact::geometry

@@ -8,8 +8,10 @@
 #include <set>
 #include <sstream>
 
+#include "geometry/surface_refinement.hpp"
 #include "volume/analytic.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/recovered_refinement.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -17,17 +19,6 @@ namespace {
 using geometry::RecognisedSurface;
 using geometry::SurfaceKind;
 using geometry::TriangleMesh;
-
-// The largest distance between face f's chord and the surface it lies on, estimated at the
-// centroid and the edge midpoints (for a face inscribed in a convex surface, the gap is
-// largest inside the face, near its circumcentre).
-double chordGap(const TriangleMesh& mesh, int f, const RecognisedSurface& s) {
-  const Eigen::Vector3d a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
-  const Eigen::Vector3d probes[] = {(a + b + c) / 3.0, (a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0};
-  double gap = 0.0;
-  for (const Eigen::Vector3d& p : probes) gap = std::max(gap, std::abs(signedDistance(s, p)));
-  return gap;
-}
 
 // The extent [lo, hi] of a cylinder's vertices along its axis, from its axis point.
 std::pair<double, double> axialExtent(const TriangleMesh& mesh, const RecognisedSurface& c) {
@@ -51,7 +42,7 @@ bool isEndCap(const RecognisedSurface& p, const RecognisedSurface& c,
 }
 
 RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, const RecognisedSurface& s) {
-  RecoveredContact r{cv, kind, "", 0.0};
+  RecoveredContact r{cv, kind, "", 0.0, {}, 0, true};
   const double method_error = std::isfinite(cv.relative_error) ? cv.relative_error : 1e-12;
   r.volume_error_bound = cv.area * s.max_residual + cv.volume * method_error;
   return r;
@@ -75,7 +66,8 @@ RecoveredContact cylinderContact(const TriangleMesh& mesh, const RecognisedSurfa
 
 RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
                         const Eigen::Isometry3d& X_WH, std::string reason, double gap) {
-  RecoveredContact r{meshHalfspaceContact(mesh, X_WM, X_WH), "mesh", std::move(reason), 0.0};
+  RecoveredContact r{
+      meshHalfspaceContact(mesh, X_WM, X_WH), "mesh", std::move(reason), 0.0, {}, 0, true};
   r.volume_error_bound = r.cv.area * gap;
   return r;
 }
@@ -84,12 +76,17 @@ RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
 
 RecoveredBody::RecoveredBody(const TriangleMesh& mesh,
                              const geometry::SurfaceRecognition& recognition)
-    : mesh_(mesh), recognition_(recognition), bvh_(mesh), gap_(recognition.surfaces.size(), 0.0) {
+    : mesh_(mesh),
+      recognition_(recognition),
+      bvh_(mesh),
+      gap_(recognition.surfaces.size(), 0.0),
+      faceGap_(static_cast<std::size_t>(mesh.triangleCount()), 0.0) {
   // How far outside its faces the true surface may lie: the largest chord gap of any
   // recognised face (free-form faces are their own surface, gap 0).
   for (int f = 0; f < static_cast<int>(mesh.triangleCount()); ++f) {
     const int s = recognition.face_surface[f];
-    if (s >= 0) gap_[s] = std::max(gap_[s], chordGap(mesh, f, recognition.surfaces[s]));
+    faceGap_[f] = geometry::chordGap(mesh, recognition, f);
+    if (s >= 0) gap_[s] = std::max(gap_[s], faceGap_[f]);
   }
   margin_ = gap_.empty() ? 0.0 : *std::max_element(gap_.begin(), gap_.end());
   if (recognition.free_form_faces > 0) return;
@@ -164,7 +161,18 @@ RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
                                                  const Eigen::Isometry3d& X_WH) const {
   std::string reason;
   if (auto r = closedFormContact(X_WM, X_WH, reason)) return *r;
-  const std::set<int> touched = reachingSurfaces(X_WH.inverse() * X_WM);
+  const std::vector<int> zone = reachingFaces(X_WH.inverse() * X_WM);
+  std::set<int> touched;
+  for (int f : zone) touched.insert(recognition_.face_surface[f]);
+  // A curved recognised surface without a closed form here: refine it around the patch.
+  const bool curved = std::any_of(touched.begin(), touched.end(), [&](int s) {
+    return s >= 0 && recognition_.surfaces[s].kind != SurfaceKind::kPlane;
+  });
+  if (curved) {
+    RecoveredContact r = refinedHalfspaceContact(*this, zone, X_WM, X_WH);
+    r.reason = reason;
+    return r;
+  }
   if (touched.empty()) return onMesh(mesh_, X_WM, X_WH, reason, 0.0);
   double gap = 0.0;  // a plane's faces have none; unknown (NaN) on free-form faces
   for (int s : touched)
@@ -174,10 +182,16 @@ RecoveredContact RecoveredBody::halfspaceContact(const Eigen::Isometry3d& X_WM,
 }
 
 std::set<int> RecoveredBody::reachingSurfaces(const Eigen::Isometry3d& X_HM) const {
+  std::set<int> touched;
+  for (int f : reachingFaces(X_HM)) touched.insert(recognition_.face_surface[f]);
+  return touched;
+}
+
+std::vector<int> RecoveredBody::reachingFaces(const Eigen::Isometry3d& X_HM) const {
   // Height above the plane of a point p of M: n·p + h0, with n the plane's normal in M.
   const Eigen::Vector3d n = X_HM.linear().row(2).transpose();
   const double h0 = X_HM.translation().z();
-  std::set<int> touched;
+  std::vector<int> faces;
   std::vector<int> stack{0};
   while (!stack.empty()) {
     const geometry::BvhNode& node = bvh_.nodes()[static_cast<std::size_t>(stack.back())];
@@ -193,10 +207,11 @@ std::set<int> RecoveredBody::reachingSurfaces(const Eigen::Isometry3d& X_HM) con
       const int f = bvh_.order()[static_cast<std::size_t>(i)];
       double low = std::numeric_limits<double>::infinity();
       for (int k = 0; k < 3; ++k) low = std::min(low, n.dot(mesh_.corner(f, k)) + h0);
-      if (low <= margin_) touched.insert(recognition_.face_surface[f]);
+      if (low <= margin_) faces.push_back(f);
     }
   }
-  return touched;
+  std::sort(faces.begin(), faces.end());
+  return faces;
 }
 
 std::shared_ptr<const RecoveredSurface> recoverSurface(

@@ -24,18 +24,38 @@
 
 namespace vcontact::volume {
 
+/// One part of the faces that can reach the partner: which body ("A" or "B"), the surface
+/// ("cone", "concave cylinder", "plane", "free-form"), how many faces, and what represents them:
+/// "refined" (split and projected onto the recognised surface), "exact" (planes: the faces
+/// are the surface) or "polyhedral" (free-form faces, kept as they are).
+struct PatchPart {
+  std::string body;
+  std::string surface;
+  int faces = 0;
+  std::string representation;
+};
+
 struct RecoveredContact {
   ContactVolume cv;
   /// What the contact was computed on: "sphere" or "cylinder" (the recognised surface, by
-  /// closed form), or "mesh" (the polyhedron).
+  /// closed form), "refined" (the polyhedron refined towards its recognised surfaces around
+  /// the patch until V converged, surface_refinement.hpp), or "mesh" (the polyhedron).
   std::string representation;
-  /// Why the polyhedron was used, for "mesh"; empty otherwise.
+  /// Why no closed form applied, for "mesh" and "refined"; empty otherwise.
   std::string reason;
   /// A bound on |V − V_true|, m³: for a recovered surface the contact area times the largest
   /// distance of the surface's vertices to it (the fit residual) plus the closed form's own
-  /// error; for the polyhedron, the area times the largest chord gap of the faces that can
+  /// error; refined: the Richardson estimate of the last level's error plus the same fit
+  /// residual term; for the polyhedron, the area times the largest chord gap of the faces that can
   /// reach the plane (how far the true surface may lie outside the faces).
   double volume_error_bound = 0.0;
+  /// What the faces that can reach the partner were computed on, per body and surface: for
+  /// "refined", one entry per recognised surface or the free-form faces (PatchPart).
+  std::vector<PatchPart> parts;
+  /// "refined": the refinement level k of the finest evaluation, and whether the error estimate
+  /// met the tolerance asked for (false: the level cap was reached first).
+  int level = 0;
+  bool converged = true;
 };
 
 /// A mesh body with its recognised surfaces, prepared once for many queries: the chord gap
@@ -59,6 +79,17 @@ class RecoveredBody {
                                                     const Eigen::Isometry3d& X_WH,
                                                     std::string& reason) const;
 
+  const geometry::TriangleMesh& mesh() const { return mesh_; }
+  const geometry::SurfaceRecognition& recognition() const { return recognition_; }
+  const geometry::MeshBvh& bvh() const { return bvh_; }
+  /// Per face: the largest distance between its chord and its surface, m (0: free-form).
+  const std::vector<double>& faceGaps() const { return faceGap_; }
+  /// The largest chord gap of any face, m: how far outside the mesh the true surface may lie.
+  double margin() const { return margin_; }
+  /// The faces whose lowest vertex is within margin() of the plane z_H = 0 or below it.
+  /// @param X_HM  pose of the mesh in the half-space frame
+  std::vector<int> reachingFaces(const Eigen::Isometry3d& X_HM) const;
+
  private:
   /// The surface the contact lies on when the faces in `touched` (surface indices, −1 for
   /// free-form) reach the plane; null with the reason otherwise.
@@ -74,8 +105,9 @@ class RecoveredBody {
   const geometry::TriangleMesh& mesh_;
   const geometry::SurfaceRecognition& recognition_;
   geometry::MeshBvh bvh_;
-  std::vector<double> gap_;  ///< per surface: largest chord gap of its faces, m
-  double margin_ = 0.0;      ///< the largest gap
+  std::vector<double> gap_;      ///< per surface: largest chord gap of its faces, m
+  std::vector<double> faceGap_;  ///< per face, m
+  double margin_ = 0.0;          ///< the largest gap
   /// The body's whole surface when it is one sphere, or one cylinder and its two ends.
   const geometry::RecognisedSurface* whole_ = nullptr;
 };

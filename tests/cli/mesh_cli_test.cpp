@@ -180,5 +180,31 @@ TEST_F(MeshCli, RecoveredSurfaceNeedsAMeshOnAHalfSpace) {
   EXPECT_EQ(run("volume " + path("box.obj") + " halfspace --surface exact").exitCode, 2);
 }
 
+// The bundled peg (64-gon, r = 5 mm, 30 mm long about z = 0) pressed sideways by d = 50 µm into
+// the bundled block's 5.1 mm bore (z in [−20, 0] mm), 20 mm of it inside: V = 20 mm times the
+// part of the peg's disk outside the bore's, beyond the crossing chord the peg's segment less
+// the bore's (recovered_refinement_test.cpp derives it); 0.2 % as there.
+TEST_F(MeshCli, RecoveredPegPressedIntoTheBore) {
+  const std::string dir = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/";
+  const double r = 0.005, R = 0.0051, d = 5e-5, e = R - r + d;
+  const auto segment = [](double rho, double h) {
+    return rho * rho * 2.0 * std::asin(std::sqrt(h / (2.0 * rho))) -
+           (rho - h) * std::sqrt(h * (2.0 * rho - h));
+  };
+  const double hB = (r - R + e) * (r + R - e) / (2.0 * e);
+  const double expected = 0.02 * (segment(r, hB + d) - segment(R, hB));
+  std::ostringstream pose;
+  pose.precision(17);
+  pose << e << ",0,-0.01";
+  const auto r1 = run("volume " + dir + "peg_d10.stl " + dir +
+                      "block_hole_d10.stl --surface recovered --json --pose-a " + pose.str());
+  ASSERT_EQ(r1.exitCode, 0) << r1.err;
+  const nlohmann::json j = nlohmann::json::parse(r1.out);
+  EXPECT_EQ(j.at("surface").at("representation"), "refined");
+  EXPECT_EQ(j.at("surface").at("bodies").at("a"), "refined");
+  EXPECT_EQ(j.at("surface").at("bodies").at("b"), "refined");
+  EXPECT_NEAR(j.at("volume").get<double>(), expected, 2e-3 * expected) << r1.out;
+}
+
 }  // namespace
 }  // namespace vcontact
