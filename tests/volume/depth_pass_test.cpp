@@ -15,6 +15,7 @@
 #include "column_depth_reference.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
+#include "scenario_mesh.hpp"
 #include "volume/column_depth.hpp"
 #include "volume/contact.hpp"
 #include "volume/mesh_mesh.hpp"
@@ -26,12 +27,6 @@ namespace {
 using Eigen::Isometry3d;
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
-
-geometry::Shape asset(const std::string& name) {
-  const std::string path = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/" + name;
-  return geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(io::readMesh(path).mesh),
-                        name};
-}
 
 Isometry3d pose(const Vector3d& p, const Quaterniond& q) {
   Isometry3d X = Isometry3d::Identity();
@@ -78,8 +73,8 @@ void expectSameDepth(const geometry::Shape& a, const Isometry3d& X_WA, const geo
 // Poses from `vcontact simulate` of cad_tray_drop.json with "integrator": "discrete",
 // "step": 0.001, "duration": 0.2 (bodies.csv at 0.2 s; the fixture at the origin).
 TEST(DepthPass, EqualsTheReferenceOnTheRestingTrays) {
-  const geometry::Shape fixture = asset("fixture_10k.stl");
-  const geometry::Shape tray = asset("tray_10k.stl");
+  const geometry::Shape fixture = vcontact::test::scenarioMesh("fixture_10k.stl");
+  const geometry::Shape tray = vcontact::test::scenarioMesh("tray_10k.stl");
   const Isometry3d tray0 = pose(
       {-0.00014387366508314872, 6.0918756562598135e-05, -1.8125896664687724e-08},
       {0.9999995904400925, 8.728725639001793e-10, 1.5492801399966383e-07, -0.0009050522766467364});

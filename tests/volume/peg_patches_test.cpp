@@ -12,6 +12,7 @@
 
 #include "columns_agreement.hpp"
 #include "io/mesh_io.hpp"
+#include "scenario_mesh.hpp"
 #include "volume/cgal_reference.hpp"
 #include "volume/contact.hpp"
 #include "volume/mesh_mesh.hpp"
@@ -23,12 +24,6 @@ namespace {
 using Eigen::Isometry3d;
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
-
-geometry::Shape asset(const std::string& name) {
-  const std::string path = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/" + name;
-  return geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(io::readMesh(path).mesh),
-                        name};
-}
 
 struct PegPose {
   double t;  ///< s, in the bundled run
@@ -73,7 +68,8 @@ Isometry3d placed(const PegPose& pose) {
 
 // fast and cgal through the dispatcher: the same bearing patches at every pose.
 TEST(PegInHolePatches, ExactMethodsCountTheSamePatches) {
-  const geometry::Shape peg = asset("peg_d10.stl"), block = asset("block_hole_d10.stl");
+  const geometry::Shape peg = vcontact::test::scenarioMesh("peg_d10.stl"),
+                        block = vcontact::test::scenarioMesh("block_hole_d10.stl");
   for (const PegPose& pose : pegPoses()) {
     for (const Method m : {Method::kFast, Method::kCgal}) {
       const ContactPatches c =
@@ -89,7 +85,8 @@ TEST(PegInHolePatches, ExactMethodsCountTheSamePatches) {
 // edge-on; and at t = 0.01 s the second, thinner patch is one that no line of the first passes
 // meets.
 TEST(PegInHolePatches, ColumnsFindsTheSamePatchesAsFast) {
-  const geometry::Shape peg = asset("peg_d10.stl"), block = asset("block_hole_d10.stl");
+  const geometry::Shape peg = vcontact::test::scenarioMesh("peg_d10.stl"),
+                        block = vcontact::test::scenarioMesh("block_hole_d10.stl");
   for (const PegPose& pose : pegPoses()) {
     SCOPED_TRACE(pose.t);
     const ContactPatches fast =
@@ -103,7 +100,8 @@ TEST(PegInHolePatches, ColumnsFindsTheSamePatchesAsFast) {
 // Before the floor: fast's extra patches are cgal's too, volume for volume (1e-9, two exact
 // methods on one polyhedron, mesh_mesh_patches_test), and each is below the floor's share.
 TEST(PegInHolePatches, SpecksAreRealAndBelowTheFloor) {
-  const geometry::Shape peg = asset("peg_d10.stl"), block = asset("block_hole_d10.stl");
+  const geometry::Shape peg = vcontact::test::scenarioMesh("peg_d10.stl"),
+                        block = vcontact::test::scenarioMesh("block_hole_d10.stl");
   const auto& meshP = *std::get<geometry::Mesh>(peg).mesh;
   const auto& meshB = *std::get<geometry::Mesh>(block).mesh;
   int specks = 0;
