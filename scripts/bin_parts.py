@@ -15,8 +15,9 @@ Run:  python3 scripts/bin_parts.py [OUT_DIR]   (default assets/scenarios/meshes/
 """
 import math
 import os
-import struct
 import sys
+
+from stl_writer import write_binary_stl
 
 MM = 1e-3
 
@@ -71,14 +72,7 @@ class Solid:
         return self
 
     def write_stl(self, path):
-        with open(path, "wb") as f:
-            f.write(b"vcontact scripts/bin_parts.py".ljust(80, b" "))
-            f.write(struct.pack("<I", len(self.tris)))
-            for t in self.tris:
-                f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
-                for i in t:
-                    f.write(struct.pack("<3f", *self.points[i]))
-                f.write(struct.pack("<H", 0))
+        write_binary_stl(path, self.points, self.tris, "vcontact scripts/bin_parts.py")
 
 
 def revolve(profile, segments):

@@ -26,7 +26,8 @@ Run from the repository root: /usr/bin/python3 scripts/peg_hole_meshes.py [--cha
 import argparse
 import math
 import os
-import struct
+
+from stl_writer import write_binary_stl
 
 N_SEG = 64
 PEG_RADIUS = 0.005
@@ -39,14 +40,7 @@ OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "
 
 
 def write_stl(path, points, tris):
-    with open(path, "wb") as f:
-        f.write(b"vcontact peg_hole_meshes.py".ljust(80, b" "))
-        f.write(struct.pack("<I", len(tris)))
-        for t in tris:
-            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
-            for i in t:
-                f.write(struct.pack("<3f", *points[i]))
-            f.write(struct.pack("<H", 0))
+    write_binary_stl(path, points, tris, "vcontact peg_hole_meshes.py")
 
 
 def quad(tris, a, b, c, d):

@@ -11,7 +11,11 @@ The curved features are finely faceted (128 segments), as an STL export of a CAD
 about 10k triangles each. Run: python3 cad_parts.py (writes into this folder)."""
 import math
 import os
-import struct
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                                "scripts"))
+from stl_writer import write_binary_stl  # noqa: E402 (the shared writer lives in scripts/)
 
 N_SEG = 128          # segments around every circle
 PIN_X = 0.020        # pins and holes at (±PIN_X, 0)
@@ -50,14 +54,7 @@ class Mesh:
         self.tri(a, c, d, outward)
 
     def write_stl(self, path):
-        with open(path, "wb") as f:
-            f.write(b"vcontact cad_parts.py".ljust(80, b" "))
-            f.write(struct.pack("<I", len(self.tris)))
-            for t in self.tris:
-                f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
-                for i in t:
-                    f.write(struct.pack("<3f", *self.points[i]))
-                f.write(struct.pack("<H", 0))
+        write_binary_stl(path, self.points, self.tris, "vcontact cad_parts.py")
 
 
 def const(d):
