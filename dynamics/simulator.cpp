@@ -240,7 +240,12 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) evaluatePair(k, x, dxdt);
   applyLoads(t);
   for (std::size_t i = 0; i < nb; ++i) {
-    if (offset_[i] >= 0) bodyRates(i, x, dxdt);
+    if (offset_[i] < 0) continue;
+    if (!sleep_.asleep(i)) {
+      bodyRates(i, x, dxdt);
+    } else {  // a sleeping body stays put (a resolved interval of the discrete stepper)
+      std::fill_n(dxdt.begin() + offset_[i], kBodyStates, 0.0);
+    }
   }
   last_x_ = x;
 }
@@ -436,7 +441,8 @@ SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
                     const std::function<void(double)>& on_progress, SimulationSummary& summary) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const long rhs_start = rhs_count_, contacts_start = contact_count_;
+  const long rhs_start = rhs_count_, contacts_start = contact_count_,
+             skipped_start = sleep_skipped_;
   double t = 0.0;
   long patch_samples = 0, patch_total = 0;
   const OutputFn output = [&](const Snapshot& s) {
@@ -454,11 +460,15 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     summary.surface_pairs = recovered_->pairs();
     impacts_.finish(t);
     summary.impacts = impacts_.impacts();
+    summary.sleep_events = sleep_.events();
+    summary.sleep_skipped_queries = sleep_skipped_ - skipped_start;
   };
 
   non_finite_effect_.clear();
   query_depths_ = false;  // a run that stopped in a discrete step may have left it set
   recovered_->resetCounts();
+  const SimulationSettings& set = scenario_.settings;
+  sleep_.reset(scenario_, set.integrator == Integrator::kDiscrete && set.sleep.enabled);
   State x = x0_;
   State dxdt(x.size());
   rhs(x, dxdt, t);
