@@ -177,7 +177,7 @@ void registerScenario(const std::string& name) {
             ->Unit(benchmark::kMillisecond);
       }
     }
-    // the same run awake throughout: the reference of sleep's gain (docs/DISCRETE.md §7)
+    // the same run awake throughout: the reference of sleep's gain (docs/SLEEP.md)
     benchmark::RegisterBenchmark(
         ("simulate/" + std::string(name) + "/discrete_1ms_implicit_nosleep").c_str(), discrete,
         std::string(name), 1e-3, with_reference, ImpactMode::kImplicit, false)

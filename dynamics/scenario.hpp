@@ -74,12 +74,12 @@ enum class ImpactMode {
   kImplicit  ///< the plain linearly implicit step throughout (dissipates the impact)
 };
 
-/// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/DISCRETE.md §7); dopri5
+/// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/SLEEP.md); dopri5
 /// and bdf ignore them (an error-controlled integrator freezes nothing).
 struct SleepSettings {
   bool enabled = true;
   /// m/s: a body is quiet while its material points stay within speed × time of where they
-  /// were when its quiet spell began (a mean speed; docs/DISCRETE.md §7 derives the default
+  /// were when its quiet spell began (a mean speed; docs/SLEEP.md derives the default
   /// from the creep and the hop of resting parts).
   double speed = 1e-3;
   double time = 0.05;  ///< s: an island sleeps once all its bodies have been quiet this long

@@ -240,12 +240,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) evaluatePair(k, x, dxdt);
   applyLoads(t);
   for (std::size_t i = 0; i < nb; ++i) {
-    if (offset_[i] < 0) continue;
-    if (!sleep_.asleep(i)) {
-      bodyRates(i, x, dxdt);
-    } else {  // a sleeping body stays put (a resolved interval of the discrete stepper)
-      std::fill_n(dxdt.begin() + offset_[i], kBodyStates, 0.0);
-    }
+    if (offset_[i] >= 0) bodyRates(i, x, dxdt);
   }
   last_x_ = x;
 }
@@ -255,6 +250,10 @@ void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
   const RigidBody& body = scenario_.bodies[i];
   const double* s = &x[static_cast<std::size_t>(offset_[i])];
   double* d = &dxdt[static_cast<std::size_t>(offset_[i])];
+  if (sleep_.asleep(i)) {  // it stays put (in an interval the discrete stepper resolves)
+    std::fill_n(d, kBodyStates, 0.0);
+    return;
+  }
   const Eigen::Vector3d& w = kin_[i].w_WB;
   // q̇ = ½ (0, ω_W) ⊗ q  (ω in the world frame)
   const Eigen::Quaterniond q(s[3], s[4], s[5], s[6]);
@@ -467,8 +466,7 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   non_finite_effect_.clear();
   query_depths_ = false;  // a run that stopped in a discrete step may have left it set
   recovered_->resetCounts();
-  const SimulationSettings& set = scenario_.settings;
-  sleep_.reset(scenario_, set.integrator == Integrator::kDiscrete && set.sleep.enabled);
+  sleep_.reset(scenario_);
   State x = x0_;
   State dxdt(x.size());
   rhs(x, dxdt, t);

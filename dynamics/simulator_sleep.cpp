@@ -1,4 +1,4 @@
-// The discrete stepper's hooks of sleeping islands (dynamics/sleep.hpp, docs/DISCRETE.md §7).
+// The discrete stepper's hooks of sleeping islands (dynamics/sleep.hpp, docs/SLEEP.md).
 
 #include <cmath>
 

@@ -20,10 +20,10 @@ double farthestPoint(const RigidBody& b) {
 
 }  // namespace
 
-void SleepTracker::reset(const Scenario& s, bool enabled) {
+void SleepTracker::reset(const Scenario& s) {
   const std::size_t nb = s.bodies.size();
   scenario_ = &s;
-  enabled_ = enabled;
+  enabled_ = s.settings.integrator == Integrator::kDiscrete && s.settings.sleep.enabled;
   speed_ = s.settings.sleep.speed;
   time_ = s.settings.sleep.time;
   r_max_.assign(nb, 0.0);

@@ -1,5 +1,5 @@
 #pragma once
-// Sleeping islands of the discrete stepper (docs/DISCRETE.md §7): bodies that have rested for a
+// Sleeping islands of the discrete stepper (docs/SLEEP.md): bodies that have rested for a
 // while stop being integrated, and their contacts stop being queried, until something touches
 // them.
 //
@@ -39,8 +39,8 @@ struct SleepEvent {
 class SleepTracker {
  public:
   /// Per body of s: r_max from its shape's bounds about its centre of mass; which bodies may
-  /// never sleep (loads, springs). Off unless `enabled`.
-  void reset(const Scenario& s, bool enabled);
+  /// never sleep (loads, springs). On for the discrete integrator with sleep enabled only.
+  void reset(const Scenario& s);
 
   bool enabled() const { return enabled_; }
   bool asleep(std::size_t body) const { return enabled_ && asleep_[body] != 0; }

@@ -1,4 +1,4 @@
-// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/DISCRETE.md §7): a resting
+// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/SLEEP.md): a resting
 // box falls asleep where the awake run keeps it, a dropped ball wakes it, a sliding block and a
 // body under a load never sleep, and the hooks change nothing while nobody sleeps.
 
@@ -179,7 +179,7 @@ TEST(Sleep, BodyWithALoadAndItsIslandNeverSleep) {
 
 // Until a body falls asleep the hooks change nothing: a quiet time longer than the run gives
 // the same numbers, to the bit, as "sleep": false (bundled outputs and `vcontact simulate`
-// with "sleep": false are compared against the build before sleep in docs/DISCRETE.md §7).
+// with "sleep": false are compared against the build before sleep in docs/SLEEP.md).
 TEST(Sleep, NoSleepingBodyLeavesTheRunUnchanged) {
   Scenario never = ballOnBox(0.08, true);
   never.settings.sleep.time = 10.0;

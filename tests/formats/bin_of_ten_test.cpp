@@ -163,7 +163,7 @@ TEST(BinOfTen, FirstLandingsStayAboveTheFloorAndGainNoEnergy) {
       r.worst_depth, r.deepest_part.c_str(), r.deepest_at, max_depth, r.worst_gain, max_gain);
 }
 
-// The whole 0.5 s with the scenario's own settings, sleep on (docs/DISCRETE.md §7): every part
+// The whole 0.5 s with the scenario's own settings, sleep on (docs/SLEEP.md): every part
 // ends asleep, no part sinks below the floor by more than a step's fall allows, and the
 // energy gains no more than the first landings' bound.
 TEST(BinOfTen, EveryPartEndsAsleepWithinTheBounds) {

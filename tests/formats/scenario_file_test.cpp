@@ -124,7 +124,7 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
             std::string::npos);
 }
 
-// "sleep" (docs/DISCRETE.md §7): on with its defaults unless the file says false; an object
+// "sleep" (docs/SLEEP.md): on with its defaults unless the file says false; an object
 // sets the quiet speed and time, each defaulting on its own.
 TEST(ScenarioFile, SleepKeyReachesTheSettings) {
   const dynamics::SleepSettings defaults;
