@@ -3,10 +3,12 @@
 // the A/B pair of Dormand–Prince and BDF on the same scenario, and
 // simulate/<scenario>/discrete_<h> for the fixed-step discrete integrator against the
 // Dormand–Prince run (docs/DISCRETE.md §4), its impacts resolved (the default) or, with the
-// suffix _implicit, left to the plain step (§5). Counters: real_time_factor
+// suffix _implicit, left to the plain step (§5). The discrete runs sleep by default (§7);
+// discrete_1ms_implicit_nosleep is that run with "sleep": false. Counters: real_time_factor
 // (simulated seconds per CPU second), steps, contact evaluations (Jacobians' included) and
 // Jacobians per run, output samples, and the final height of the last body (m) as a sanity
-// figure beside the time.
+// figure beside the time; the discrete runs add skipped_queries (sleep's), asleep_at_end
+// (bodies asleep when the run ends) and last_asleep_s (when the last of them fell asleep).
 
 #include <benchmark/benchmark.h>
 
@@ -74,13 +76,14 @@ double largestSpeed(const Snapshot& s) {
 // Without `with_reference` (bin_of_ten, whose Dormand–Prince run takes many minutes) neither
 // rest_diff_m nor ref_speed_m_s.
 void discrete(benchmark::State& state, const std::string& name, double h, bool with_reference,
-              ImpactMode mode) {
+              ImpactMode mode, bool sleep) {
   vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
   file.scenario.settings.integrator = Integrator::kDiscrete;
   file.scenario.settings.step = h;
   file.scenario.settings.impacts = mode;
-  double simulated = 0.0, restitution = 0.0;
-  long steps = 0, contacts = 0, resolved = 0, impacts = 0;
+  file.scenario.settings.sleep.enabled = sleep;
+  double simulated = 0.0, restitution = 0.0, last_asleep = 0.0;
+  long steps = 0, contacts = 0, resolved = 0, impacts = 0, skipped = 0, asleep = 0;
   Snapshot last;
   for (auto _ : state) {
     Simulator sim(file.scenario);
@@ -92,6 +95,12 @@ void discrete(benchmark::State& state, const std::string& name, double h, bool w
     resolved = summary.resolved_steps;
     impacts = static_cast<long>(summary.impacts.size());
     restitution = summary.impacts.empty() ? 0.0 : summary.impacts.front().restitution;
+    skipped = summary.sleep_skipped_queries;
+    asleep = 0;
+    for (const vcontact::dynamics::SleepEvent& e : summary.sleep_events) {
+      asleep += e.asleep ? 1 : -1;
+      if (e.asleep) last_asleep = e.t;
+    }
   }
   state.counters["real_time_factor"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
   state.counters["steps"] = static_cast<double>(steps);
@@ -99,6 +108,9 @@ void discrete(benchmark::State& state, const std::string& name, double h, bool w
   state.counters["resolved_steps"] = static_cast<double>(resolved);
   state.counters["impacts"] = static_cast<double>(impacts);
   state.counters["first_restitution"] = restitution;
+  state.counters["skipped_queries"] = static_cast<double>(skipped);
+  state.counters["asleep_at_end"] = static_cast<double>(asleep);
+  state.counters["last_asleep_s"] = last_asleep;
   state.counters["final_speed_m_s"] = largestSpeed(last);
   state.counters["final_z_m"] = last.bodies.back().p_WBcm.z();
   if (!with_reference) return;
@@ -161,10 +173,15 @@ void registerScenario(const std::string& name) {
            {std::pair{"", ImpactMode::kResolve}, std::pair{"_implicit", ImpactMode::kImplicit}}) {
         benchmark::RegisterBenchmark(
             ("simulate/" + std::string(name) + "/discrete_" + suffix + mode_suffix).c_str(),
-            discrete, std::string(name), h, with_reference, mode)
+            discrete, std::string(name), h, with_reference, mode, true)
             ->Unit(benchmark::kMillisecond);
       }
     }
+    // the same run awake throughout: the reference of sleep's gain (docs/SLEEP.md)
+    benchmark::RegisterBenchmark(
+        ("simulate/" + std::string(name) + "/discrete_1ms_implicit_nosleep").c_str(), discrete,
+        std::string(name), 1e-3, with_reference, ImpactMode::kImplicit, false)
+        ->Unit(benchmark::kMillisecond);
   }
   // Two meshes, fast method, 2 kHz output: the CAD-part target (>= 1x at 1 kHz).
   benchmark::RegisterBenchmark("simulate/battery_box_fixture", simulate,

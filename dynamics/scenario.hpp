@@ -74,6 +74,17 @@ enum class ImpactMode {
   kImplicit  ///< the plain linearly implicit step throughout (dissipates the impact)
 };
 
+/// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/SLEEP.md); dopri5
+/// and bdf ignore them (an error-controlled integrator freezes nothing).
+struct SleepSettings {
+  bool enabled = true;
+  /// m/s: a body is quiet while its material points stay within speed × time of where they
+  /// were when its quiet spell began (a mean speed; docs/SLEEP.md derives the default
+  /// from the creep and the hop of resting parts).
+  double speed = 1e-3;
+  double time = 0.05;  ///< s: an island sleeps once all its bodies have been quiet this long
+};
+
 struct SimulationSettings {
   Integrator integrator = Integrator::kDopri5;
   double duration = 1.0;           ///< s
@@ -88,6 +99,8 @@ struct SimulationSettings {
   double step = 1e-3;
   /// Integrator::kDiscrete only ("impacts": "resolve" or "implicit").
   ImpactMode impacts = ImpactMode::kResolve;
+  /// Integrator::kDiscrete only ("sleep": false or {"speed", "time"}).
+  SleepSettings sleep;
   /// Stop when a pair's mean penetration V/A exceeds this fraction of the smaller body's size.
   double max_penetration_fraction = 0.1;
 };

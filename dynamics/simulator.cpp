@@ -250,6 +250,10 @@ void Simulator::bodyRates(std::size_t i, const State& x, State& dxdt) const {
   const RigidBody& body = scenario_.bodies[i];
   const double* s = &x[static_cast<std::size_t>(offset_[i])];
   double* d = &dxdt[static_cast<std::size_t>(offset_[i])];
+  if (sleep_.asleep(i)) {  // it stays put (in an interval the discrete stepper resolves)
+    std::fill_n(d, kBodyStates, 0.0);
+    return;
+  }
   const Eigen::Vector3d& w = kin_[i].w_WB;
   // q̇ = ½ (0, ω_W) ⊗ q  (ω in the world frame)
   const Eigen::Quaterniond q(s[3], s[4], s[5], s[6]);
@@ -436,7 +440,8 @@ SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
                     const std::function<void(double)>& on_progress, SimulationSummary& summary) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const long rhs_start = rhs_count_, contacts_start = contact_count_;
+  const long rhs_start = rhs_count_, contacts_start = contact_count_,
+             skipped_start = sleep_skipped_;
   double t = 0.0;
   long patch_samples = 0, patch_total = 0;
   const OutputFn output = [&](const Snapshot& s) {
@@ -454,11 +459,14 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     summary.surface_pairs = recovered_->pairs();
     impacts_.finish(t);
     summary.impacts = impacts_.impacts();
+    summary.sleep_events = sleep_.events();
+    summary.sleep_skipped_queries = sleep_skipped_ - skipped_start;
   };
 
   non_finite_effect_.clear();
   query_depths_ = false;  // a run that stopped in a discrete step may have left it set
   recovered_->resetCounts();
+  sleep_.reset(scenario_);
   State x = x0_;
   State dxdt(x.size());
   rhs(x, dxdt, t);

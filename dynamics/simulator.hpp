@@ -35,6 +35,7 @@
 #include "dynamics/patch_tracker.hpp"
 #include "dynamics/recovered_pairs.hpp"
 #include "dynamics/scenario.hpp"
+#include "dynamics/sleep.hpp"
 #include "geometry/broad_phase.hpp"
 #include "volume/contact.hpp"
 
@@ -126,6 +127,10 @@ struct SimulationSummary {
   /// impact, and the accepted Dormand–Prince steps they took (docs/DISCRETE.md §5).
   long resolved_steps = 0;
   long resolution_substeps = 0;
+  /// Discrete runs with sleep (dynamics/sleep.hpp): the bodies falling asleep and waking, in
+  /// order, and the contact queries not made because a pair's bodies slept.
+  std::vector<SleepEvent> sleep_events;
+  long sleep_skipped_queries = 0;
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
 
@@ -177,6 +182,8 @@ class Simulator {
   bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool onsets_only, double h) const;
   void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
   void stepImpulses(double h);
+  void sleepBeforeStep(State& x, double t);
+  bool lacksDepth(std::size_t k) const;
   void assembleLoads(double t, double h);
   void loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
                  Vector6d out[2]) const;
@@ -280,6 +287,11 @@ class Simulator {
   std::vector<double> step_impulse_;
   double resolve_dt_ = 0.0;
   ImpactTracker impacts_;
+  // Sleeping islands (simulator_sleep.cpp): the tracker, its per-pair inputs, and the queries
+  // a frozen pair's kept contact replaced.
+  SleepTracker sleep_;
+  std::vector<char> sleep_contact_, sleep_near_;
+  long sleep_skipped_ = 0;
   long rhs_count_ = 0;
   long contact_count_ = 0;
   Snapshot output_;      ///< snapshot()'s result, reused from one output time to the next

@@ -64,6 +64,7 @@ void Simulator::runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on
     const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
     const bool lands = t_target - t <= set.step * (1.0 + kOutputTimeSlack);
     const double h = lands ? t_target - t : set.step;
+    if (sleep_.enabled()) sleepBeforeStep(x, t);
     discreteInterval(x, dxdt, t, h, lands ? t_target : t + h, lands, summary);
     ++summary.steps;
     if (lands) {
@@ -81,8 +82,9 @@ void Simulator::discreteStep(State& x, double t, double h) {
   column_.resize(nb);
   next_kin_.resize(nb);
   for (std::size_t i = 0; i < nb; ++i) {
-    column_[i] = offset_[i] >= 0 ? n : -1;
-    if (offset_[i] >= 0) n += 6;
+    const bool integrated = offset_[i] >= 0 && !sleep_.asleep(i);  // a sleeping body stays put
+    column_[i] = integrated ? n : -1;
+    if (integrated) n += 6;
     next_kin_[i] = offset_[i] >= 0 ? kin_[i] : scheduledKinematics(scenario_.bodies[i], t + h);
   }
   step_matrix_.setZero(n, n);
@@ -114,6 +116,7 @@ void Simulator::discreteStep(State& x, double t, double h) {
   step_patch_count_ = 0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
+    if (sleep_.frozen(k)) continue;  // neither body in the system: it would add nothing
     if (slots_[k] == 1) {
       assemblePatch(k, out.cv, 0, 0, x, h);
       continue;

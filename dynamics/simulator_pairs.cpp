@@ -76,6 +76,10 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
     if (!last_contact_.empty()) last_contact_[k] = apart_[k];
     return apart_[k];
   }
+  if (sleep_.frozen(k) && depth == volume::DepthMode::kSkip && !(query_depths_ && lacksDepth(k))) {
+    ++sleep_skipped_;  // each body asleep or fixed: the same poses, the same answer
+    return last_contact_[k];
+  }
   // the constructor checked that the method takes the pair's shapes
   const bool distributed = pair.friction == FrictionMode::kDistributed;
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);

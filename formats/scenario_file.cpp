@@ -210,6 +210,24 @@ std::size_t bodyIndex(const Reader& r, const std::string& key,
   r.fail(key, "no body named '" + name + "'");
 }
 
+// "sleep": false, true (the defaults) or {"speed": m/s, "time": s} (dynamics/SCENARIO.md).
+dynamics::SleepSettings readSleep(const Reader& r) {
+  dynamics::SleepSettings s;
+  const nlohmann::json& v = r["sleep"];
+  if (v.is_boolean()) {
+    s.enabled = v.get<bool>();
+    return s;
+  }
+  if (!v.is_object()) r.fail("sleep", "expected false, true or an object {\"speed\", \"time\"}");
+  const Reader o = r.child("sleep");
+  o.allowOnly({"speed", "time"});
+  // 1 m/s is far above any resting creep; a quiet time beyond a day means "never"
+  s.speed = o.number("speed", s.speed, 1e-12, 1.0);
+  if (!(s.speed > 0.0)) o.fail("speed", "expected a positive number");
+  s.time = o.number("time", s.time, 0.0, 86400.0);
+  return s;
+}
+
 dynamics::SimulationSettings readSettings(const Reader& r) {
   dynamics::SimulationSettings s;
   s.duration = r.inRange("duration", s.duration, io::kDurationRange);
@@ -237,6 +255,7 @@ dynamics::SimulationSettings readSettings(const Reader& r) {
       r.fail("impacts", "expected \"resolve\" or \"implicit\"");
     }
   }
+  if (r.has("sleep")) s.sleep = readSleep(r);
   if (!r.has("tolerances")) return s;
   const Reader t = r.child("tolerances");
   t.allowOnly({"abs", "rel", "initial_step", "max_step", "min_step", "max_penetration_fraction"});
@@ -467,9 +486,9 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir) {
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
-  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "impacts", "gravity",
-               "tolerances", "bodies", "models", "pairs", "contacts", "loads", "springs", "outputs",
-               "description"});
+  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "impacts", "sleep",
+               "gravity", "tolerances", "bodies", "models", "pairs", "contacts", "loads", "springs",
+               "outputs", "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }

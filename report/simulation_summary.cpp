@@ -46,6 +46,15 @@ nlohmann::json impactsJson(const dynamics::SimulationSummary& s) {
   return out;
 }
 
+// "sleep": the bodies falling asleep and waking, in order, and the queries sleep saved.
+nlohmann::json sleepJson(const dynamics::SimulationSummary& s) {
+  nlohmann::json events = nlohmann::json::array();
+  for (const dynamics::SleepEvent& e : s.sleep_events) {
+    events.push_back({{"body", e.body}, {"t_s", e.t}, {"event", e.asleep ? "asleep" : "woke"}});
+  }
+  return {{"events", events}, {"skipped_queries", s.sleep_skipped_queries}};
+}
+
 }  // namespace
 
 nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
@@ -70,6 +79,7 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
     j["resolved_steps"] = s.resolved_steps;
     j["resolution_substeps"] = s.resolution_substeps;
   }
+  if (!s.sleep_events.empty()) j["sleep"] = sleepJson(s);
   if (stop) {
     j["stopped_at_s"] = stop->time;
     j["stop_cause"] = dynamics::stopCauseName(stop->cause);

@@ -1,7 +1,7 @@
 // The bundled bin of ten parts (assets/scenarios/bin_of_ten.json, issue 18): the file reads to
 // the bodies and the 55 pairs it describes, and the first 50 ms of its discrete run (the lower
 // layer lands on the floor) keep every part above the floor within a stated depth and gain no
-// mechanical energy beyond a stated bound.
+// mechanical energy beyond a stated bound; the whole run, with sleep, ends with every part asleep.
 
 #include <gtest/gtest.h>
 
@@ -96,10 +96,11 @@ struct LandingRecord {
   double simulated = 0.0;  // s
 };
 
-LandingRecord runAndRecord(const Scenario& s) {
+LandingRecord runAndRecord(const Scenario& s, dynamics::SimulationSummary* out = nullptr) {
   LandingRecord r;
   dynamics::Simulator sim(s);
-  dynamics::SimulationSummary summary;
+  dynamics::SimulationSummary local;
+  dynamics::SimulationSummary& summary = out ? *out : local;
   auto record = [&](const Snapshot& snap) {
     const double e = mechanicalEnergy(s, snap);
     if (std::isnan(r.e0)) r.e0 = e;
@@ -160,6 +161,49 @@ TEST(BinOfTen, FirstLandingsStayAboveTheFloorAndGainNoEnergy) {
       "deepest vertex below the floor %.3g m (%s, t = %g s; bound %.3g), largest energy gain "
       "%.3g J (bound %.3g)\n",
       r.worst_depth, r.deepest_part.c_str(), r.deepest_at, max_depth, r.worst_gain, max_gain);
+}
+
+// The whole 0.5 s with the scenario's own settings, sleep on (docs/SLEEP.md): every part
+// ends asleep, no part sinks below the floor by more than a step's fall allows, and the
+// energy gains no more than the first landings' bound.
+TEST(BinOfTen, EveryPartEndsAsleepWithinTheBounds) {
+  const Scenario s = readScenarioFile(kBin).scenario;
+  ASSERT_TRUE(s.settings.sleep.enabled);  // the default of the discrete stepper
+  const double h = s.settings.step;
+  // As above, for the highest lowest vertex H of a part at t = 0 (a part lands on the floor
+  // from at most there): sqrt(2 g H) h + g h².
+  double H = 0.0, total_mass = 0.0;
+  for (std::size_t i = 1; i < s.bodies.size(); ++i) {
+    BodyKinematics k;
+    k.X_WB = s.bodies[i].X_WB0;
+    H = std::max(H, lowestZ(s.bodies[i], k));
+    total_mass += s.bodies[i].mass;
+  }
+  const double max_depth = std::sqrt(2.0 * kG * H) * h + kG * h * h;
+  const double max_gain = 2.0 * total_mass * kG * kG * h * h;
+  dynamics::SimulationSummary summary;
+  const LandingRecord r = runAndRecord(s, &summary);
+  ASSERT_EQ(r.simulated, 0.5);
+  EXPECT_LE(r.worst_depth, max_depth) << r.deepest_part << " at t = " << r.deepest_at;
+  EXPECT_LE(r.worst_gain, max_gain) << "E(0) = " << r.e0;
+  std::set<std::string> asleep;
+  for (const dynamics::SleepEvent& e : summary.sleep_events) {
+    if (e.asleep) {
+      asleep.insert(e.body);
+    } else {
+      asleep.erase(e.body);
+    }
+  }
+  for (std::size_t i = 1; i < s.bodies.size(); ++i) {
+    EXPECT_EQ(asleep.count(s.bodies[i].name), 1u) << s.bodies[i].name;
+    EXPECT_EQ(r.last.bodies[i].v_WBcm.norm(), 0.0) << s.bodies[i].name;  // a sleeper is still
+  }
+  EXPECT_GT(summary.sleep_skipped_queries, 0);
+  std::printf(
+      "last part asleep at %g s; %ld queries made, %ld skipped; deepest %.3g m (bound "
+      "%.3g)\n",
+      summary.sleep_events.empty() ? 0.0 : summary.sleep_events.back().t,
+      summary.contact_evaluations, summary.sleep_skipped_queries, r.worst_depth, max_depth);
 }
 
 }  // namespace

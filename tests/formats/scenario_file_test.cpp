@@ -93,6 +93,10 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
       {"/integrator", "euler", "s.json: integrator: expected \"dopri5\", \"bdf\" or \"discrete\""},
       {"/step", 0.1, "s.json: step: expected a number in [1e-06, 0.01]"},
       {"/impacts", "ignore", "s.json: impacts: expected \"resolve\" or \"implicit\""},
+      {"/sleep", "soon", "s.json: sleep: expected false, true or an object"},
+      {"/sleep", nlohmann::json{{"speed", 0.0}}, "s.json: sleep.speed: expected a number in"},
+      {"/sleep", nlohmann::json{{"time", -1.0}}, "s.json: sleep.time: expected a number in"},
+      {"/sleep", nlohmann::json{{"after", 1.0}}, "s.json: sleep.after: unknown key"},
       // Physical ranges (io/input_ranges.hpp) and types the issue 20 catalogue found accepted.
       {"/bodies/1/density", -7900.0,
        "bodies[1].density: expected a number in [0.1, 100000] kg/m^3, got -7900"},
@@ -118,6 +122,24 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
   mass_only["bodies"][1].erase("density");
   EXPECT_NE(errorOf(mass_only).find("bodies[1]: a free body needs either \"density\""),
             std::string::npos);
+}
+
+// "sleep" (docs/SLEEP.md): on with its defaults unless the file says false; an object
+// sets the quiet speed and time, each defaulting on its own.
+TEST(ScenarioFile, SleepKeyReachesTheSettings) {
+  const dynamics::SleepSettings defaults;
+  nlohmann::json j = ballOnPlate();
+  EXPECT_TRUE(scenarioFromJson(j, "s.json", kScenarios).scenario.settings.sleep.enabled);
+  j["sleep"] = false;
+  EXPECT_FALSE(scenarioFromJson(j, "s.json", kScenarios).scenario.settings.sleep.enabled);
+  j["sleep"] = nlohmann::json{{"speed", 2e-4}};
+  const dynamics::SleepSettings s =
+      scenarioFromJson(j, "s.json", kScenarios).scenario.settings.sleep;
+  EXPECT_TRUE(s.enabled);
+  EXPECT_EQ(s.speed, 2e-4);
+  EXPECT_EQ(s.time, defaults.time);
+  j["sleep"] = nlohmann::json{{"time", 0.2}};
+  EXPECT_EQ(scenarioFromJson(j, "s.json", kScenarios).scenario.settings.sleep.time, 0.2);
 }
 
 // Issue 20: the mesh file's error alone did not say which body of the scenario named it.
