@@ -43,6 +43,7 @@ using detail::absCosIntegral;
 using detail::Segment;
 using detail::segmentAngle;
 using detail::segmentMoments;
+using detail::shallowSegmentMoments;
 using detail::trigRoots;
 
 // Integrated quantities, per unit ζ, about o = −R u + ζ_deep e_z, where z' = ζ − ζ_deep.
@@ -85,9 +86,25 @@ SliceMoments unpack(const SliceVector& x) {
   return {x(0), x(1), x(2), x(3), x(4), x(5), x(6), x(7), x(8)};
 }
 
-SliceVector sliceIntegrand(double R, double s, double theta, double zp) {
-  const Segment g = segmentMoments(R, theta);
-  const double sinT = std::sin(theta);
+/// The segment of angle θ on radius R and sin θ, remembered for the next call with the same
+/// θ: along a cylinder lying parallel to the plane every slice is the same segment.
+struct SegmentCache {
+  double theta = -1.0;
+  Segment g{};
+  double sinT = 0.0;
+  const Segment& at(double R, double t) {
+    if (t != theta) {
+      theta = t;
+      g = segmentMoments(R, t);
+      sinT = std::sin(t);
+    }
+    return g;
+  }
+};
+
+SliceVector sliceIntegrand(double R, double s, double theta, double zp, SegmentCache& cache) {
+  const Segment g = cache.at(R, theta);
+  const double sinT = cache.sinT;
   return pack({g.A, g.S1, g.S11, g.S22, g.A * zp, g.S1 * zp, g.A * zp * zp,
                s * R * 2.0 * (theta <= 0.5 * M_PI ? sinT : 2.0 - sinT), 2.0 * R * sinT / s});
 }
@@ -171,6 +188,7 @@ SliceMoments fullDiscs(const CylinderSetup& c, double a, double b) {
 QuadratureResult<kSliceSize> integrateSegments(const CylinderSetup& c, double a, double b,
                                                bool tangentA, bool tangentB) {
   const double R = c.R;
+  SegmentCache cache;
   const double ta = tangentA ? (c.depth(a) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(a));
   const double tb = tangentB ? (c.depth(b) < R ? 0.0 : M_PI) : segmentAngle(R, c.depth(b));
   // θ is the better variable where d runs close to 0 (or 2R) relative to its range: the
@@ -184,13 +202,13 @@ QuadratureResult<kSliceSize> integrateSegments(const CylinderSetup& c, double a,
     auto f = [&](double theta) -> SliceVector {
       const double dcos = -2.0 * std::sin(0.5 * (theta + ta)) * std::sin(0.5 * (theta - ta));
       const double zeta = a + c.s * R * dcos / c.nz;
-      return sliceIntegrand(R, c.s, theta, zeta - c.zetaDeep) *
+      return sliceIntegrand(R, c.s, theta, zeta - c.zetaDeep, cache) *
              (c.s * R * std::sin(theta) / std::abs(c.nz));
     };
     return integrateAdaptive<kSliceSize>(f, tLo, tHi, kQuadratureTolerance);
   }
   auto f = [&](double zeta) -> SliceVector {
-    return sliceIntegrand(R, c.s, segmentAngle(R, c.depth(zeta)), zeta - c.zetaDeep);
+    return sliceIntegrand(R, c.s, segmentAngle(R, c.depth(zeta)), zeta - c.zetaDeep, cache);
   };
   return integrateAdaptive<kSliceSize>(f, a, b, kQuadratureTolerance);
 }
@@ -253,18 +271,23 @@ SliceMoments shifted(SliceMoments m, double delta) {
 }
 
 /// The slice at a point of a curved piece, times dζ/dt, for the segment of angle θ (π: the
-/// whole disc).
-SliceVector curvedSlice(const Revolution& rv, const PieceAt& e, double theta) {
+/// whole disc), sin θ and cos θ given.
+SliceVector curvedSlice(const Revolution& rv, const PieceAt& e, double theta, double sinT,
+                        double cosT) {
   const double r = e.r;
   const bool full = theta == M_PI;
-  const Segment g = segmentMoments(r, theta);
+  const Segment g = shallowSegmentMoments(r, theta);
   const double zp = e.zeta - rv.zetaDeep;
   SliceMoments m{g.A, g.S1, g.S11, g.S22, g.A * zp, g.S1 * zp, g.A * zp * zp, 0.0, 0.0};
   SliceVector x = pack(shifted(m, rv.rRef - r)) * e.J;
   // The side's shadow: its element r(e_r − r' e_z) dψ dζ against n, over the wetted arc.
-  x(7) = 2.0 * r * absCosIntegral(rv.s * e.J, e.drdt * rv.nz, theta);
-  x(8) = full ? 0.0 : 2.0 * r * std::sin(theta) / rv.s * e.J;
+  x(7) = 2.0 * r * absCosIntegral(rv.s * e.J, e.drdt * rv.nz, theta, sinT, cosT);
+  x(8) = full ? 0.0 : 2.0 * r * sinT / rv.s * e.J;
   return x;
+}
+
+SliceVector curvedSlice(const Revolution& rv, const PieceAt& e, double theta) {
+  return curvedSlice(rv, e, theta, std::sin(theta), std::cos(theta));
 }
 
 double angleOf(double r, double d) { return r > 0.0 ? segmentAngle(r, d) : 0.0; }
@@ -380,14 +403,17 @@ void addLinearPiece(const Revolution& rv, const ProfilePiece& p, CylinderIntegra
   }
   const double zA = p.z0 + x0, rA = p.r0 + k * x0;
   const auto zetaOf = [&](double theta) {
-    return zA +
-           2.0 * s * rA * std::pow(std::sin(0.5 * theta), 2) / (s * k * std::cos(theta) - rv.nz);
+    const double h = std::sin(0.5 * theta);
+    return zA + 2.0 * s * rA * h * h / (s * k * std::cos(theta) - rv.nz);
   };
   const auto f = [&](double theta) -> SliceVector {
-    const double N = 2.0 * rA * std::pow(std::sin(0.5 * theta), 2);
-    const double D = s * k * std::cos(theta) - rv.nz;
-    const double dzdt = s * std::sin(theta) * (rA * D + N * s * k) / (D * D);
-    return curvedSlice(rv, pieceAt(p, zA + s * N / D), theta) * std::abs(dzdt);
+    // one sine: sin²(θ/2) keeps its digits near θ = 0, cos θ = 1 − 2 sin²(θ/2)
+    const double h = std::sin(0.5 * theta), h2 = h * h;
+    const double sinT = 2.0 * h * std::sqrt(1.0 - h2), cosT = 1.0 - 2.0 * h2;
+    const double N = 2.0 * rA * h2;
+    const double D = s * k * cosT - rv.nz;
+    const double dzdt = s * sinT * (rA * D + N * s * k) / (D * D);
+    return curvedSlice(rv, pieceAt(p, zA + s * N / D), theta, sinT, cosT) * std::abs(dzdt);
   };
   for (const auto& [a, b] :
        {std::pair{lo, std::min(hi, 0.5 * M_PI)}, std::pair{std::max(lo, 0.5 * M_PI), hi}})

@@ -34,36 +34,103 @@ double integrateClosed(const TrigPoly& a, double theta,
   return sum;
 }
 
-/// Σ_k a_k k^{2j} for j < kSeriesTerms: the series coefficients, exact in binary.
-std::array<double, kSeriesTerms> seriesMoments(const TrigPoly& a) {
-  std::array<double, kSeriesTerms> m{};
-  for (int j = 0; j < kSeriesTerms; ++j) {
-    m[j] = j == 0 ? a[0] : 0.0;
-    for (int k = 1; k < kTrigTerms; ++k) m[j] += a[k] * std::pow(static_cast<double>(k), 2 * j);
-  }
-  return m;
+// The four series' coefficients Σ_k a_k k^{2j} (exact in binary), and Σ_k |a_k| k^{2j},
+// which bounds them.
+struct SeriesTable {
+  std::array<std::array<double, kSeriesTerms>, 4> m{}, bound{};
+};
+
+SeriesTable seriesTable() {
+  SeriesTable t;
+  const std::array<TrigPoly, 4> polys = {kSin2, kOmcSin2, kOmc2Sin2, kSin4};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < kSeriesTerms; ++j) {
+      t.m[i][j] = j == 0 ? polys[i][0] : 0.0;
+      t.bound[i][j] = j == 0 ? std::abs(polys[i][0]) : 0.0;
+      for (int k = 1; k < kTrigTerms; ++k) {
+        const double kk = std::pow(static_cast<double>(k), 2 * j);
+        t.m[i][j] += polys[i][k] * kk;
+        t.bound[i][j] += std::abs(polys[i][k]) * kk;
+      }
+    }
+  return t;
 }
 
-double integrateSeries(const std::array<double, kSeriesTerms>& m, double theta) {
-  double sum = 0.0, power = theta;  // θ^{2j+1}/(2j+1)!
+// The four series at once, sharing the powers θ^{2j+1}/(2j+1)!, and no further than their
+// terms can change a sum: from the third term on each is at most 9/20 of the one before
+// (|m_{j+1}| ≤ 16 bound_j, 16θ² < 9 below θ = 0.75, (2j + 2)(2j + 3) ≥ 20), so once the next
+// one's bound is below 2⁻⁶⁰ of every sum, none of the rest is half an ulp of it and the sums
+// are those of all kSeriesTerms terms, bit for bit.
+std::array<double, 4> integrateSeries(double theta) {
+  static const SeriesTable t = seriesTable();
+  std::array<double, 4> sum{};
+  double power = theta;  // θ^{2j+1}/(2j+1)!
   for (int j = 0; j < kSeriesTerms; ++j) {
-    sum += (j % 2 == 0 ? power : -power) * m[j];
+    const double signedPower = j % 2 == 0 ? power : -power;
+    for (int i = 0; i < 4; ++i) sum[i] += signedPower * t.m[i][j];
     power *= theta * theta / ((2.0 * j + 2.0) * (2.0 * j + 3.0));
+    if (j >= 1 && j + 1 < kSeriesTerms) {
+      bool negligible = true;
+      for (int i = 0; i < 4; ++i)
+        negligible = negligible && power * t.bound[i][j + 1] < 0x1p-60 * std::abs(sum[i]);
+      if (negligible) break;
+    }
   }
+  return sum;
+}
+
+// The same four series by Horner's rule in θ², with the coefficients (−1)^j m_j/(2j+1)!
+// and no more terms than θ needs: n terms leave at most 2·4^{2n} θ^{2n+1}/(2n+1)! (|m_j| ≤ 2·16^j),
+// which is below 2⁻⁵⁶ of the smallest of the four sums (θ⁷/28, that of (1 − cos φ)² sin²φ)
+// for θ up to θ_n. Not bit for bit the series above: for the curved pieces, which have no
+// earlier results to keep.
+struct HornerTable {
+  std::array<std::array<double, kSeriesTerms>, 4> c{};
+  std::array<double, kSeriesTerms + 1> upTo{};  // θ_n: n terms suffice below it
+};
+
+HornerTable hornerTable() {
+  const SeriesTable t = seriesTable();
+  HornerTable h;
+  double factorial = 1.0;  // (2j + 1)!
+  for (int j = 0; j < kSeriesTerms; ++j) {
+    if (j > 0) factorial *= (2.0 * j) * (2.0 * j + 1.0);
+    for (int i = 0; i < 4; ++i) h.c[i][j] = (j % 2 == 0 ? 1.0 : -1.0) * t.m[i][j] / factorial;
+  }
+  double f = 1.0;  // (2n + 1)!
+  for (int n = 1; n <= kSeriesTerms; ++n) {
+    f *= (2.0 * n) * (2.0 * n + 1.0);
+    h.upTo[n] =
+        n < 4 ? 0.0
+              : std::pow(std::ldexp(f, -56) / (56.0 * std::pow(4.0, 2 * n)), 1.0 / (2.0 * n - 6.0));
+  }
+  h.upTo[kSeriesTerms] = kSeriesBelow;  // the design of kSeriesTerms
+  return h;
+}
+
+std::array<double, 4> integrateSeriesHorner(double theta) {
+  static const HornerTable h = hornerTable();
+  int n = 4;
+  while (n < kSeriesTerms && theta > h.upTo[n]) ++n;
+  const double t2 = theta * theta;
+  std::array<double, 4> sum{};
+  for (int j = n - 1; j >= 0; --j)
+    for (int i = 0; i < 4; ++i) sum[i] = sum[i] * t2 + h.c[i][j];
+  for (double& x : sum) x *= theta;
   return sum;
 }
 
 }  // namespace
 
-Segment segmentMoments(double R, double theta) {
+namespace {
+Segment segmentMoments(double R, double theta, bool horner) {
   double i20, i21, i22, i40;
   if (theta < kSeriesBelow) {
-    static const auto m20 = seriesMoments(kSin2), m21 = seriesMoments(kOmcSin2),
-                      m22 = seriesMoments(kOmc2Sin2), m40 = seriesMoments(kSin4);
-    i20 = integrateSeries(m20, theta);
-    i21 = integrateSeries(m21, theta);
-    i22 = integrateSeries(m22, theta);
-    i40 = integrateSeries(m40, theta);
+    const std::array<double, 4> i = horner ? integrateSeriesHorner(theta) : integrateSeries(theta);
+    i20 = i[0];
+    i21 = i[1];
+    i22 = i[2];
+    i40 = i[3];
   } else {
     std::array<double, kTrigTerms> sinK{};
     const double s1 = std::sin(theta), c1 = std::cos(theta);
@@ -84,6 +151,12 @@ Segment segmentMoments(double R, double theta) {
   return {2.0 * R2 * i20, 2.0 * R2 * R * i21, 2.0 * R2 * R2 * i22, (2.0 / 3.0) * R2 * R2 * i40};
 }
 
+}  // namespace
+
+Segment segmentMoments(double R, double theta) { return segmentMoments(R, theta, false); }
+
+Segment shallowSegmentMoments(double R, double theta) { return segmentMoments(R, theta, true); }
+
 /// θ with d = R(1 − cos θ), accurate for small d; d is clamped to [0, 2R].
 double segmentAngle(double R, double d) {
   const double r = std::clamp(d / (2.0 * R), 0.0, 1.0);
@@ -91,13 +164,15 @@ double segmentAngle(double R, double d) {
 }
 
 /// ∫_0^θ |A cos φ + B| dφ.
-double absCosIntegral(double A, double B, double theta) {
-  const auto F = [&](double phi) { return A * std::sin(phi) + B * phi; };
-  if (A != 0.0 && std::abs(B) < std::abs(A)) {
-    const double phi0 = std::acos(-B / A);  // where A cos φ + B changes sign
-    if (phi0 < theta) return std::abs(F(phi0)) + std::abs(F(theta) - F(phi0));
+double absCosIntegral(double A, double B, double theta, double sinTheta, double cosTheta) {
+  const double atTheta = A * sinTheta + B * theta;  // the antiderivative A sin φ + B φ
+  // A cos φ + B changes sign at φ₀ = acos(−B/A), before θ when cos θ < −B/A
+  if (A != 0.0 && std::abs(B) < std::abs(A) && cosTheta < -B / A) {
+    const double phi0 = std::acos(-B / A);
+    const double at0 = A * std::sqrt(1.0 - (B / A) * (B / A)) + B * phi0;
+    return std::abs(at0) + std::abs(atTheta - at0);
   }
-  return std::abs(F(theta));
+  return std::abs(atTheta);
 }
 
 /// Solutions α ∈ (lo, hi) of P cos α + Q sin α = K.

@@ -18,11 +18,16 @@ struct Segment {
 /// @param theta half the angle the chord subtends at the centre, in [0, π]
 Segment segmentMoments(double R, double theta);
 
+/// The same by a shorter evaluation of the series for thin segments (Horner's rule, as many
+/// terms as θ needs): equal to segmentMoments to rounding, not bit for bit.
+Segment shallowSegmentMoments(double R, double theta);
+
 /// θ with d = R(1 − cos θ), accurate for small d; d is clamped to [0, 2R].
 double segmentAngle(double R, double d);
 
-/// ∫_0^θ |A cos φ + B| dφ (the shadow of a slice's wetted arc along a plane's normal).
-double absCosIntegral(double A, double B, double theta);
+/// ∫_0^θ |A cos φ + B| dφ, sin θ and cos θ given (the shadow of a slice's wetted arc along a
+/// plane's normal).
+double absCosIntegral(double A, double B, double theta, double sinTheta, double cosTheta);
 
 /// Appends to `out` the solutions α ∈ (lo, hi) of P cos α + Q sin α = K (lo, hi in [−π, π]).
 void trigRoots(double P, double Q, double K, double lo, double hi, std::vector<double>& out);

@@ -12,6 +12,7 @@
 
 #include "support/test_support.hpp"
 #include "volume/analytic.hpp"
+#include "volume/analytic_segment.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -214,6 +215,21 @@ TEST(AnalyticRevolution, ChamferedPinOnItsSideAgainstSimpson) {
       EXPECT_NEAR((M.inverse() * cv.p_WC).x(), 0.5 * Lp, kPromised * Lp);  // symmetric
     }
   }
+}
+
+// The curved pieces' shorter series (Horner, as many terms as θ needs) against the cylinder's
+// full one: both are sums of the same exact coefficients, so they agree to rounding; 1e-14
+// leaves room for a few ulps of the thinnest segments' cancellation-free sums.
+TEST(AnalyticRevolution, ShallowSegmentSeriesAgreesWithTheFullOne) {
+  double worst = 0.0;
+  for (int i = 1; i <= 3000; ++i) {
+    const double theta = 0.7499 * i / 3000.0 * (i % 3 == 0 ? 1e-4 : 1.0);
+    const detail::Segment a = detail::segmentMoments(0.3, theta);
+    const detail::Segment b = detail::shallowSegmentMoments(0.3, theta);
+    for (const auto& [x, y] : {std::pair{a.A, b.A}, {a.S1, b.S1}, {a.S11, b.S11}, {a.S22, b.S22}})
+      worst = std::max(worst, std::abs(x - y) / std::abs(x));
+  }
+  EXPECT_LT(worst, 1e-14);
 }
 
 TEST(AnalyticRevolution, RejectsAProfileWithAGap) {
