@@ -122,13 +122,13 @@ bool assemble(std::vector<ProfilePiece>& pieces, const std::vector<double>& plan
     const double z = 0.5 * (pieces[i].z1 + pieces[i + 1].z0);
     moveEnd(pieces[i], pieces[i].z0, z);
     moveEnd(pieces[i + 1], z, pieces[i + 1].z1);
-    const double step = pieces[i].kind == Kind::kArc ? profileRadius(pieces[i], z) : pieces[i].r1;
-    const double next =
+    const double below = pieces[i].kind == Kind::kArc ? profileRadius(pieces[i], z) : pieces[i].r1;
+    const double above =
         pieces[i + 1].kind == Kind::kArc ? profileRadius(pieces[i + 1], z) : pieces[i + 1].r0;
     breaks.push_back(z);
     const bool closed =
         std::any_of(planes.begin(), planes.end(), [&](double p) { return std::abs(p - z) <= tol; });
-    if (std::abs(step - next) > tol && !closed) {
+    if (std::abs(below - above) > tol && !closed) {
       reason = "a step in the radius that no plane closes";
       return false;
     }

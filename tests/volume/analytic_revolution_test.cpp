@@ -217,6 +217,34 @@ TEST(AnalyticRevolution, ChamferedPinOnItsSideAgainstSimpson) {
   }
 }
 
+// A pin of radius R with a fillet of radius f at its lower end (a torus' outer half: centre
+// ρ_c = R − f, z_c = f), standing on its end pressed d < f: every slice is a whole disc, and
+// V = ∫₀^d π r(z)² dz with r = ρ_c + √(f² − (z − f)²), in closed form:
+// π[ρ_c² t + 2ρ_c F(t) + f² t − t³/3] between t = −f and d − f, F(t) = (t√(f² − t²) + f²
+// asin(t/f))/2.
+TEST(AnalyticRevolution, FilletedPinOnItsEndIsItsDiscsIntegrated) {
+  const double R = 0.005, f = 0.001, L = 0.02, rho = R - f;
+  ProfilePiece fillet = arc(0.0, f, rho, f, f);
+  const RevolutionProfile pin = {fillet, constant(f, L, R)};
+  const auto G = [&](double t) {
+    const double F = 0.5 * (t * std::sqrt(f * f - t * t) + f * f * std::asin(t / f));
+    return M_PI * (rho * rho * t + 2.0 * rho * F + f * f * t - t * t * t / 3.0);
+  };
+  for (double d : {1e-7, 1e-5, 5e-4}) {
+    const double expected = G(d - f) - G(-f);
+    for (unsigned seed : {0u, 19u, 23u}) {
+      const Isometry3d M = seed == 0 ? Isometry3d::Identity() : randomPose(seed);
+      Isometry3d X = Isometry3d::Identity();
+      X.translation().z() = -d;
+      const ContactVolume cv = revolutionHalfspace(pin, M * X, M);
+      SCOPED_TRACE(d);
+      // G's terms cancel to the volume's size: ~1e-16 of π ρ_c² f over V, 4e-9 at d = 1e-7
+      EXPECT_NEAR(cv.volume, expected, 1e-8 * expected + 1e-15 * M_PI * rho * rho * f);
+      EXPECT_LT((M.inverse() * cv.p_WC).head<2>().norm(), 1e-9 * R);  // on the axis
+    }
+  }
+}
+
 // The curved pieces' shorter series (Horner, as many terms as θ needs) against the cylinder's
 // full one: both are sums of the same exact coefficients, so they agree to rounding; 1e-14
 // leaves room for a few ulps of the thinnest segments' cancellation-free sums.

@@ -212,6 +212,43 @@ TEST(RecoveredRevolution, CapsuleOnItsSideAndOnItsEnd) {
   }
 }
 
+// A pin of radius R, length L, with a fillet of radius f at its lower end (8 rings on the
+// fillet, 8 along the side): recognition finds the fillet's torus and the cylinder; the end
+// disk, fanned and tangent to the fillet, stays free-form, away from the contact. On its side
+// pressed d < f: the side's segment times L − f, and the fillet's slices t from its rim
+// (r = R − f + √(f² − t²), a segment of height d − (R − r)) for t up to δ = √(2fd − d²),
+// by Simpson's rule after t = δ(1 − u²) (error < 1e-9).
+TEST(RecoveredRevolution, FilletedPinOnItsSideAgainstSimpson) {
+  const double R = 0.005, f = 0.001, L = 0.02;
+  std::vector<Eigen::Vector2d> profile = {{R - f, 0.0}};
+  for (int i = 1; i <= 8; ++i) {
+    const double a = -0.5 * M_PI + 0.5 * M_PI * i / 8.0;
+    profile.emplace_back(R - f + f * std::cos(a), f + f * std::sin(a));
+  }
+  for (int i = 1; i <= 8; ++i) profile.emplace_back(R, f + (L - f) * i / 8.0);
+  const TriangleMesh pin = geometry::tessellateRevolution(profile, 64);
+  const geometry::SurfaceRecognition rec = recogniseSurfaces(pin);
+  const RecoveredBody body(pin, rec);
+  for (double ratio : {1e-4, 1e-3, 1e-2}) {
+    const double d = ratio * R, delta = std::sqrt(2.0 * f * d - d * d);
+    const int n = 20000;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double u = static_cast<double>(i) / n, t = delta * (1.0 - u * u);
+      const double r = R - f + std::sqrt(f * f - t * t);
+      sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * segment(r, d - (R - r)) * 2.0 *
+             delta * u;
+    }
+    const double expected = (L - f) * segment(R, d) + sum / (3.0 * n);
+    for (unsigned seed : {0u, 29u}) {
+      const Isometry3d X_WH = seed ? test::randomPose(seed) : Isometry3d::Identity();
+      const RecoveredContact got = body.halfspaceContact(X_WH * onItsSide(R - d), X_WH);
+      ASSERT_EQ(got.representation, "revolution") << got.reason << " / " << recognisedKinds(rec);
+      EXPECT_NEAR(got.cv.volume, expected, kRelative * expected) << ratio << ' ' << seed;
+    }
+  }
+}
+
 TEST(RecoveredRevolution, ProfileOfTheChamferedPin) {
   const double r = 0.005, L = 0.03, c = 0.0005;
   const TriangleMesh pin = chamferedPin(r, L, c);
