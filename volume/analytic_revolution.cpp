@@ -40,6 +40,10 @@ constexpr double kMinThetaRange = 1e-6;
 // smooth in θ), otherwise in ζ itself.
 
 using detail::absCosIntegral;
+using detail::linearSlope;
+using detail::parameterOf;
+using detail::PieceAt;
+using detail::pieceAt;
 using detail::Segment;
 using detail::segmentAngle;
 using detail::segmentMoments;
@@ -219,38 +223,6 @@ QuadratureResult<kSliceSize> integrateSegments(const CylinderSetup& c, double a,
 // arc's radius stays smooth where its slope dr/dζ is infinite (a fillet meeting an end face).
 // The slice of a radius r ≠ R is taken about its own edge point ξ = −r and moved to the
 // common origin ξ = −R (R the largest radius) by δ = R − r.
-
-struct PieceAt {
-  double zeta, r;
-  double J;     // dζ/dt
-  double drdt;  // dr/dt
-};
-
-double linearSlope(const ProfilePiece& p) { return (p.r1 - p.r0) / (p.z1 - p.z0); }
-
-PieceAt pieceAt(const ProfilePiece& p, double t) {
-  switch (p.kind) {
-    case ProfilePiece::Kind::kConstant:
-      return {t, p.r0, 1.0, 0.0};
-    case ProfilePiece::Kind::kLinear: {
-      const double k = linearSlope(p);
-      return {t, p.r0 + k * (t - p.z0), 1.0, k};
-    }
-    case ProfilePiece::Kind::kArc:
-      break;
-  }
-  const double c = std::cos(t), s = std::sin(t);
-  return {p.z_c + p.a * s, std::max(0.0, p.rho_c + p.sign * p.a * c), p.a * c, -p.sign * p.a * s};
-}
-
-double arcAngle(const ProfilePiece& p, double zeta) {
-  return std::asin(std::clamp((zeta - p.z_c) / p.a, -1.0, 1.0));
-}
-
-/// The parameter of ζ on the piece.
-double parameterOf(const ProfilePiece& p, double zeta) {
-  return p.kind == ProfilePiece::Kind::kArc ? arcAngle(p, zeta) : zeta;
-}
 
 /// The half-space n·p ≤ h in the solid's frame, n = s u + n_z e_z, and the moments' origin
 /// o = −rRef u + zetaDeep e_z.
@@ -595,10 +567,6 @@ ContactVolume revolutionInOwnFrame(const RevolutionProfile& profile, const Vecto
 }
 
 }  // namespace
-
-double profileRadius(const ProfilePiece& piece, double zeta) {
-  return pieceAt(piece, parameterOf(piece, std::clamp(zeta, piece.z0, piece.z1))).r;
-}
 
 RevolutionProfile cylinderProfile(double radius, double length) {
   ProfilePiece p;

@@ -187,4 +187,41 @@ void trigRoots(double P, double Q, double K, double lo, double hi, std::vector<d
   }
 }
 
+double linearSlope(const ProfilePiece& p) { return (p.r1 - p.r0) / (p.z1 - p.z0); }
+
+PieceAt pieceAt(const ProfilePiece& p, double t) {
+  switch (p.kind) {
+    case ProfilePiece::Kind::kConstant:
+      return {t, p.r0, 1.0, 0.0};
+    case ProfilePiece::Kind::kLinear: {
+      const double k = linearSlope(p);
+      return {t, p.r0 + k * (t - p.z0), 1.0, k};
+    }
+    case ProfilePiece::Kind::kArc:
+      break;
+  }
+  const double c = std::cos(t), s = std::sin(t);
+  return {p.z_c + p.a * s, std::max(0.0, p.rho_c + p.sign * p.a * c), p.a * c, -p.sign * p.a * s};
+}
+
+namespace {
+
+double arcAngle(const ProfilePiece& p, double zeta) {
+  return std::asin(std::clamp((zeta - p.z_c) / p.a, -1.0, 1.0));
+}
+
+}  // namespace
+
+double parameterOf(const ProfilePiece& p, double zeta) {
+  return p.kind == ProfilePiece::Kind::kArc ? arcAngle(p, zeta) : zeta;
+}
+
 }  // namespace vcontact::volume::detail
+
+namespace vcontact::volume {
+
+double profileRadius(const ProfilePiece& piece, double zeta) {
+  return detail::pieceAt(piece, detail::parameterOf(piece, std::clamp(zeta, piece.z0, piece.z1))).r;
+}
+
+}  // namespace vcontact::volume

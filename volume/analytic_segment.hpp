@@ -1,10 +1,13 @@
 #pragma once
 // The moments of a circular segment, the slice of a disc that a line cuts off, by closed
 // forms that keep their digits down to the thinnest segment (a series where the closed forms
-// would cancel), and two small pieces of trigonometry the slices need. Shared by the analytic
+// would cancel), two small pieces of trigonometry the slices need, and the walk along a
+// profile piece. Shared by the analytic
 // backend's solids of revolution (volume/analytic_revolution.hpp).
 
 #include <vector>
+
+#include "volume/analytic_revolution.hpp"
 
 namespace vcontact::volume::detail {
 
@@ -31,5 +34,18 @@ double absCosIntegral(double A, double B, double theta, double sinTheta, double 
 
 /// Appends to `out` the solutions α ∈ (lo, hi) of P cos α + Q sin α = K (lo, hi in [−π, π]).
 void trigRoots(double P, double Q, double K, double lo, double hi, std::vector<double>& out);
+
+/// A profile piece walked by its parameter t: ζ itself on constant and linear pieces, the
+/// angle α on an arc (ζ = z_c + a sin α, r = ρ_c + σ a cos α).
+struct PieceAt {
+  double zeta, r;
+  double J;     ///< dζ/dt
+  double drdt;  ///< dr/dt
+};
+PieceAt pieceAt(const ProfilePiece& p, double t);
+/// dr/dζ of a linear piece.
+double linearSlope(const ProfilePiece& p);
+/// The parameter of ζ on the piece.
+double parameterOf(const ProfilePiece& p, double zeta);
 
 }  // namespace vcontact::volume::detail
