@@ -2,9 +2,10 @@
 // CSV: the error is the mesh's, not the clip's (the clip is exact for the polyhedron); beside
 // it, the error of the same mesh on its recovered surface (docs/SURFACES.md).
 //   usage: vcontact_error_table OUTPUT_DIR
-// writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv, and
-// for the refined recovered surfaces (no closed form: volume/recovered_refinement.hpp)
-// faceting_error_pin_in_bore.csv and faceting_error_chamfered_pin.csv.
+// writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv,
+// faceting_error_chamfered_pin.csv (a solid of revolution, by slices:
+// volume/recovered_revolution.hpp) and, refined (volume/recovered_refinement.hpp),
+// faceting_error_pin_in_bore.csv.
 
 #include <chrono>
 #include <cmath>

@@ -3,9 +3,10 @@
 // surface. Cases: a 10,000-triangle sphere and a 512-triangle cylinder on their side, whole
 // bodies of one closed form; the same sphere with a free-form patch on top, so that each
 // query scans the vertices for the faces that reach the plane; and the rolling ball of
-// assets/scenarios/ball_roll_recovered.json. Refined cases (volume/recovered_refinement.hpp):
-// a chamfered pin on its side on a plate, and the pin pressed into the bundled block's bore
-// (surface/pin_in_bore: the fast method on the polyhedra against the refined pair).
+// assets/scenarios/ball_roll_recovered.json; a chamfered pin on its side on a plate, a solid
+// of revolution (volume/recovered_revolution.hpp). Refined (volume/recovered_refinement.hpp):
+// the pin pressed into the bundled block's bore (surface/pin_in_bore: the fast method on the
+// polyhedra against the refined pair).
 
 #include <benchmark/benchmark.h>
 
@@ -43,14 +44,14 @@ struct Case {
 // The mesh prepared once: its tree, its surfaces, the recovered body; the sphere's (or the
 // side-lying cylinder's) lowest point at depth d = depth_ratio R.
 std::shared_ptr<Case> prepare(TriangleMesh mesh, const Isometry3d& rotation,
-                              double depth_ratio = kDepthRatio) {
+                              double depth_ratio = kDepthRatio, double radius = kRadius) {
   auto c = std::make_shared<Case>();
   c->mesh = std::move(mesh);
   c->bvh = std::make_unique<vcontact::geometry::MeshBvh>(c->mesh);
   c->surfaces = vcontact::geometry::recogniseSurfaces(c->mesh);
   c->body = std::make_unique<vcontact::volume::RecoveredBody>(c->mesh, c->surfaces);
   c->X_WM = rotation;
-  c->X_WM.translation().z() = kRadius * (1.0 - depth_ratio);
+  c->X_WM.translation().z() = radius * (1.0 - depth_ratio);
   return c;
 }
 
@@ -171,16 +172,18 @@ void registerPinInBore() {
     rolled.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()).toRotationMatrix();
     return prepare(vcontact::geometry::tessellateSphere(kRadius, 40, 26), rolled, 1.41378e-4);
   });
-  // Pin r = R, 30 mm, 0.5 mm chamfers, 64 segments, on its side with a vertex row down: the
-  // cylinder and both chamfer cones reach the plate, refined (no closed form for the cones).
+  // The pin of the error table (r 5 mm, 30 mm, 0.5 mm 45° chamfers, 64 segments) on its side
+  // with a vertex row down: the cylinder and both chamfer cones reach the plate; recovered,
+  // a solid of revolution by slices (volume/analytic_revolution.hpp). (The same pin at
+  // r = 10 mm has its chamfers recognised as spheres: two coaxial rims lie on a sphere as well
+  // as on a cone, and the 64-segment chamfer gives no vertex between them.)
   registerCase("chamfered_pin_side", [] {
+    const double r = 0.005;
     Isometry3d side = Isometry3d::Identity();
     side.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    return prepare(
-        vcontact::geometry::tessellateRevolution(
-            {{kRadius - 5e-4, 0.0}, {kRadius, 5e-4}, {kRadius, 0.0295}, {kRadius - 5e-4, 0.03}},
-            64),
-        side);
+    return prepare(vcontact::geometry::tessellateRevolution(
+                       {{r - 5e-4, 0.0}, {r, 5e-4}, {r, 0.0295}, {r - 5e-4, 0.03}}, 64),
+                   side, kDepthRatio, r);
   });
   registerPinInBore();
   return true;

@@ -10,6 +10,7 @@
 
 #include "geometry/surface_refinement.hpp"
 #include "volume/analytic.hpp"
+#include "volume/analytic_revolution.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume/recovered_refinement.hpp"
 
@@ -20,48 +21,11 @@ using geometry::RecognisedSurface;
 using geometry::SurfaceKind;
 using geometry::TriangleMesh;
 
-// The extent [lo, hi] of a cylinder's vertices along its axis, from its axis point.
-std::pair<double, double> axialExtent(const TriangleMesh& mesh, const RecognisedSurface& c) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (int f : c.faces)
-    for (int k = 0; k < 3; ++k) {
-      const double t = c.axis.dot(mesh.corner(f, k) - c.point);
-      lo = std::min(lo, t);
-      hi = std::max(hi, t);
-    }
-  return {lo, hi};
-}
-
-// True when plane p closes cylinder c at one of its ends [lo, hi].
-bool isEndCap(const RecognisedSurface& p, const RecognisedSurface& c,
-              std::pair<double, double> ends, double tolerance) {
-  if (p.kind != SurfaceKind::kPlane || std::abs(std::abs(p.axis.dot(c.axis)) - 1.0) > 1e-9)
-    return false;
-  const double t = c.axis.dot(p.point - c.point);
-  return std::abs(t - ends.first) <= tolerance || std::abs(t - ends.second) <= tolerance;
-}
-
-RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, const RecognisedSurface& s) {
+RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, double max_residual) {
   RecoveredContact r{cv, kind, "", 0.0, {}, 0, true};
   const double method_error = std::isfinite(cv.relative_error) ? cv.relative_error : 1e-12;
-  r.volume_error_bound = cv.area * s.max_residual + cv.volume * method_error;
+  r.volume_error_bound = cv.area * max_residual + cv.volume * method_error;
   return r;
-}
-
-RecoveredContact sphereContact(const RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
-                               const Eigen::Isometry3d& X_WH) {
-  const Eigen::Isometry3d X_WS = X_WM * Eigen::Translation3d(s.point);
-  return fromClosedForm(sphereHalfspace(s.radius, X_WS, X_WH), "sphere", s);
-}
-
-RecoveredContact cylinderContact(const TriangleMesh& mesh, const RecognisedSurface& c,
-                                 const Eigen::Isometry3d& X_WM, const Eigen::Isometry3d& X_WH) {
-  const auto [lo, hi] = axialExtent(mesh, c);
-  Eigen::Isometry3d X_MC = Eigen::Isometry3d::Identity();
-  X_MC.linear() =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), c.axis).toRotationMatrix();
-  X_MC.translation() = c.point + c.axis * (0.5 * (lo + hi));
-  return fromClosedForm(cylinderHalfspace(c.radius, hi - lo, X_WM * X_MC, X_WH), "cylinder", c);
 }
 
 RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
@@ -93,67 +57,65 @@ RecoveredBody::RecoveredBody(const TriangleMesh& mesh,
   std::set<int> all;
   for (int s = 0; s < static_cast<int>(recognition.surfaces.size()); ++s) all.insert(s);
   std::string reason;
-  whole_ = closedFormSurface(all, reason);
+  whole_ = closedForm(all, reason);
 }
 
-const RecognisedSurface* RecoveredBody::closedFormSurface(const std::set<int>& touched,
-                                                          std::string& reason) const {
+std::optional<RecoveredBody::ClosedForm> RecoveredBody::closedForm(const std::set<int>& touched,
+                                                                   std::string& reason) const {
   if (touched.count(-1)) {
     reason = "free-form faces reach the plane";
-    return nullptr;
+    return std::nullopt;
   }
-  // One convex sphere, or one convex cylinder with the flat ends that close it.
-  const RecognisedSurface* curved = nullptr;
-  for (int s : touched) {
-    const RecognisedSurface& surface = recognition_.surfaces[s];
-    if (surface.kind == SurfaceKind::kPlane) continue;
-    if (curved || !surface.convex ||
-        (surface.kind != SurfaceKind::kSphere && surface.kind != SurfaceKind::kCylinder)) {
-      std::ostringstream why;
-      why << "the faces that reach the plane lie on";
-      for (int t : touched)
-        why << ' ' << (recognition_.surfaces[t].convex ? "" : "concave ")
-            << geometry::surfaceKindName(recognition_.surfaces[t].kind);
-      why << ", which has no closed form against a plane";
-      reason = why.str();
-      return nullptr;
-    }
-    curved = &surface;
-  }
-  if (!curved) {
+  std::vector<const RecognisedSurface*> curved;
+  for (int s : touched)
+    if (recognition_.surfaces[s].kind != SurfaceKind::kPlane)
+      curved.push_back(&recognition_.surfaces[s]);
+  if (curved.empty()) {
     reason = "only planes reach the plane (exact already)";
-    return nullptr;
+    return std::nullopt;
   }
-  if (curved->kind == SurfaceKind::kSphere && touched.size() == 1) return curved;
-  if (curved->kind == SurfaceKind::kCylinder) {
-    const auto ends = axialExtent(mesh_, *curved);
-    const bool capped = std::all_of(touched.begin(), touched.end(), [&](int s) {
-      const RecognisedSurface& t = recognition_.surfaces[s];
-      return &t == curved || isEndCap(t, *curved, ends, recognition_.tolerance);
-    });
-    if (capped) return curved;
+  ClosedForm form;
+  if (touched.size() == 1 && curved[0]->kind == SurfaceKind::kSphere && curved[0]->convex) {
+    form.sphere = curved[0];
+    return form;
   }
-  reason = "a curved surface and planes that do not close it reach the plane";
-  return nullptr;
+  std::string why;
+  if (auto body = revolutionOf(mesh_, recognition_, touched, why)) {
+    form.revolution = std::move(*body);
+    return form;
+  }
+  std::ostringstream out;
+  out << "the faces that reach the plane lie on";
+  for (int t : touched)
+    out << ' ' << (recognition_.surfaces[t].convex ? "" : "concave ")
+        << geometry::surfaceKindName(recognition_.surfaces[t].kind);
+  out << ", not one solid of revolution (" << why << ")";
+  reason = out.str();
+  return std::nullopt;
 }
 
-RecoveredContact RecoveredBody::onSurface(const RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
-                                          const Eigen::Isometry3d& X_WH) const {
-  return s.kind == SurfaceKind::kSphere ? sphereContact(s, X_WM, X_WH)
-                                        : cylinderContact(mesh_, s, X_WM, X_WH);
+RecoveredContact RecoveredBody::onClosedForm(const ClosedForm& form, const Eigen::Isometry3d& X_WM,
+                                             const Eigen::Isometry3d& X_WH) {
+  if (const RecognisedSurface* s = form.sphere) {
+    const Eigen::Isometry3d X_WS = X_WM * Eigen::Translation3d(s->point);
+    return fromClosedForm(sphereHalfspace(s->radius, X_WS, X_WH), "sphere", s->max_residual);
+  }
+  const RevolutionBody& b = form.revolution;
+  return fromClosedForm(revolutionHalfspace(b.profile, X_WM * b.X_MR, X_WH),
+                        b.capped_cylinder ? "cylinder" : "revolution", b.max_residual);
 }
 
 std::optional<RecoveredContact> RecoveredBody::closedFormContact(const Eigen::Isometry3d& X_WM,
                                                                  const Eigen::Isometry3d& X_WH,
                                                                  std::string& reason) const {
-  if (whole_) return onSurface(*whole_, X_WM, X_WH);  // the body is one closed form
+  if (whole_) return onClosedForm(*whole_, X_WM, X_WH);  // the body is one closed form
   const std::set<int> touched = reachingSurfaces(X_WH.inverse() * X_WM);
   if (touched.empty()) {
     reason = "no face reaches the plane";
     return std::nullopt;
   }
-  if (const RecognisedSurface* s = closedFormSurface(touched, reason))
-    return onSurface(*s, X_WM, X_WH);
+  if (const std::optional<ClosedForm> form = closedForm(touched, reason))
+    return onClosedForm(*form, X_WM, X_WH);
   return std::nullopt;
 }
 

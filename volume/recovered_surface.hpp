@@ -21,6 +21,7 @@
 #include "geometry/surface_recognition.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "volume/contact_volume.hpp"
+#include "volume/recovered_revolution.hpp"
 
 namespace vcontact::volume {
 
@@ -37,9 +38,11 @@ struct PatchPart {
 
 struct RecoveredContact {
   ContactVolume cv;
-  /// What the contact was computed on: "sphere" or "cylinder" (the recognised surface, by
-  /// closed form), "refined" (the polyhedron refined towards its recognised surfaces around
-  /// the patch until V converged, surface_refinement.hpp), or "mesh" (the polyhedron).
+  /// What the contact was computed on: "sphere", "cylinder" (a cylinder closed by flat ends)
+  /// or "revolution" (cylinders, cones, spheres and tori on one axis closed by planes across
+  /// it: volume/recovered_revolution.hpp), by closed-form slices; "refined" (the polyhedron refined
+  /// towards its recognised surfaces around the patch until V converged, surface_refinement.hpp),
+  /// or "mesh" (the polyhedron).
   std::string representation;
   /// Why no closed form applied, for "mesh" and "refined"; empty otherwise.
   std::string reason;
@@ -59,8 +62,8 @@ struct RecoveredContact {
 };
 
 /// A mesh body with its recognised surfaces, prepared once for many queries: the chord gap
-/// of each surface, and whether the whole body is one sphere or one capped cylinder (then a
-/// query is the closed form alone, with no pass over the mesh).
+/// of each surface, and whether the whole body is one sphere or one solid of revolution (then
+/// a query is the closed form alone, with no pass over the mesh).
 class RecoveredBody {
  public:
   /// @param recognition  recogniseSurfaces(mesh); both must outlive the body
@@ -72,7 +75,8 @@ class RecoveredBody {
                                     const Eigen::Isometry3d& X_WH) const;
 
   /// The contact by a closed form when one applies at this pose (the part of the body that can
-  /// reach the plane lies on one sphere, or one capped cylinder); otherwise nothing, and
+  /// reach the plane lies on one sphere, or on surfaces of revolution about one axis and the
+  /// planes across it that close them); otherwise nothing, and
   /// `reason` says why, for a caller that clips the polyhedron its own way (a simulation wants
   /// the clip's patches).
   std::optional<RecoveredContact> closedFormContact(const Eigen::Isometry3d& X_WM,
@@ -91,12 +95,16 @@ class RecoveredBody {
   std::vector<int> reachingFaces(const Eigen::Isometry3d& X_HM) const;
 
  private:
-  /// The surface the contact lies on when the faces in `touched` (surface indices, −1 for
-  /// free-form) reach the plane; null with the reason otherwise.
-  const geometry::RecognisedSurface* closedFormSurface(const std::set<int>& touched,
-                                                       std::string& reason) const;
-  RecoveredContact onSurface(const geometry::RecognisedSurface& s, const Eigen::Isometry3d& X_WM,
-                             const Eigen::Isometry3d& X_WH) const;
+  /// A closed form: one sphere, or else a solid of revolution.
+  struct ClosedForm {
+    const geometry::RecognisedSurface* sphere = nullptr;
+    RevolutionBody revolution;
+  };
+  /// The closed form of the contact when the faces in `touched` (surface indices, −1 for
+  /// free-form) reach the plane; nothing with the reason otherwise.
+  std::optional<ClosedForm> closedForm(const std::set<int>& touched, std::string& reason) const;
+  static RecoveredContact onClosedForm(const ClosedForm& form, const Eigen::Isometry3d& X_WM,
+                                       const Eigen::Isometry3d& X_WH);
 
   /// The surfaces (−1: free-form) of the faces whose lowest vertex is within margin_ of the
   /// plane or below it, found by descending the tree.
@@ -108,8 +116,8 @@ class RecoveredBody {
   std::vector<double> gap_;      ///< per surface: largest chord gap of its faces, m
   std::vector<double> faceGap_;  ///< per face, m
   double margin_ = 0.0;          ///< the largest gap
-  /// The body's whole surface when it is one sphere, or one cylinder and its two ends.
-  const geometry::RecognisedSurface* whole_ = nullptr;
+  /// The body's closed form when its whole surface is one sphere or one solid of revolution.
+  std::optional<ClosedForm> whole_;
 };
 
 /// A mesh body's recovered surface, owned together: the mesh, what recognition found on it

@@ -59,6 +59,14 @@ double pinOnItsSide(double r, double L, double c, double d) {
   return (L - 2.0 * c) * segment(r, d) + 2.0 * sum / (3.0 * n);
 }
 
+// The refinement itself, on the faces that reach the plane: the bodies below are solids of
+// revolution, which halfspaceContact answers by closed-form slices instead
+// (recovered_revolution_test.cpp).
+RecoveredContact refined(const RecoveredBody& body, const Eigen::Isometry3d& X_WM,
+                         const Eigen::Isometry3d& X_WH) {
+  return refinedHalfspaceContact(body, body.reachingFaces(X_WH.inverse() * X_WM), X_WM, X_WH);
+}
+
 TEST(SurfaceRefinement, IsClosedOrientedAndOnTheSurface) {
   const TriangleMesh pin = chamferedPin(0.005, 0.03, 0.001, 32);
   const geometry::SurfaceRecognition rec = recogniseSurfaces(pin);
@@ -104,7 +112,7 @@ TEST(RecoveredRefinement, ChamferedPinOnItsSideConvergesToTheTrueSolid) {
       X_HM.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
       X_HM.translation() = Eigen::Vector3d(0.001, 0.002, r - d);
       ASSERT_NEAR((X_HM.linear() * Eigen::Vector3d(r, 0, 0)).z(), -r, 1e-15);
-      const RecoveredContact got = body.halfspaceContact(X_WH * X_HM, X_WH);
+      const RecoveredContact got = refined(body, X_WH * X_HM, X_WH);
       ASSERT_EQ(got.representation, "refined") << got.reason;
       EXPECT_TRUE(got.converged);
       EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected) << ratio << ' ' << seed;
@@ -140,7 +148,7 @@ TEST(RecoveredRefinement, ConeFrustumOnAGeneratorMatchesAFineTessellation) {
   X_HM.translation() = Eigen::Vector3d(0, 0, -lowest - d);
   const Eigen::Isometry3d X_WH = test::randomPose(11);
   const double expected = meshHalfspaceContact(fine, X_WH * X_HM, X_WH).volume;
-  const RecoveredContact got = RecoveredBody(coarse, rec).halfspaceContact(X_WH * X_HM, X_WH);
+  const RecoveredContact got = refined(RecoveredBody(coarse, rec), X_WH * X_HM, X_WH);
   ASSERT_EQ(got.representation, "refined") << got.reason;
   EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected);
 }
@@ -170,7 +178,7 @@ TEST(RecoveredRefinement, PinOnItsFlatEndIsTheRoundDisk) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation().z() = -d;
   const RecoveredContact got =
-      RecoveredBody(pin, recogniseSurfaces(pin)).halfspaceContact(X, Eigen::Isometry3d::Identity());
+      refined(RecoveredBody(pin, recogniseSurfaces(pin)), X, Eigen::Isometry3d::Identity());
   ASSERT_EQ(got.representation, "refined");
   const double a = r - c;
   const double expected = M_PI * (std::pow(a + d, 3) - std::pow(a, 3)) / 3.0;
