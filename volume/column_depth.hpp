@@ -34,7 +34,11 @@
 // are kept from query to query.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace vcontact::volume {
@@ -77,6 +81,7 @@ class ColumnDepth {
     int side;                ///< its face's side (Face::side)
     Eigen::Vector2d lo, hi;  ///< bounding box of a, b
     double len;              ///< |b − a|
+    double hmin, hmax;       ///< bounds of any height the pass interpolates on it (kSlack)
   };
   struct Face {
     double slope_u, slope_v;     ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
@@ -88,10 +93,14 @@ class ColumnDepth {
   };
   /// Row-major cells of hx × hy from (x0, y0); nx × ny of them.
   struct Grid {
-    double x0 = 0, y0 = 0, hx = 1, hy = 1;
+    double x0 = 0, y0 = 0, hx = 1, hy = 1, inv_hx = 1, inv_hy = 1;
     int nx = 1, ny = 1;
-    int col(double x) const;
-    int row(double y) const;
+    int col(double x) const {
+      return std::clamp(static_cast<int>(std::floor((x - x0) * inv_hx)), 0, nx - 1);
+    }
+    int row(double y) const {
+      return std::clamp(static_cast<int>(std::floor((y - y0) * inv_hy)), 0, ny - 1);
+    }
   };
 
   void project(const Eigen::Vector3d& n, const Eigen::Vector3d& o);
@@ -102,24 +111,41 @@ class ColumnDepth {
   void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
              std::vector<int>& items);
   bool holds(const Face& f, const Eigen::Vector2d& x) const;
-  double columnSpanAt(const Eigen::Vector2d& x, double h) const;
-  double crossingsIn(int cell) const;
+  double columnSpanAt(const Eigen::Vector2d& x, double h, double best) const;
+  double crossingsIn(int cell, double best) const;
   double crossingDepth(const Seg& s, const Seg& t) const;
   static bool beyondLine(const Seg& s, const Seg& t, double g);
   static bool sameEnds(const Seg& s, const Seg& t);
-  double vertexColumns();
+  /// Upper and lower bounds of the heights of a cell's candidates (boundCells).
+  struct CellBound {
+    double hi = -kInf, lo = kInf;           ///< any segment filed, vertex, face of its block
+    double topHi = -kInf, bottomLo = kInf;  ///< top and bottom segments filed
+    bool vertices = false;                  ///< holds the first end of a segment
+  };
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  void bound(int c, const Seg& s);
+  void listVertices();
+  void boundCells();
+  double evaluateCell(int c, double best) const;
 
   std::vector<Input> input_;
-  std::vector<int> order_;
+  struct Run {  ///< inputs first .. first + count − 1, all of one face
+    std::uint64_t key;
+    int first, count;
+  };
+  std::vector<Run> runs_;
+  std::vector<int> order_;  ///< input indices by face, then in the order added
   std::vector<Seg> segs_;
   std::vector<Face> faces_;
   Grid grid_;
   double tau_ = 0.0;
   std::vector<std::pair<int, int>> segPairs_, facePairs_;  ///< (cell, item) before CSR
   std::vector<int> segStart_, cellSegs_;
-  std::vector<int> faceStart_, cellFaces_;  ///< by block of cells (fileFace)
-  std::vector<int> next_;                   ///< CSR fill cursor
-  std::vector<int> vertices_;  ///< segment indices sorted by their first end (vertexColumns)
+  std::vector<int> faceStart_, cellFaces_;       ///< by block of cells (fileFace)
+  std::vector<int> next_;                        ///< CSR fill cursor
+  std::vector<int> vertexStart_, cellVertices_;  ///< segments by the cell of their first end
+  std::vector<CellBound> cellBounds_;
+  std::vector<std::pair<double, int>> cells_;  ///< (upper bound, cell), deepest first
   Arguments last_;
 };
 
