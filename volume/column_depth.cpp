@@ -210,7 +210,7 @@ bool ColumnDepth::holds(const Face& f, const Vector2d& x) const {
 }
 
 /// The span along n of the closed boundary on the column through x (a vertex at height h), or
-/// a value at most `best` where that span cannot exceed `best`.
+/// 0 where that span cannot exceed `best` (≥ 0).
 double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const {
   double lo = h, hi = h;
   const auto reach = [&](double z) {
@@ -219,13 +219,39 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const
   };
   const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
   const double g = kBoxGrowth * tau_;
+  const auto misses = [&x, g](const Seg& s) {
+    return (x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
+           (x.y() > s.hi.y() + g);
+  };
+  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
+  const auto inBox = [&x](const Face& F) {
+    return x.x() >= F.bmin.x() && x.x() <= F.bmax.x() && x.y() >= F.bmin.y() && x.y() <= F.bmax.y();
+  };
+  const auto height = [&x](const Face& F) {
+    return std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi);
+  };
+  // First a bound, without the exact tests: the ranges of the edges whose box holds x and the
+  // heights of the faces whose box does. If it does not exceed `best`, neither does the span
+  // (rounding is monotonic), and 0 is returned.
+  double boundHi = h, boundLo = h;
+  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
+    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
+    if (misses(s)) continue;
+    boundHi = std::max(boundHi, s.hmax);
+    boundLo = std::min(boundLo, s.hmin);
+  }
+  for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
+    const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
+    if (!inBox(F)) continue;
+    const double z = height(F);
+    boundHi = std::max(boundHi, z);
+    boundLo = std::min(boundLo, z);
+  }
+  if (boundHi - boundLo <= best) return 0.0;
   // Edges within τ: the heights over the part of each that lies within τ of the column.
   for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
-    if ((x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
-        (x.y() > s.hi.y() + g)) {
-      continue;
-    }
+    if (misses(s)) continue;
     const Vector2d d = s.b - s.a, w = x - s.a;
     const double L2 = d.squaredNorm();
     if (L2 == 0.0) {  // an edge along n
@@ -241,24 +267,6 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const
     reach(s.ha + t1 * (s.hb - s.ha));
   }
   // The top and bottom faces whose projection holds x: the column meets their planes there.
-  // First without the crossing-number test: if even every face whose box holds x left the
-  // span at or below `best`, this column cannot raise it (rounding is monotonic).
-  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
-  const auto inBox = [&x](const Face& F) {
-    return x.x() >= F.bmin.x() && x.x() <= F.bmax.x() && x.y() >= F.bmin.y() && x.y() <= F.bmax.y();
-  };
-  const auto height = [&x](const Face& F) {
-    return std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi);
-  };
-  double boxHi = hi, boxLo = lo;
-  for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
-    const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
-    if (!inBox(F)) continue;
-    const double z = height(F);
-    boxHi = std::max(boxHi, z);
-    boxLo = std::min(boxLo, z);
-  }
-  if (boxHi - boxLo <= best) return hi - lo;  // at most the span, so at most best
   // A height within [lo, hi] changes neither: its face's crossing-number test is skipped.
   for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
     const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
