@@ -349,8 +349,7 @@ double ColumnDepth::crossingDepth(const Seg& s, const Seg& t) const {
 }
 
 /// The first ends of the segments (the ends of a face's loops are the first ends of its
-/// segments) by cell. A point shared by several segments is one column, evaluated for each
-/// (only in the few cells the bounds do not rule out).
+/// segments) by cell.
 void ColumnDepth::listVertices() {
   for (int i = 0; i < static_cast<int>(segs_.size()); ++i) {
     const Seg& s = segs_[static_cast<std::size_t>(i)];
@@ -398,9 +397,20 @@ void ColumnDepth::boundCells() {
 }
 
 /// The candidates of cell c (its vertex columns, its top/bottom crossings) that can raise best.
-double ColumnDepth::evaluateCell(int c, double best) const {
-  for (int k = vertexStart_[c]; k < vertexStart_[c + 1]; ++k) {
-    const Seg& s = segs_[static_cast<std::size_t>(cellVertices_[k])];
+double ColumnDepth::evaluateCell(int c, double best) {
+  // Equal first ends (the same computed point, filed by several faces) are one column,
+  // evaluated once.
+  const auto key = [this](int i) {
+    const Seg& s = segs_[static_cast<std::size_t>(i)];
+    return std::tuple(s.a.x(), s.a.y(), s.ha);
+  };
+  cellScratch_.assign(cellVertices_.begin() + vertexStart_[c],
+                      cellVertices_.begin() + vertexStart_[c + 1]);
+  std::sort(cellScratch_.begin(), cellScratch_.end(),
+            [&](int i, int j) { return key(i) < key(j); });
+  for (std::size_t k = 0; k < cellScratch_.size(); ++k) {
+    if (k > 0 && key(cellScratch_[k]) == key(cellScratch_[k - 1])) continue;
+    const Seg& s = segs_[static_cast<std::size_t>(cellScratch_[k])];
     best = std::max(best, columnSpanAt(s.a, s.ha, best));
   }
   return crossingsIn(c, best);

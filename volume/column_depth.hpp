@@ -138,7 +138,7 @@ class ColumnDepth {
   void bound(int c, const Seg& s);
   void listVertices();
   void boundCells();
-  double evaluateCell(int c, double best) const;
+  double evaluateCell(int c, double best);
 
   std::vector<Input> input_;
   struct Run {  ///< inputs first .. first + count − 1, all of one face
@@ -157,6 +157,7 @@ class ColumnDepth {
   std::vector<int> next_;                        ///< CSR fill cursor
   std::vector<int> vertexStart_, cellVertices_;  ///< segments by the cell of their first end
   std::vector<CellBound> cellBounds_;
+  std::vector<int> cellScratch_;               ///< a cell's vertices, sorted (evaluateCell)
   std::vector<std::pair<double, int>> cells_;  ///< (upper bound, cell), deepest first
   Arguments last_;
 };
