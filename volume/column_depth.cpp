@@ -209,49 +209,58 @@ bool ColumnDepth::holds(const Face& f, const Vector2d& x) const {
   return inside;
 }
 
+/// Is x beyond g of segment s's bounding box?
+bool ColumnDepth::misses(const Seg& s, const Vector2d& x, double g) {
+  return (x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
+         (x.y() > s.hi.y() + g);
+}
+
+bool ColumnDepth::inBox(const Face& F, const Vector2d& x) {
+  return x.x() >= F.bmin.x() && x.x() <= F.bmax.x() && x.y() >= F.bmin.y() && x.y() <= F.bmax.y();
+}
+
+/// The height of face F's plane over x, clamped to the face's range.
+double ColumnDepth::height(const Face& F, const Vector2d& x) {
+  return std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi);
+}
+
+/// A bound of columnSpanAt(x, h) without its exact tests: the ranges of the edges whose box
+/// holds x and the heights of the faces whose box does (rounding is monotonic).
+double ColumnDepth::columnBound(const Vector2d& x, double h, int cell, int block) const {
+  const double g = kBoxGrowth * tau_;
+  double hi = h, lo = h;
+  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
+    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
+    if (misses(s, x, g)) continue;
+    hi = std::max(hi, s.hmax);
+    lo = std::min(lo, s.hmin);
+  }
+  for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
+    const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
+    if (!inBox(F, x)) continue;
+    const double z = height(F, x);
+    hi = std::max(hi, z);
+    lo = std::min(lo, z);
+  }
+  return hi - lo;
+}
+
 /// The span along n of the closed boundary on the column through x (a vertex at height h), or
 /// 0 where that span cannot exceed `best` (≥ 0).
 double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const {
+  const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
+  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
+  if (columnBound(x, h, cell, block) <= best) return 0.0;
   double lo = h, hi = h;
   const auto reach = [&](double z) {
     lo = std::min(lo, z);
     hi = std::max(hi, z);
   };
-  const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
-  const double g = kBoxGrowth * tau_;
-  const auto misses = [&x, g](const Seg& s) {
-    return (x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
-           (x.y() > s.hi.y() + g);
-  };
-  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
-  const auto inBox = [&x](const Face& F) {
-    return x.x() >= F.bmin.x() && x.x() <= F.bmax.x() && x.y() >= F.bmin.y() && x.y() <= F.bmax.y();
-  };
-  const auto height = [&x](const Face& F) {
-    return std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi);
-  };
-  // First a bound, without the exact tests: the ranges of the edges whose box holds x and the
-  // heights of the faces whose box does. If it does not exceed `best`, neither does the span
-  // (rounding is monotonic), and 0 is returned.
-  double boundHi = h, boundLo = h;
-  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
-    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
-    if (misses(s)) continue;
-    boundHi = std::max(boundHi, s.hmax);
-    boundLo = std::min(boundLo, s.hmin);
-  }
-  for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
-    const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
-    if (!inBox(F)) continue;
-    const double z = height(F);
-    boundHi = std::max(boundHi, z);
-    boundLo = std::min(boundLo, z);
-  }
-  if (boundHi - boundLo <= best) return 0.0;
   // Edges within τ: the heights over the part of each that lies within τ of the column.
+  const double g = kBoxGrowth * tau_;
   for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
-    if (misses(s)) continue;
+    if (misses(s, x, g)) continue;
     const Vector2d d = s.b - s.a, w = x - s.a;
     const double L2 = d.squaredNorm();
     if (L2 == 0.0) {  // an edge along n
@@ -270,8 +279,8 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const
   // A height within [lo, hi] changes neither: its face's crossing-number test is skipped.
   for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
     const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
-    if (!inBox(F)) continue;
-    const double z = height(F);
+    if (!inBox(F, x)) continue;
+    const double z = height(F, x);
     if ((z < lo || z > hi) && holds(F, x)) reach(z);
   }
   return hi - lo;

@@ -123,6 +123,10 @@ class ColumnDepth {
   void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
              std::vector<int>& items);
   bool holds(const Face& f, const Eigen::Vector2d& x) const;
+  static bool misses(const Seg& s, const Eigen::Vector2d& x, double g);
+  static bool inBox(const Face& f, const Eigen::Vector2d& x);
+  static double height(const Face& f, const Eigen::Vector2d& x);
+  double columnBound(const Eigen::Vector2d& x, double h, int cell, int block) const;
   double columnSpanAt(const Eigen::Vector2d& x, double h, double best) const;
   double crossingsIn(int cell, double best) const;
   double crossingDepth(const Seg& s, const Seg& t) const;
