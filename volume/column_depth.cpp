@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 namespace vcontact::volume {
@@ -32,6 +33,11 @@ constexpr int kBlock = 4;
 /// The test |den| > τ·√m of crossingDepth decided on squares where they differ by more than
 /// this fraction (a few ulps of rounding either way), by the square root in the band between.
 constexpr double kSquareBand = 1e-9;
+/// The heights the pass computes on a segment, h_a + t (h_b − h_a) with t in [0, 1], lie within
+/// [min, max] of its ends up to about 7 ulps of max(|h_a|, |h_b|) (three roundings); its bounds
+/// are widened by this fraction of that size (about 90 ulps), so that they hold for the
+/// computed values, not only for the exact ones.
+constexpr double kSlack = 1e-14;
 
 double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -44,10 +50,6 @@ void ColumnDepth::add(std::uint64_t faceKey, const Vector3d& n_f, const Vector3d
   input_.push_back({faceKey, n_f, p, q});
 }
 
-int ColumnDepth::Grid::col(double x) const {
-  return std::clamp(static_cast<int>(std::floor((x - x0) / hx)), 0, nx - 1);
-}
-
 /// Face block (r, c) of kBlock × kBlock cells as a bin index; with `count`, the number of
 /// blocks.
 int ColumnDepth::blockOf(int r, int c, bool count) const {
@@ -55,27 +57,46 @@ int ColumnDepth::blockOf(int r, int c, bool count) const {
   return count ? bx * by : r * bx + c;
 }
 
-int ColumnDepth::Grid::row(double y) const {
-  return std::clamp(static_cast<int>(std::floor((y - y0) / hy)), 0, ny - 1);
-}
-
 /// Segments on the plate (u, v ⊥ n, about o) with their heights along n, grouped by face.
 void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
   const Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-  order_.resize(input_.size());
-  for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
-  std::sort(order_.begin(), order_.end(), [this](int i, int j) {
-    const auto ki = input_[static_cast<std::size_t>(i)].key;
-    const auto kj = input_[static_cast<std::size_t>(j)].key;
-    return ki != kj ? ki < kj : i < j;
+  // By face, then in the order added: the runs of one face's segments added one after the
+  // other, sorted by (face, first index), each run in its order.
+  runs_.clear();
+  for (std::size_t i = 0; i < input_.size(); ++i) {
+    if (i > 0 && input_[i].key == input_[i - 1].key) {
+      ++runs_.back().count;
+    } else {
+      runs_.push_back({input_[i].key, static_cast<int>(i), 1});
+    }
+  }
+  std::sort(runs_.begin(), runs_.end(), [](const Run& x, const Run& y) {
+    return x.key != y.key ? x.key < y.key : x.first < y.first;
   });
+  order_.clear();
+  for (const Run& r : runs_) {
+    for (int i = r.first; i < r.first + r.count; ++i) order_.push_back(i);
+  }
   segs_.clear();
   faces_.clear();
   for (std::size_t k = 0; k < order_.size(); ++k) {
     const Input& in = input_[static_cast<std::size_t>(order_[k])];
     const Vector3d p = in.p - o, q = in.q - o;
     const Vector2d a(u.dot(p), v.dot(p)), b(u.dot(q), v.dot(q));
-    const Seg s{a, b, n.dot(p), n.dot(q), 0, 0, a.cwiseMin(b), a.cwiseMax(b), (b - a).norm()};
+    const double ha = n.dot(p), hb = n.dot(q);
+    const double slack = kSlack * std::max(std::abs(ha), std::abs(hb)) +
+                         4 * std::numeric_limits<double>::denorm_min();
+    const Seg s{a,
+                b,
+                ha,
+                hb,
+                0,
+                0,
+                a.cwiseMin(b),
+                a.cwiseMax(b),
+                (b - a).norm(),
+                std::min(ha, hb) - slack,
+                std::max(ha, hb) + slack};
     if (k == 0 || in.key != input_[static_cast<std::size_t>(order_[k - 1])].key) {
       const double c = in.n_f.dot(n);
       const int seg = static_cast<int>(segs_.size());
@@ -119,6 +140,8 @@ void ColumnDepth::buildGrid() {
   grid_.y0 = lo.y() - tau_;
   grid_.hx = W > 0.0 ? W / grid_.nx : 1.0;
   grid_.hy = H > 0.0 ? H / grid_.ny : 1.0;
+  grid_.inv_hx = 1.0 / grid_.hx;
+  grid_.inv_hy = 1.0 / grid_.hy;
 }
 
 /// Files segment s, row by row, in the cells its projection passes within τ of.
@@ -138,7 +161,10 @@ void ColumnDepth::fileSegment(int index) {
       xhi = std::min(xhi, std::max(x0, x1));
     }
     const int c0 = grid_.col(xlo - tau_), c1 = grid_.col(xhi + tau_);
-    for (int c = c0; c <= c1; ++c) segPairs_.emplace_back(r * grid_.nx + c, index);
+    for (int c = r * grid_.nx + c0; c <= r * grid_.nx + c1; ++c) {
+      segPairs_.emplace_back(c, index);
+      bound(c, s);
+    }
   }
 }
 
@@ -183,22 +209,58 @@ bool ColumnDepth::holds(const Face& f, const Vector2d& x) const {
   return inside;
 }
 
-/// The span along n of the closed boundary on the column through x (a vertex at height h).
-double ColumnDepth::columnSpanAt(const Vector2d& x, double h) const {
+/// Is x beyond g of segment s's bounding box?
+bool ColumnDepth::misses(const Seg& s, const Vector2d& x, double g) {
+  return (x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
+         (x.y() > s.hi.y() + g);
+}
+
+bool ColumnDepth::inBox(const Face& F, const Vector2d& x) {
+  return x.x() >= F.bmin.x() && x.x() <= F.bmax.x() && x.y() >= F.bmin.y() && x.y() <= F.bmax.y();
+}
+
+/// The height of face F's plane over x, clamped to the face's range.
+double ColumnDepth::height(const Face& F, const Vector2d& x) {
+  return std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi);
+}
+
+/// A bound of columnSpanAt(x, h) without its exact tests: the ranges of the edges whose box
+/// holds x and the heights of the faces whose box does (rounding is monotonic).
+double ColumnDepth::columnBound(const Vector2d& x, double h, int cell, int block) const {
+  const double g = kBoxGrowth * tau_;
+  double hi = h, lo = h;
+  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
+    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
+    if (misses(s, x, g)) continue;
+    hi = std::max(hi, s.hmax);
+    lo = std::min(lo, s.hmin);
+  }
+  for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
+    const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
+    if (!inBox(F, x)) continue;
+    const double z = height(F, x);
+    hi = std::max(hi, z);
+    lo = std::min(lo, z);
+  }
+  return hi - lo;
+}
+
+/// The span along n of the closed boundary on the column through x (a vertex at height h), or
+/// 0 where that span cannot exceed `best` (≥ 0).
+double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const {
+  const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
+  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
+  if (columnBound(x, h, cell, block) <= best) return 0.0;
   double lo = h, hi = h;
   const auto reach = [&](double z) {
     lo = std::min(lo, z);
     hi = std::max(hi, z);
   };
-  const int cell = grid_.row(x.y()) * grid_.nx + grid_.col(x.x());
-  const double g = kBoxGrowth * tau_;
   // Edges within τ: the heights over the part of each that lies within τ of the column.
+  const double g = kBoxGrowth * tau_;
   for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
-    if ((x.x() < s.lo.x() - g) | (x.x() > s.hi.x() + g) | (x.y() < s.lo.y() - g) |
-        (x.y() > s.hi.y() + g)) {
-      continue;
-    }
+    if (misses(s, x, g)) continue;
     const Vector2d d = s.b - s.a, w = x - s.a;
     const double L2 = d.squaredNorm();
     if (L2 == 0.0) {  // an edge along n
@@ -214,10 +276,12 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h) const {
     reach(s.ha + t1 * (s.hb - s.ha));
   }
   // The top and bottom faces whose projection holds x: the column meets their planes there.
-  const int block = blockOf(grid_.row(x.y()) / kBlock, grid_.col(x.x()) / kBlock);
+  // A height within [lo, hi] changes neither: its face's crossing-number test is skipped.
   for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
     const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
-    if (holds(F, x)) reach(std::clamp(F.h0 - F.slope_u * x.x() - F.slope_v * x.y(), F.lo, F.hi));
+    if (!inBox(F, x)) continue;
+    const double z = height(F, x);
+    if ((z < lo || z > hi) && holds(F, x)) reach(z);
   }
   return hi - lo;
 }
@@ -244,7 +308,7 @@ bool ColumnDepth::sameEnds(const Seg& s, const Seg& t) {
 /// other's line, are passed over: where the formulas below accept a pair, its crossing point
 /// lies on s and within τ of t, both to a rounding far below τ, so the edges come within
 /// about τ of each other, and of each other's lines.
-double ColumnDepth::crossingsIn(int cell) const {
+double ColumnDepth::crossingsIn(int cell, double best) const {
   const int first = segStart_[cell], last = segStart_[cell + 1];
   int bottoms = first;
   while (bottoms < last && segs_[static_cast<std::size_t>(cellSegs_[bottoms])].side > 0) {
@@ -252,13 +316,13 @@ double ColumnDepth::crossingsIn(int cell) const {
   }
   int walls = bottoms;
   while (walls < last && segs_[static_cast<std::size_t>(cellSegs_[walls])].side < 0) ++walls;
-  double best = 0.0;
   const double g = kBoxGrowth * tau_;
   for (int i = first; i < bottoms; ++i) {
     const Seg& top = segs_[static_cast<std::size_t>(cellSegs_[i])];
     const Vector2d lo = top.lo.array() - g, hi = top.hi.array() + g;
     for (int j = bottoms; j < walls; ++j) {
       const Seg& bottom = segs_[static_cast<std::size_t>(cellSegs_[j])];
+      if (top.hmax - bottom.hmin <= best) continue;  // cannot beat best (boundCells)
       if ((bottom.hi.x() < lo.x()) | (bottom.lo.x() > hi.x()) | (bottom.hi.y() < lo.y()) |
               (bottom.lo.y() > hi.y()) ||
           sameEnds(top, bottom) || beyondLine(top, bottom, g) || beyondLine(bottom, top, g)) {
@@ -293,24 +357,72 @@ double ColumnDepth::crossingDepth(const Seg& s, const Seg& t) const {
   return s.side > 0 ? hs - ht : ht - hs;
 }
 
-/// The column through every distinct first end of a segment (the ends of a face's loops are
-/// the first ends of its segments): equal ends (the same computed point, filed by several
-/// faces) give the same column, evaluated once.
-double ColumnDepth::vertexColumns() {
-  vertices_.resize(segs_.size());
-  for (std::size_t i = 0; i < vertices_.size(); ++i) vertices_[i] = static_cast<int>(i);
+/// The first ends of the segments (the ends of a face's loops are the first ends of its
+/// segments) by cell.
+void ColumnDepth::listVertices() {
+  for (int i = 0; i < static_cast<int>(segs_.size()); ++i) {
+    const Seg& s = segs_[static_cast<std::size_t>(i)];
+    const int c = grid_.row(s.a.y()) * grid_.nx + grid_.col(s.a.x());
+    segPairs_.emplace_back(c, i);
+    CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
+    b.vertices = true;
+    b.hi = std::max(b.hi, s.hmax);  // filed in this cell too; included should rounding differ
+    b.lo = std::min(b.lo, s.hmin);
+  }
+  toCsr(segPairs_, grid_.nx * grid_.ny, vertexStart_, cellVertices_);
+}
+
+/// Widens cell c's bounds by segment s filed in it.
+void ColumnDepth::bound(int c, const Seg& s) {
+  CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
+  b.hi = std::max(b.hi, s.hmax);
+  b.lo = std::min(b.lo, s.hmin);
+  if (s.side > 0) b.topHi = std::max(b.topHi, s.hmax);
+  if (s.side < 0) b.bottomLo = std::min(b.bottomLo, s.hmin);
+}
+
+/// An upper bound of every candidate value of each cell, and the cells with a positive one,
+/// largest bound first. A crossing's value is a top height minus a bottom one, each within
+/// its segment's [hmin, hmax]; a vertex column's span is a difference of heights on the
+/// cell's segments (and of the vertex itself, one of their ends) or of the faces of its block
+/// clamped to their [lo, hi]. Rounding is monotonic, so the computed difference of the bounds
+/// bounds the computed difference of the values.
+void ColumnDepth::boundCells() {
+  cells_.clear();
+  for (int c = 0; c < grid_.nx * grid_.ny; ++c) {
+    CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
+    double bound = b.topHi - b.bottomLo;  // −∞ or NaN without a top and a bottom segment
+    if (b.vertices) {
+      const int block = blockOf(c / grid_.nx / kBlock, c % grid_.nx / kBlock);
+      for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
+        const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
+        b.hi = std::max(b.hi, F.hi);
+        b.lo = std::min(b.lo, F.lo);
+      }
+      bound = std::max(bound, b.hi - b.lo);
+    }
+    if (bound > 0.0) cells_.emplace_back(bound, c);
+  }
+}
+
+/// The candidates of cell c (its vertex columns, its top/bottom crossings) that can raise best.
+double ColumnDepth::evaluateCell(int c, double best) {
+  // Equal first ends (the same computed point, filed by several faces) are one column,
+  // evaluated once.
   const auto key = [this](int i) {
     const Seg& s = segs_[static_cast<std::size_t>(i)];
     return std::tuple(s.a.x(), s.a.y(), s.ha);
   };
-  std::sort(vertices_.begin(), vertices_.end(), [&](int i, int j) { return key(i) < key(j); });
-  double best = 0.0;
-  for (std::size_t k = 0; k < vertices_.size(); ++k) {
-    if (k > 0 && key(vertices_[k]) == key(vertices_[k - 1])) continue;
-    const Seg& s = segs_[static_cast<std::size_t>(vertices_[k])];
-    best = std::max(best, columnSpanAt(s.a, s.ha));
+  cellScratch_.assign(cellVertices_.begin() + vertexStart_[c],
+                      cellVertices_.begin() + vertexStart_[c + 1]);
+  std::sort(cellScratch_.begin(), cellScratch_.end(),
+            [&](int i, int j) { return key(i) < key(j); });
+  for (std::size_t k = 0; k < cellScratch_.size(); ++k) {
+    if (k > 0 && key(cellScratch_[k]) == key(cellScratch_[k - 1])) continue;
+    const Seg& s = segs_[static_cast<std::size_t>(cellScratch_[k])];
+    best = std::max(best, columnSpanAt(s.a, s.ha, best));
   }
-  return best;
+  return crossingsIn(c, best);
 }
 
 double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) {
@@ -319,6 +431,7 @@ double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) 
   tau_ = kReach * scale;
   project(n, o);
   buildGrid();
+  cellBounds_.assign(static_cast<std::size_t>(grid_.nx) * grid_.ny, CellBound{});
   // Top edges first, then bottom ones, then walls': each cell's list keeps that order.
   for (const int side : {1, -1, 0}) {
     for (int s = 0; s < static_cast<int>(segs_.size()); ++s) {
@@ -328,8 +441,23 @@ double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) 
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) fileFace(f);
   toCsr(segPairs_, grid_.nx * grid_.ny, segStart_, cellSegs_);
   toCsr(facePairs_, blockOf(0, 0, true), faceStart_, cellFaces_);
-  double best = vertexColumns();
-  for (int c = 0; c < grid_.nx * grid_.ny; ++c) best = std::max(best, crossingsIn(c));
+  listVertices();
+  boundCells();
+  // Branch and bound: the maximum of the candidates' values does not depend on their order,
+  // and a cell (or a segment pair) whose bound does not exceed the best value so far holds
+  // none that would raise it. The cell of the largest bound first, then those still above
+  // its best, largest bound first.
+  if (cells_.empty()) return 0.0;
+  const auto first = std::max_element(cells_.begin(), cells_.end());
+  const int c0 = first->second;
+  double best = evaluateCell(c0, 0.0);
+  const auto beaten = [&](const std::pair<double, int>& b) { return b.first <= best; };
+  cells_.erase(std::remove_if(cells_.begin(), cells_.end(), beaten), cells_.end());
+  std::sort(cells_.begin(), cells_.end(), std::greater<>());
+  for (const auto& [bound, c] : cells_) {
+    if (bound <= best) break;
+    if (c != c0) best = evaluateCell(c, best);
+  }
   return best;
 }
 
