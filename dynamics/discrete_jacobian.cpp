@@ -130,8 +130,13 @@ ContactJacobians contactJacobians(const Model& model, const volume::ContactVolum
 void linearisePatch(const Model& model, const volume::ContactVolume& cv,
                     const RelativeMotion& motion, const PairState& state, double h,
                     PatchStep& out) {
-  model.evaluate(cv, motion, state, out.start);
-  const ContactContext ctx = model.context(cv, motion, state);
+  ContactContext ctx;
+  model.evaluate(cv, motion, state, out.start, nullptr, &ctx);
+  linearisePatch(model, ctx, motion, h, out);
+}
+
+void linearisePatch(const Model& model, const ContactContext& ctx, const RelativeMotion& motion,
+                    double h, PatchStep& out) {
   Matrix6d D = Matrix6d::Zero(), K = Matrix6d::Zero();
   positionTerms(model, ctx, K);
   velocityTerms(model, ctx, D);
