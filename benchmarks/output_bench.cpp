@@ -2,7 +2,9 @@
 // output/<scenario>/<integrator>/<sink> runs the same simulation with
 //
 // - `none`: an output callback that does nothing, and no exact depths for the output
-//   (Simulator::setOutputDepths(false)): what the run costs without its output;
+//   (Simulator::setOutputDepths(false)): what the run costs without its output; ball_drop's
+//   discrete runs also as `none_general`, without the stepper's per-step shortcuts
+//   (Simulator::setStepShortcuts(false): the same numbers, the "before" of DISCRETE.md §4.4);
 // - `csv`: report::SimulationCsvWriter, with the depths its pair files hold (for `fast` pairs
 //   a query with the depth pass at every output time), into a new scratch folder committed at
 //   the end as `vcontact simulate` does (summary.json aside). The folder is removed between
@@ -66,7 +68,8 @@ double folderBytes(const fs::path& dir) {
   return bytes;
 }
 
-void output(benchmark::State& state, const std::string& name, const Variant& variant, bool csv) {
+void output(benchmark::State& state, const std::string& name, const Variant& variant, bool csv,
+            bool shortcuts) {
   const vcontact::formats::ScenarioFile file = load(name, variant);
   const fs::path dir =
       fs::temp_directory_path() / ("vcontact_output_bench_" + std::to_string(::getpid()));
@@ -74,6 +77,7 @@ void output(benchmark::State& state, const std::string& name, const Variant& var
   long outputs = 0;
   for (auto _ : state) {
     Simulator sim(file.scenario);
+    sim.setStepShortcuts(shortcuts);
     SimulationSummary summary;
     outputs = 0;
     if (csv) {
@@ -104,7 +108,8 @@ void output(benchmark::State& state, const std::string& name, const Variant& var
 void registerPair(const std::string& name, const std::string& label, const Variant& v) {
   for (const bool csv : {false, true}) {
     const std::string full = "output/" + name + "/" + label + (csv ? "/csv" : "/none");
-    benchmark::RegisterBenchmark(full.c_str(), output, name, v, csv)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(full.c_str(), output, name, v, csv, true)
+        ->Unit(benchmark::kMillisecond);
   }
 }
 
@@ -113,7 +118,14 @@ void registerPair(const std::string& name, const std::string& label, const Varia
       {"dopri5", {Integrator::kDopri5, 0.0, std::nullopt}},
       {"discrete_1ms", {Integrator::kDiscrete, 1e-3, std::nullopt}},
       {"discrete_0.5ms", {Integrator::kDiscrete, 5e-4, std::nullopt}}};
-  for (const auto& [label, v] : integrators) registerPair("ball_drop", label, v);
+  for (const auto& [label, v] : integrators) {
+    registerPair("ball_drop", label, v);
+    if (v.integrator != Integrator::kDiscrete) continue;
+    benchmark::RegisterBenchmark(
+        ("output/ball_drop/" + std::string(label) + "/none_general").c_str(), output, "ball_drop",
+        v, false, false)
+        ->Unit(benchmark::kMillisecond);
+  }
   // The mesh scenarios: their output rows are few beside their queries, but each output
   // time asks the pairs once more for the exact depth (Simulator::fillDepths).
   for (const auto& [label, v] : integrators) registerPair("cad_tray_drop", label, v);

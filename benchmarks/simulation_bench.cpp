@@ -3,7 +3,9 @@
 // the A/B pair of Dormand–Prince and BDF on the same scenario, and
 // simulate/<scenario>/discrete_<h> for the fixed-step discrete integrator against the
 // Dormand–Prince run (docs/DISCRETE.md §4), its impacts resolved (the default) or, with the
-// suffix _implicit, left to the plain step (§5). The discrete runs sleep by default (§7);
+// suffix _implicit, left to the plain step (§5); the suffix _general runs the same steps
+// without the per-step shortcuts (Simulator::setStepShortcuts(false), the same numbers), the
+// "before" of §4.4 in the same run. The discrete runs sleep by default (§7);
 // discrete_1ms_implicit_nosleep is that run with "sleep": false. Counters: real_time_factor
 // (simulated seconds per CPU second), steps, contact evaluations (Jacobians' included) and
 // Jacobians per run, output samples, and the final height of the last body (m) as a sanity
@@ -76,7 +78,7 @@ double largestSpeed(const Snapshot& s) {
 // Without `with_reference` (bin_of_ten, whose Dormand–Prince run takes many minutes) neither
 // rest_diff_m nor ref_speed_m_s.
 void discrete(benchmark::State& state, const std::string& name, double h, bool with_reference,
-              ImpactMode mode, bool sleep) {
+              ImpactMode mode, bool sleep, bool shortcuts) {
   vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
   file.scenario.settings.integrator = Integrator::kDiscrete;
   file.scenario.settings.step = h;
@@ -87,6 +89,7 @@ void discrete(benchmark::State& state, const std::string& name, double h, bool w
   Snapshot last;
   for (auto _ : state) {
     Simulator sim(file.scenario);
+    sim.setStepShortcuts(shortcuts);
     SimulationSummary summary;
     sim.run([&](const Snapshot& s) { last = s; }, [](double) {}, summary);
     simulated += summary.simulated_time;
@@ -171,16 +174,20 @@ void registerScenario(const std::string& name) {
     for (const auto& [suffix, h] : {std::pair{"1ms", 1e-3}, std::pair{"0.5ms", 5e-4}}) {
       for (const auto& [mode_suffix, mode] :
            {std::pair{"", ImpactMode::kResolve}, std::pair{"_implicit", ImpactMode::kImplicit}}) {
-        benchmark::RegisterBenchmark(
-            ("simulate/" + std::string(name) + "/discrete_" + suffix + mode_suffix).c_str(),
-            discrete, std::string(name), h, with_reference, mode, true)
+        const std::string full = "simulate/" + std::string(name) + "/discrete_" + suffix;
+        benchmark::RegisterBenchmark((full + mode_suffix).c_str(), discrete, std::string(name), h,
+                                     with_reference, mode, true, true)
+            ->Unit(benchmark::kMillisecond);
+        if (std::string(name) != "ball_drop" && std::string(name) != "tippe_top") continue;
+        benchmark::RegisterBenchmark((full + mode_suffix + "_general").c_str(), discrete,
+                                     std::string(name), h, with_reference, mode, true, false)
             ->Unit(benchmark::kMillisecond);
       }
     }
     // the same run awake throughout: the reference of sleep's gain (docs/SLEEP.md)
     benchmark::RegisterBenchmark(
         ("simulate/" + std::string(name) + "/discrete_1ms_implicit_nosleep").c_str(), discrete,
-        std::string(name), 1e-3, with_reference, ImpactMode::kImplicit, false)
+        std::string(name), 1e-3, with_reference, ImpactMode::kImplicit, false, true)
         ->Unit(benchmark::kMillisecond);
   }
   // Two meshes, fast method, 2 kHz output: the CAD-part target (>= 1x at 1 kHz).

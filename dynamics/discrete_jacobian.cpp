@@ -72,10 +72,19 @@ struct BristleAffine {
   double theta_c = 0.0, theta_w = 0.0;
 };
 
-BristleAffine bristleAffine(const Model& m, const ContactContext& ctx, int offset, double h) {
-  BristleAffine out;
-  const Vector3d& n = ctx.n;
-  const Matrix3d P = planeProjector(n);
+// What the affine forms for every h share: the bristle law at the step's start, with its
+// secants and saturation scales (computed once for the step's form and the instantaneous one).
+struct BristleStart {
+  Vector3d n, z;
+  Matrix3d P;
+  double s, s0, s1, r, f_n, e_v, e_w, theta, scale_v, scale_w;
+  bool spin;
+};
+
+BristleStart bristleStart(const Model& m, const ContactContext& ctx, int offset) {
+  BristleStart b;
+  b.n = ctx.n;
+  b.P = planeProjector(b.n);
   const double s = ctx.s, s0 = ctx.sigma0, s1 = ctx.sigma1, r = ctx.r_gyr;
   const double v_eps = ctx.settings.v_eps;
   // the pull terms' secants: (C_v μ_C / σ1) dir_ε(v_t) = g_v v_t, likewise g_θ ω_n
@@ -83,27 +92,36 @@ BristleAffine bristleAffine(const Model& m, const ContactContext& ctx, int offse
   const double g_w =
       r > 0.0 ? ctx.C_w * ctx.mu_C / (s1 * r * std::max(std::abs(ctx.omega_n), v_eps / r)) : 0.0;
   const double e_v = s + (1.0 - s) * g_v, e_w = s + (1.0 - s) * g_w;
-  const double beta = 1.0 / (1.0 + h * (1.0 - s) * s0 / s1);
-  const Vector3d z = ctx.state.vector(offset);
-  const double theta = ctx.state[offset + 3];
+  b.z = ctx.state.vector(offset);
+  b.theta = ctx.state[offset + 3];
   // saturation at the step's start, kept as a fixed scale over the step
-  const Vector3d x0 = s * s0 * z + s1 * e_v * ctx.v_t;
-  const double scale_v = x0.norm() > ctx.mu_max ? ctx.mu_max / x0.norm() : 1.0;
-  const double m0 = s * s0 * theta + s1 * e_w * ctx.omega_n;
+  const Vector3d x0 = s * s0 * b.z + s1 * e_v * ctx.v_t;
+  b.scale_v = x0.norm() > ctx.mu_max ? ctx.mu_max / x0.norm() : 1.0;
+  const double m0 = s * s0 * b.theta + s1 * e_w * ctx.omega_n;
   const double limit_w = r > 0.0 ? ctx.mu_max / r : 0.0;
-  const double scale_w = std::abs(m0) > limit_w && m0 != 0.0 ? limit_w / std::abs(m0) : 1.0;
-  const double k = ctx.f_n * beta;
-  out.c.head<3>() = -scale_v * k * s * s0 * z;
-  out.L.topLeftCorner<3, 3>() = -scale_v * k * (h * s0 + s1) * e_v * P;
-  if (m.has("spin") && r > 0.0) {
-    out.c.tail<3>() = -scale_w * r * r * k * s * s0 * theta * n;
+  b.scale_w = std::abs(m0) > limit_w && m0 != 0.0 ? limit_w / std::abs(m0) : 1.0;
+  b.s = s, b.s0 = s0, b.s1 = s1, b.r = r, b.f_n = ctx.f_n, b.e_v = e_v, b.e_w = e_w;
+  b.spin = m.has("spin") && r > 0.0;
+  return b;
+}
+
+BristleAffine bristleAffine(const BristleStart& b, double h) {
+  BristleAffine out;
+  const Vector3d& n = b.n;
+  const double s = b.s, s0 = b.s0, s1 = b.s1, r = b.r;
+  const double beta = 1.0 / (1.0 + h * (1.0 - s) * s0 / s1);
+  const double k = b.f_n * beta;
+  out.c.head<3>() = -b.scale_v * k * s * s0 * b.z;
+  out.L.topLeftCorner<3, 3>() = -b.scale_v * k * (h * s0 + s1) * b.e_v * b.P;
+  if (b.spin) {
+    out.c.tail<3>() = -b.scale_w * r * r * k * s * s0 * b.theta * n;
     out.L.bottomRightCorner<3, 3>() =
-        -scale_w * r * r * k * (h * s0 + s1) * e_w * n * n.transpose();
+        -b.scale_w * r * r * k * (h * s0 + s1) * b.e_w * n * n.transpose();
   }
-  out.z_c = beta * z;
-  out.z_v = beta * h * e_v * P;
-  out.theta_c = beta * theta;
-  out.theta_w = beta * h * e_w;
+  out.z_c = beta * b.z;
+  out.z_v = beta * h * b.e_v * b.P;
+  out.theta_c = beta * b.theta;
+  out.theta_w = beta * h * b.e_w;
   return out;
 }
 
@@ -122,7 +140,7 @@ ContactJacobians contactJacobians(const Model& model, const volume::ContactVolum
   positionTerms(model, ctx, J.K);
   velocityTerms(model, ctx, J.D);
   if (ctx.law == FrictionLaw::kBristle) {
-    J.D += bristleAffine(model, ctx, model.stateLayout().offsetOf("bristle"), 0.0).L;
+    J.D += bristleAffine(bristleStart(model, ctx, model.stateLayout().offsetOf("bristle")), 0.0).L;
   }
   return J;
 }
@@ -130,8 +148,13 @@ ContactJacobians contactJacobians(const Model& model, const volume::ContactVolum
 void linearisePatch(const Model& model, const volume::ContactVolume& cv,
                     const RelativeMotion& motion, const PairState& state, double h,
                     PatchStep& out) {
-  model.evaluate(cv, motion, state, out.start);
-  const ContactContext ctx = model.context(cv, motion, state);
+  ContactContext ctx;
+  model.evaluate(cv, motion, state, out.start, nullptr, &ctx);
+  linearisePatch(model, ctx, motion, h, out);
+}
+
+void linearisePatch(const Model& model, const ContactContext& ctx, const RelativeMotion& motion,
+                    double h, PatchStep& out) {
   Matrix6d D = Matrix6d::Zero(), K = Matrix6d::Zero();
   positionTerms(model, ctx, K);
   velocityTerms(model, ctx, D);
@@ -145,8 +168,9 @@ void linearisePatch(const Model& model, const volume::ContactVolume& cv,
   out.bristle_offset = model.stateLayout().offsetOf("bristle");
   // the bristle force at the start (exactly the bristle and bristle-spin shares) is replaced
   // by its implicit form
-  const BristleAffine now = bristleAffine(model, ctx, out.bristle_offset, 0.0);
-  const BristleAffine step = bristleAffine(model, ctx, out.bristle_offset, h);
+  const BristleStart start = bristleStart(model, ctx, out.bristle_offset);
+  const BristleAffine now = bristleAffine(start, 0.0);
+  const BristleAffine step = bristleAffine(start, h);
   out.c += step.c - (now.c + now.L * xi0);
   out.L += step.L;
   out.z_c = step.z_c;

@@ -247,8 +247,8 @@ void Model::checkDistributedFriction() const {
 }
 
 void Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
-                     const PairState& state, ContactResult& r,
-                     const volume::DepthField* field) const {
+                     const PairState& state, ContactResult& r, const volume::DepthField* field,
+                     ContactContext* context) const {
   r.shares.assign(effects_.size(), Wrench{});
   r.wrench = Wrench{};
   r.rates = PairStateRates{};
@@ -264,6 +264,7 @@ void Model::evaluate(const volume::ContactVolume& cv, const RelativeMotion& moti
   r.f_n = ctx.f_n;
   r.s = ctx.s;
   r.mu_max = ctx.mu_max;
+  if (context) *context = ctx;
 }
 
 ContactContext Model::context(const volume::ContactVolume& cv, const RelativeMotion& motion,

@@ -92,10 +92,12 @@ class Model {
   ///   checkDistributedFriction()
   ContactResult evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
                          const PairState& state, const volume::DepthField* field = nullptr) const;
-  /// The same, into `out` (reuses its storage: no allocation in the integrator's loop).
+  /// The same, into `out` (reuses its storage: no allocation in the integrator's loop). With
+  /// `context`, also the shared context after both passes (what context() returns for a null
+  /// field), from the same evaluation: the discrete stepper linearises about it.
   void evaluate(const volume::ContactVolume& cv, const RelativeMotion& motion,
                 const PairState& state, ContactResult& out,
-                const volume::DepthField* field = nullptr) const;
+                const volume::DepthField* field = nullptr, ContactContext* context = nullptr) const;
 
   /// The shared context after both passes of evaluate() (lumped friction): the final f_n, s,
   /// μ_max, Contensou factors and the configured parameters, for the linearisation of the

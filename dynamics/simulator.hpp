@@ -52,6 +52,15 @@ struct DiscretePatch {
   PatchStep step;
 };
 
+/// A one-slot pair's latest model evaluation in contact (Simulator::evaluatePair, discrete
+/// runs): its context and the motion it was made at. The discrete step linearises about it
+/// instead of evaluating the model again at the same contact, motion and state.
+struct EvaluationContext {
+  ContactContext ctx;  ///< ctx.cv points into Simulator's last_pairs_
+  RelativeMotion motion;
+  bool valid = false;  ///< the pair was in contact at that evaluation
+};
+
 /// Why a run stopped, for a program reading its summary (the message says it in words).
 enum class StopCause {
   kNonFinite,          ///< a state or its rate is NaN or infinite
@@ -160,6 +169,15 @@ class Simulator {
   /// that writes no depth (no pair files) turns it off. The snapshot at t = 0 has it always.
   void setOutputDepths(bool on) { output_depths_ = on; }
 
+  /// The per-step shortcuts (docs/DISCRETE.md §4.4; on by default), which change no number of
+  /// a run: the discrete step linearises about the evaluation of the query that ended the
+  /// previous step instead of evaluating the model again, solves free flight body by body
+  /// without the whole system's LU, and the readers of an accepted state (the checks, the
+  /// settle, the output) take the right-hand side's kinematics instead of converting the
+  /// quaternions again. Off: the general path everywhere, for the tests that compare the two
+  /// to the bit and the benchmarks' before and after in one run.
+  void setStepShortcuts(bool on) { shortcuts_ = on; }
+
   using State = std::vector<double>;
 
  private:
@@ -174,6 +192,9 @@ class Simulator {
   void discreteStep(State& x, double t, double h);
   void assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
                      const State& x, double h);
+  bool evaluatedAt(std::size_t k, const volume::ContactVolume& cv, const RelativeMotion& motion,
+                   const PairState& state) const;
+  void solveFlight();
   void updateDiscreteStates(State& x, double h);
   void discreteInterval(State& x, State& dxdt, double& t, double h, double t1, bool lands,
                         SimulationSummary& summary);
@@ -209,6 +230,7 @@ class Simulator {
   bool rhsFinite(const double* x, double* dxdt, double t);
   const Snapshot& snapshot(const State& x, double t, bool depths);
   BodyKinematics kinematics(const State& x, std::size_t body, double t) const;
+  bool kinematicsCurrent(const State& x, double t) const;
   bool settle(State& x, double t);
   bool settlePairs(State& x, double t);
   double normaliseQuaternions(State& x) const;
@@ -263,11 +285,17 @@ class Simulator {
   // instead of a query while reuse_contacts_ (re-evaluating the models after a settle), and
   // the step's system, kept between steps to avoid allocations.
   std::vector<volume::ContactPatches> last_contact_;
+  std::vector<EvaluationContext> last_context_;  ///< per pair, discrete runs only
+  /// The force evaluations keep their contexts (last_context_): the discrete step's query, whose
+  /// evaluation is the next step's start; not the Dormand–Prince stages of a resolved interval.
+  bool keep_contexts_ = false;
   bool reuse_contacts_ = false;
   /// The force evaluation's queries compute the exact depth too (DepthMode::kDeepest): the
   /// discrete step that lands on an output time, whose contacts the output reads.
   bool query_depths_ = false;
   bool output_depths_ = true;  ///< setOutputDepths()
+  bool shortcuts_ = true;      ///< setStepShortcuts()
+  bool fixed_ready_ = false;   ///< kin_ holds the fixed bodies' kinematics (rhs())
   std::vector<int> column_;  ///< per body, its first column in the step's system, −1 if not free
   /// Per body, whether the step has no contact patch, load or spring on it (free flight).
   std::vector<char> in_flight_;
@@ -276,6 +304,10 @@ class Simulator {
   Eigen::MatrixXd step_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> step_lu_;
   Eigen::VectorXd step_rhs_, step_twist_;
+  // solveFlight()'s 3 × 3 system of one body's rotation, kept to avoid allocations
+  Eigen::MatrixXd flight_matrix_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> flight_lu_;
+  Eigen::VectorXd flight_rhs_, flight_twist_;
   std::vector<BodyKinematics> next_kin_;  ///< the bodies at the step's end (prescribed ones)
   std::vector<BodyKinematics> load_kin_;  ///< assembleLoads()' perturbed kinematics
   // Impacts (simulator_discrete_impacts.cpp): the step's start, kept to take it again by

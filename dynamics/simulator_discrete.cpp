@@ -10,6 +10,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <cstring>
 
 #include "dynamics/simulator.hpp"
 #include "geometry/error.hpp"
@@ -125,8 +126,13 @@ void Simulator::discreteStep(State& x, double t, double h) {
       assemblePatch(k, out.patches[i].cv, matches_[k].host[i], out.patches[i].slot, x, h);
     }
   }
-  step_lu_.compute(step_matrix_);
-  step_twist_ = step_lu_.solve(step_rhs_);
+  if (shortcuts_ && n == 6 && step_patch_count_ == 0 && scenario_.loads.empty() &&
+      scenario_.springs.empty()) {
+    solveFlight();
+  } else {
+    step_lu_.compute(step_matrix_);
+    step_twist_ = step_lu_.solve(step_rhs_);
+  }
   for (std::size_t i = 0; i < nb; ++i) {
     if (column_[i] < 0) continue;
     next_kin_[i].v_WBcm = step_twist_.segment<3>(column_[i]);
@@ -159,6 +165,29 @@ void Simulator::discreteStep(State& x, double t, double h) {
   }
 }
 
+// The one free body of the scenario in free flight (no patch, load or spring in the step):
+// the system diag(m I, I_W) is solved by blocks, v⁺ = b_v / m and I_W ω⁺ = b_ω by the same
+// partial-pivoting LU. These are the numbers of the 6 × 6 LU to the bit: its elimination and
+// triangular solves only add or subtract products with the zero blocks, which change no
+// nonzero value, and divide by m exactly as here (tested, discrete_shortcuts_test.cpp). Not
+// for several bodies: Eigen's triangular solve sums the columns beyond its panel of 8 in
+// another order, so a body's numbers in a 12 × 12 system differ from its own 6 × 6 ones in
+// the last bits.
+void Simulator::solveFlight() {
+  step_twist_.resize(step_rhs_.size());
+  flight_rhs_.resize(3);
+  for (std::size_t i = 0; i < column_.size(); ++i) {
+    const int c = column_[i];
+    if (c < 0) continue;
+    step_twist_.segment<3>(c) = step_rhs_.segment<3>(c) / scenario_.bodies[i].mass;
+    flight_matrix_ = step_matrix_.block<3, 3>(c + 3, c + 3);
+    flight_rhs_ = step_rhs_.segment<3>(c + 3);
+    flight_lu_.compute(flight_matrix_);
+    flight_twist_ = flight_lu_.solve(flight_rhs_);
+    step_twist_.segment<3>(c + 3) = flight_twist_;
+  }
+}
+
 // Patch (contact cv of pair k, states of slot `host`, its own slot `slot` or −1) into the
 // step's system: body A gets Gᵀ_A (c + L ξ⁺), body B the opposite at the same point.
 void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
@@ -176,7 +205,12 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
   const PairState state =
       PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k] + host * size)], size);
   const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], cv.p_WC);
-  linearisePatch(pair.model, cv, motion, state, h, dp.step);
+  if (shortcuts_ && evaluatedAt(k, cv, motion, state)) {
+    dp.step.start = last_pairs_[k].result;
+    linearisePatch(pair.model, last_context_[k].ctx, motion, h, dp.step);
+  } else {
+    linearisePatch(pair.model, cv, motion, state, h, dp.step);
+  }
   const std::size_t body[2] = {pair.a, pair.b};
   const double sign[2] = {1.0, -1.0};  // ξ = G_A V_A − G_B V_B; B gets the opposite wrench
   Matrix6d G[2];
@@ -196,6 +230,26 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
       }
     }
   }
+}
+
+// Whether the latest evaluation of pair k (evaluatePair, one slot) was made at contact cv,
+// motion and state, to the bit: then its result and context are the step's start. They are
+// unless a settle moved the state by less than its re-evaluation tolerance, or the pair has
+// several slots.
+bool Simulator::evaluatedAt(std::size_t k, const volume::ContactVolume& cv,
+                            const RelativeMotion& motion, const PairState& state) const {
+  const EvaluationContext& e = last_context_[k];
+  if (!e.valid || &cv != &last_pairs_[k].cv) return false;
+  const auto same = [](const auto& a, const auto& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+  };
+  const int size = scenario_.pairs[k].model.stateLayout().size();
+  double before[PairState::kCapacity], now[PairState::kCapacity];
+  last_pairs_[k].state.pack(before, size);
+  state.pack(now, size);
+  return same(e.motion.v_c_W, motion.v_c_W) && same(e.motion.w_W, motion.w_W) &&
+         e.motion.t == motion.t &&
+         std::memcmp(before, now, sizeof(double) * static_cast<std::size_t>(size)) == 0;
 }
 
 // The pair states over the step: explicit Euler from the start's rates, the bristle states

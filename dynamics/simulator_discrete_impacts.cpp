@@ -97,8 +97,10 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   // The step's one contact query, at the new state; on an output time with the exact
   // depths the output writes, which spares snapshot() a second query (fillDepths).
   query_depths_ = lands && output_depths_;
+  keep_contexts_ = true;
   rhs(x, dxdt, t);
   query_depths_ = false;
+  keep_contexts_ = false;
   if (resolve && impactAhead(start_kin_, true, h)) {
     x = start_x_;
     dxdt = start_dxdt_;
@@ -108,9 +110,9 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   }
   check(x, t);
   if (settlePairs(x, t)) {
-    reuse_contacts_ = true;
+    reuse_contacts_ = keep_contexts_ = true;
     rhs(x, dxdt, t);
-    reuse_contacts_ = false;
+    reuse_contacts_ = keep_contexts_ = false;
   }
   impacts_.observe(t, kin_, last_pairs_, &step_impulse_);
 }

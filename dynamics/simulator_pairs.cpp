@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -99,6 +100,14 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
   return contact;
 }
 
+// Whether kin_ is kinematics(x, ·, t) for every body: the latest right-hand side was evaluated
+// at the same bits of x and at t. The readers after an accepted step (check, settle, output)
+// then take kin_ instead of converting the quaternions again.
+bool Simulator::kinematicsCurrent(const State& x, double t) const {
+  return shortcuts_ && t == rhs_t_ && x.size() == last_x_.size() &&
+         std::memcmp(x.data(), last_x_.data(), x.size() * sizeof(double)) == 0;
+}
+
 // The output at (x, t) in output_, whose vectors keep their capacity from one output time to
 // the next: copying the pairs' figures costs no allocation once their sizes have settled.
 // With `depths`, the depths the force evaluation left out are filled in (fillDepths).
@@ -108,8 +117,13 @@ const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
     rhs(x, snapshot_dxdt_, t);
   }
   output_.t = t;
-  output_.bodies.resize(scenario_.bodies.size());
-  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) output_.bodies[i] = kinematics(x, i, t);
+  if (kinematicsCurrent(x, t)) {
+    output_.bodies = kin_;
+  } else {
+    output_.bodies.resize(scenario_.bodies.size());
+    for (std::size_t i = 0; i < scenario_.bodies.size(); ++i)
+      output_.bodies[i] = kinematics(x, i, t);
+  }
   output_.pairs = last_pairs_;
   for (std::size_t k = 0; depths && k < output_.pairs.size(); ++k) fillDepths(k, output_.pairs[k]);
   output_.loads = last_loads_;
@@ -185,8 +199,15 @@ void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
   out.state = PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k])], state_size);
   const Eigen::Vector3d& p_c = out.cv.p_WC;
   const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], p_c);
+  EvaluationContext* context = last_context_.empty() ? nullptr : &last_context_[k];
+  if (context) {
+    context->valid = keep_contexts_ && out.cv.inContact();
+    context->motion = motion;
+    if (!context->valid) context = nullptr;
+  }
   pair.model.evaluate(out.cv, motion, out.state, out.result,
-                      distributed && out.cv.inContact() ? &fields_[k] : nullptr);
+                      distributed && out.cv.inContact() ? &fields_[k] : nullptr,
+                      context ? &context->ctx : nullptr);
   noteNonFinite(k, out.cv, out.result);
   addWrench(pair, p_c, out.result.wrench);
   out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
@@ -228,10 +249,11 @@ void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& con
 // (none: reset), and the tracker records the patches' places (PatchTracker::update).
 bool Simulator::settlePairs(State& x, double t) {
   bool changed = false;
+  const bool current = kinematicsCurrent(x, t);
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const ContactPair& pair = scenario_.pairs[k];
-    const BodyKinematics A = kinematics(x, pair.a, t);
-    const BodyKinematics B = kinematics(x, pair.b, t);
+    const BodyKinematics A = current ? kin_[pair.a] : kinematics(x, pair.a, t);
+    const BodyKinematics B = current ? kin_[pair.b] : kinematics(x, pair.b, t);
     const int size = pair.model.stateLayout().size();
     const PairOutput& out = last_pairs_[k];
     for (int slot = 0; slot < slots_[k]; ++slot) {
