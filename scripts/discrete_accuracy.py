@@ -5,12 +5,14 @@ output time (docs/DISCRETE.md §4):
 
   python3 scripts/discrete_accuracy.py SCENARIO --out DIR [--duration S] [--output-rate HZ]
       [--steps 1e-3,5e-4,2.5e-4] [--tolerances ABS,REL] [--vcontact build/bin/vcontact]
-      [--skip-reference]
+      [--skip-reference] [--no-sleep]
 
 Each variant is a copy of the scenario in DIR (mesh and model paths made absolute) with
 "integrator", "step", "duration", "output_rate" and, for dopri5, "tolerances" abs/rel changed;
 its output goes to DIR/<variant>/ and its log (wall time, steps) to DIR/<variant>.log.
---skip-reference reuses DIR/dopri5/ from an earlier run.
+--skip-reference reuses DIR/dopri5/ from an earlier run. The discrete variants sleep as the
+scenario says (on by default, docs/SLEEP.md); --no-sleep sets "sleep": false in them, for a
+comparison of the awake stepper with the reference.
 """
 import argparse
 import json
@@ -33,6 +35,12 @@ def variant(scenario, base, out, name, changes):
     for key, model in s.get("models", {}).items():
         if isinstance(model, str):
             s["models"][key] = absolute(model, base)
+    # a pair's (or "contacts"') model is a name in "models" or a file beside the scenario
+    named = s.get("models", {})
+    for pair in s.get("pairs", []) + ([s["contacts"]] if "contacts" in s else []):
+        model = pair.get("model")
+        if isinstance(model, str) and model not in named:
+            pair["model"] = absolute(model, base)
     for key, value in changes.items():
         if key == "tolerances":
             s.setdefault("tolerances", {}).update(value)
@@ -66,6 +74,8 @@ def main():
     p.add_argument("--tolerances")
     p.add_argument("--vcontact", default="build/bin/vcontact")
     p.add_argument("--skip-reference", action="store_true")
+    p.add_argument("--no-sleep", action="store_true",
+                   help='the discrete variants with "sleep": false')
     a = p.parse_args()
     with open(a.scenario) as f:
         scenario = json.load(f)
@@ -86,6 +96,8 @@ def main():
     for h in a.steps.split(","):
         name = f"discrete_{float(h) * 1e3:g}ms"
         changes = dict(common, integrator="discrete", step=float(h))
+        if a.no_sleep:
+            changes["sleep"] = False
         run(a.vcontact, variant(scenario, base, a.out, name, changes), a.out, name)
         names.append(name)
     table = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rest_pose_table.py")
