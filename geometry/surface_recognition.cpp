@@ -1,5 +1,6 @@
 #include "geometry/surface_recognition.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -227,6 +228,91 @@ std::optional<RecognisedSurface> polishCandidate(const detail::Candidate& c,
   return detail::polishSurface(s, close);
 }
 
+// A sphere's vertices on two coaxial circles lie as well on the cone (or the cylinder) through
+// those circles: the axis is the direction in which the vertices spread least (the normal of
+// full or half rings), the circles are the two heights along it; the cone or cylinder through
+// them is then polished to the vertices. None unless the vertices form exactly two rings of
+// three or more about an axis through the sphere's centre and the result holds every one of
+// them within the tolerance.
+std::optional<RecognisedSurface> ruledThroughTwoRings(const RecognisedSurface& sphere,
+                                                      const std::vector<Eigen::Vector3d>& points,
+                                                      double tolerance) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) spread += (p - mean) * (p - mean).transpose();
+  const Eigen::Vector3d a =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+  std::vector<std::pair<double, double>> zr;  // (height along a from the centre, radius)
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d w = p - sphere.point;
+    zr.emplace_back(w.dot(a), (w - w.dot(a) * a).norm());
+  }
+  std::sort(zr.begin(), zr.end());
+  std::vector<std::size_t> starts{0};
+  for (std::size_t i = 1; i < zr.size(); ++i)
+    if (zr[i].first - zr[i - 1].first > tolerance) starts.push_back(i);
+  if (starts.size() != 2 || starts[1] < 3 || zr.size() - starts[1] < 3) return std::nullopt;
+  double z[2] = {0.0, 0.0}, r[2] = {0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    const std::size_t end = k ? zr.size() : starts[1];
+    for (std::size_t i = starts[k]; i < end; ++i) z[k] += zr[i].first, r[k] += zr[i].second;
+    z[k] /= static_cast<double>(end - starts[k]);
+    r[k] /= static_cast<double>(end - starts[k]);
+  }
+  RecognisedSurface start;
+  start.convex = sphere.convex;
+  if (std::abs(r[1] - r[0]) <= tolerance) {
+    start.kind = SurfaceKind::kCylinder;
+    start.point = sphere.point + 0.5 * (z[0] + z[1]) * a;
+    start.axis = a;
+    start.radius = 0.5 * (r[0] + r[1]);
+  } else {  // r grows with z along +a when k > 0; the apex is where r reaches 0
+    const double k = (r[1] - r[0]) / (z[1] - z[0]);
+    start.kind = SurfaceKind::kCone;
+    start.point = sphere.point + (z[0] - r[0] / k) * a;
+    start.axis = k > 0.0 ? a : Eigen::Vector3d(-a);
+    start.angle = std::atan(std::abs(k));
+  }
+  std::optional<RecognisedSurface> ruled = detail::polishSurface(start, points);
+  if (!ruled) return std::nullopt;
+  for (const Eigen::Vector3d& p : points)
+    if (!(std::abs(signedDistance(*ruled, p)) <= tolerance)) return std::nullopt;
+  return ruled;
+}
+
+// The sum of squared distances to `s` of the midpoints of the faces' edges.
+double edgeMidpointResidual(const RecognisedSurface& s, const TriangleMesh& mesh,
+                            const std::vector<int>& faces) {
+  double sum = 0.0;  // an interior edge counts twice, once from each face: the same for both
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) {
+      const double d = signedDistance(s, 0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3)));
+      sum += d * d;
+    }
+  return sum;
+}
+
+// The tie-break between a sphere and a cone or cylinder that both hold a region's vertices
+// (docs/SURFACES.md, "Recognition"): the edges decide. A vertex tells only that the surface
+// passes through it; an edge between two rings tells that the region is straight along it,
+// which a cone or cylinder is along its rulings and a sphere is nowhere. The midpoints of the
+// region's edges lie on the ruled surface along rulings and a chord's sagitta inside the
+// sphere, so the surface with the smaller residual there is taken; it must also cover every
+// face the sphere covered, so that the choice only renames the region.
+void preferRuledSurface(RecognisedSurface& s, const RecognitionInput& in,
+                        const std::vector<int>& face_surface) {
+  const std::vector<Eigen::Vector3d> points = positions(in.mesh, verticesOf(in.mesh, s.faces));
+  std::optional<RecognisedSurface> ruled = ruledThroughTwoRings(s, points, in.tolerance);
+  if (!ruled) return;
+  ruled->faces = facesOn(*ruled, in, face_surface);
+  if (!std::includes(ruled->faces.begin(), ruled->faces.end(), s.faces.begin(), s.faces.end()))
+    return;
+  if (edgeMidpointResidual(*ruled, in.mesh, s.faces) < edgeMidpointResidual(s, in.mesh, s.faces))
+    s = std::move(*ruled);
+}
+
 void measure(RecognisedSurface& s, const TriangleMesh& mesh) {
   s.area = 0.0;
   for (int f : s.faces) s.area += faceArea(mesh, f);
@@ -280,6 +366,7 @@ SurfaceRecognition recogniseSurfaces(const TriangleMesh& mesh, const Recognition
       RecognisedSurface& s = *polished;
       s.faces = facesOn(s, in, out.face_surface);
       if (s.faces.empty()) continue;
+      if (s.kind == SurfaceKind::kSphere) preferRuledSurface(s, in, out.face_surface);
       measure(s, mesh);
       for (int f : s.faces) out.face_surface[f] = static_cast<int>(found.size());
       found.push_back(std::move(s));

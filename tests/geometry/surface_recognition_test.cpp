@@ -153,6 +153,78 @@ TEST(SurfaceRecognition, ParametersFollowARigidMotion) {
   }
 }
 
+// A 45° chamfer whose two rims are its only vertices lies on the cone through them and on a
+// sphere centred on the axis; its edges along the rulings are straight on the cone and cut a
+// chord through the sphere, so recognition takes the cone (docs/SURFACES.md, "Recognition").
+// The 10 mm pin of 64 segments with 0.5 mm chamfers had them taken for spheres.
+TEST(SurfaceRecognition, ChamfersThroughTwoRimsAreCones) {
+  const double r = 0.01, L = 0.03, c = 0.0005;
+  const TriangleMesh pin = tessellateRevolution({{r - c, 0.0}, {r, c}, {r, L - c}, {r - c, L}}, 64);
+  for (unsigned seed : {0u, 5u, 29u}) {
+    const Eigen::Isometry3d X =
+        seed ? test::randomPose(seed, 0.05) : Eigen::Isometry3d(Eigen::Isometry3d::Identity());
+    const SurfaceRecognition rec = recogniseSurfaces(moved(pin, X));
+    EXPECT_EQ(kinds(rec),
+              (std::map<SurfaceKind, int>{
+                  {SurfaceKind::kPlane, 2}, {SurfaceKind::kCylinder, 1}, {SurfaceKind::kCone, 2}}))
+        << seed;
+    EXPECT_EQ(rec.free_form_faces, 0) << seed;
+    // r = r − c + z below, r = r − c + (L − z) above: apexes on the axis, axes into the cones
+    const Eigen::Vector3d apex[2] = {X * Eigen::Vector3d(0, 0, c - r),
+                                     X * Eigen::Vector3d(0, 0, L - c + r)};
+    const Eigen::Vector3d into[2] = {X.linear().col(2), -X.linear().col(2)};
+    int found = 0;
+    for (const RecognisedSurface& s : rec.surfaces) {
+      if (s.kind != SurfaceKind::kCone) continue;
+      const int k = (s.point - apex[0]).norm() < (s.point - apex[1]).norm() ? 0 : 1;
+      found |= 1 << k;
+      EXPECT_NEAR(s.angle, M_PI / 4, kParameterTolerance) << seed;
+      EXPECT_LT((s.point - apex[k]).norm(), kParameterTolerance * L) << seed;
+      EXPECT_LT((s.axis - into[k]).norm(), kParameterTolerance) << seed;
+      EXPECT_TRUE(s.convex) << seed;
+      EXPECT_EQ(s.faces.size(), 128u) << seed;
+      EXPECT_LT(s.max_residual, kParameterTolerance * L) << seed;
+    }
+    EXPECT_EQ(found, 3) << seed;  // one cone at each end
+  }
+}
+
+// A zone of a sphere of radius R between latitudes, rings at `latitudes` (radians, rising),
+// 64 segments, flat ends.
+TriangleMesh sphereZone(double R, const std::vector<double>& latitudes) {
+  std::vector<Eigen::Vector2d> profile;
+  for (double a : latitudes) profile.emplace_back(R * std::cos(a), R * std::sin(a));
+  return tessellateRevolution(profile, 64);
+}
+
+// With a ring between its rims the zone fixes the sphere (three circles lie on no cone), and
+// the tie-break has nothing to decide.
+TEST(SurfaceRecognition, SphereZoneOfThreeRingsStaysASphere) {
+  const double R = 0.01;
+  const SurfaceRecognition rec = recogniseSurfaces(sphereZone(R, {0.0, 0.25, 0.5}));
+  EXPECT_EQ(kinds(rec),
+            (std::map<SurfaceKind, int>{{SurfaceKind::kPlane, 2}, {SurfaceKind::kSphere, 1}}));
+  const RecognisedSurface& s = only(rec, SurfaceKind::kSphere);
+  EXPECT_NEAR(s.radius, R, kParameterTolerance * R);
+  EXPECT_LT(s.point.norm(), kParameterTolerance * R);
+  EXPECT_EQ(s.faces.size(), 256u);
+}
+
+// A zone with vertices on its two rims only is a polyhedron the cone through them holds as
+// well as the sphere: its edge midpoints, whatever the triangulation between the rims, lie in
+// the meridian plane on the chord between the rims, which is the cone's line and inside the
+// sphere's arc. Nothing in the mesh says sphere, and recognition takes the cone.
+TEST(SurfaceRecognition, SphereZoneOfTwoRingsIsTakenForTheCone) {
+  const double R = 0.01, a0 = 0.0, a1 = 0.5;
+  const SurfaceRecognition rec = recogniseSurfaces(sphereZone(R, {a0, a1}));
+  EXPECT_EQ(kinds(rec),
+            (std::map<SurfaceKind, int>{{SurfaceKind::kPlane, 2}, {SurfaceKind::kCone, 1}}));
+  const RecognisedSurface& s = only(rec, SurfaceKind::kCone);
+  const double r0 = R * std::cos(a0), r1 = R * std::cos(a1), z1 = R * std::sin(a1);
+  EXPECT_NEAR(s.angle, std::atan((r0 - r1) / z1), kParameterTolerance);
+  EXPECT_LT((s.point - Eigen::Vector3d(0, 0, z1 * r0 / (r0 - r1))).norm(), kParameterTolerance * R);
+}
+
 TEST(SurfaceRecognition, SinglePrecisionFileIsStillASphere) {
   const double R = 0.01;
   TriangleMesh m = tessellateSphere(R, 48, 24);
