@@ -282,13 +282,18 @@ std::optional<RecognisedSurface> ruledThroughTwoRings(const RecognisedSurface& s
   return ruled;
 }
 
-// The sum of squared distances to `s` of the midpoints of the faces' edges.
+// The sum of squared distances to `s` of the midpoints of the faces' edges that join the two
+// rings (whose ends differ in height along `axis` by more than `tolerance`). An edge within a
+// ring is a chord of a circle both surfaces hold, and says nothing of the meridian.
 double edgeMidpointResidual(const RecognisedSurface& s, const TriangleMesh& mesh,
-                            const std::vector<int>& faces) {
+                            const std::vector<int>& faces, const Eigen::Vector3d& axis,
+                            double tolerance) {
   double sum = 0.0;  // an interior edge counts twice, once from each face: the same for both
   for (int f : faces)
     for (int k = 0; k < 3; ++k) {
-      const double d = signedDistance(s, 0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3)));
+      const Eigen::Vector3d a = mesh.corner(f, k), b = mesh.corner(f, (k + 1) % 3);
+      if (!(std::abs((b - a).dot(axis)) > tolerance)) continue;
+      const double d = signedDistance(s, 0.5 * (a + b));
       sum += d * d;
     }
   return sum;
@@ -300,7 +305,8 @@ double edgeMidpointResidual(const RecognisedSurface& s, const TriangleMesh& mesh
 // which a cone or cylinder is along its rulings and a sphere is nowhere. The midpoints of the
 // region's edges lie on the ruled surface along rulings and a chord's sagitta inside the
 // sphere, so the surface with the smaller residual there is taken; it must also cover every
-// face the sphere covered, so that the choice only renames the region.
+// face the sphere covered, so that the choice only renames the region. Only the edges between
+// the two rings count: within a ring an edge is a chord of a circle on both.
 void preferRuledSurface(RecognisedSurface& s, const RecognitionInput& in,
                         const std::vector<int>& face_surface) {
   const std::vector<Eigen::Vector3d> points = positions(in.mesh, verticesOf(in.mesh, s.faces));
@@ -309,8 +315,10 @@ void preferRuledSurface(RecognisedSurface& s, const RecognitionInput& in,
   ruled->faces = facesOn(*ruled, in, face_surface);
   if (!std::includes(ruled->faces.begin(), ruled->faces.end(), s.faces.begin(), s.faces.end()))
     return;
-  if (edgeMidpointResidual(*ruled, in.mesh, s.faces) < edgeMidpointResidual(s, in.mesh, s.faces))
-    s = std::move(*ruled);
+  const auto residual = [&](const RecognisedSurface& t) {
+    return edgeMidpointResidual(t, in.mesh, s.faces, ruled->axis, in.tolerance);
+  };
+  if (residual(*ruled) < residual(s)) s = std::move(*ruled);
 }
 
 void measure(RecognisedSurface& s, const TriangleMesh& mesh) {

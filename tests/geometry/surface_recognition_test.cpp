@@ -214,15 +214,44 @@ TEST(SurfaceRecognition, SphereZoneOfThreeRingsStaysASphere) {
 // well as the sphere: its edge midpoints, whatever the triangulation between the rims, lie in
 // the meridian plane on the chord between the rims, which is the cone's line and inside the
 // sphere's arc. Nothing in the mesh says sphere, and recognition takes the cone.
+// The same zone with the top ring turned half a segment, so that no edge is a ruling (an
+// antiprism band between two fans).
+TriangleMesh twistedZone(double R, double a0, double a1, int n) {
+  TriangleMesh m;
+  m.vertices.resize(2 * n + 2, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n, u = t + M_PI / n;
+    m.vertices.row(i) << R * std::cos(a0) * std::cos(t), R * std::cos(a0) * std::sin(t),
+        R * std::sin(a0);
+    m.vertices.row(n + i) << R * std::cos(a1) * std::cos(u), R * std::cos(a1) * std::sin(u),
+        R * std::sin(a1);
+  }
+  m.vertices.row(2 * n) << 0.0, 0.0, R * std::sin(a0);
+  m.vertices.row(2 * n + 1) << 0.0, 0.0, R * std::sin(a1);
+  m.triangles.resize(4 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.triangles.row(4 * i) << i, j, n + i;
+    m.triangles.row(4 * i + 1) << j, n + j, n + i;
+    m.triangles.row(4 * i + 2) << 2 * n, j, i;
+    m.triangles.row(4 * i + 3) << 2 * n + 1, n + i, n + j;
+  }
+  return m;
+}
+
 TEST(SurfaceRecognition, SphereZoneOfTwoRingsIsTakenForTheCone) {
   const double R = 0.01, a0 = 0.0, a1 = 0.5;
-  const SurfaceRecognition rec = recogniseSurfaces(sphereZone(R, {a0, a1}));
-  EXPECT_EQ(kinds(rec),
-            (std::map<SurfaceKind, int>{{SurfaceKind::kPlane, 2}, {SurfaceKind::kCone, 1}}));
-  const RecognisedSurface& s = only(rec, SurfaceKind::kCone);
-  const double r0 = R * std::cos(a0), r1 = R * std::cos(a1), z1 = R * std::sin(a1);
-  EXPECT_NEAR(s.angle, std::atan((r0 - r1) / z1), kParameterTolerance);
-  EXPECT_LT((s.point - Eigen::Vector3d(0, 0, z1 * r0 / (r0 - r1))).norm(), kParameterTolerance * R);
+  for (const TriangleMesh& m : {sphereZone(R, {a0, a1}), twistedZone(R, a0, a1, 64)}) {
+    const SurfaceRecognition rec = recogniseSurfaces(m);
+    EXPECT_EQ(kinds(rec),
+              (std::map<SurfaceKind, int>{{SurfaceKind::kPlane, 2}, {SurfaceKind::kCone, 1}}));
+    const RecognisedSurface& s = only(rec, SurfaceKind::kCone);
+    const double r0 = R * std::cos(a0), r1 = R * std::cos(a1), z1 = R * std::sin(a1);
+    EXPECT_NEAR(s.angle, std::atan((r0 - r1) / z1), kParameterTolerance);
+    EXPECT_LT((s.point - Eigen::Vector3d(0, 0, z1 * r0 / (r0 - r1))).norm(),
+              kParameterTolerance * R);
+    EXPECT_EQ(s.faces.size(), 128u);
+  }
 }
 
 TEST(SurfaceRecognition, SinglePrecisionFileIsStillASphere) {
