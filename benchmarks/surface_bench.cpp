@@ -174,9 +174,9 @@ void registerPinInBore() {
   });
   // The pin of the error table (r 5 mm, 30 mm, 0.5 mm 45° chamfers, 64 segments) on its side
   // with a vertex row down: the cylinder and both chamfer cones reach the plate; recovered,
-  // a solid of revolution by slices (volume/analytic_revolution.hpp). (The same pin at
-  // r = 10 mm has its chamfers recognised as spheres: two coaxial rims lie on a sphere as well
-  // as on a cone, and the 64-segment chamfer gives no vertex between them.)
+  // a solid of revolution by slices (volume/analytic_revolution.hpp). The table's radius; a
+  // pin of r = 10 mm has two-ring chamfers that fit spheres too, told from them by their edges
+  // (docs/SURFACES.md, "Sphere or cone: the edges decide").
   registerCase("chamfered_pin_side", [] {
     const double r = 0.005;
     Isometry3d side = Isometry3d::Identity();

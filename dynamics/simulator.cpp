@@ -2,7 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <boost/numeric/odeint.hpp>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -15,10 +14,6 @@ namespace vcontact::dynamics {
 namespace {
 
 constexpr int kBodyStates = 13;  // p_WBcm (3), q_WB (w, x, y, z), v_WBcm (3), w_WB (3)
-
-// Output times k / rate are reached by shortened steps; a step that ends within this
-// fraction of the output interval of it counts as landing on it (round-off of t + dt).
-constexpr double kOutputTimeSlack = 1e-9;
 
 // BDF: |q| may drift this far from 1 before the state is rescaled (a restart). The error
 // weights of q change by as much, relatively: negligible.
@@ -503,49 +498,6 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     throw;
   }
   finish();
-}
-
-void Simulator::runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_output,
-                          const ProgressFn& on_progress, SimulationSummary& summary) {
-  namespace odeint = boost::numeric::odeint;
-  const SimulationSettings& set = scenario_.settings;
-  auto stepper =
-      odeint::make_controlled(set.abs_tol, set.rel_tol, odeint::runge_kutta_dopri5<State>());
-  auto system = [this](const State& x, State& dxdt, double t) { rhs(x, dxdt, t); };
-  const double interval = 1.0 / set.output_rate_hz;
-  long next_output = 1;
-  double dt = set.initial_step;
-  bool just_rejected = false;
-  while (t < set.duration) {
-    const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
-    const double dt_free = std::min(dt, set.max_step);
-    const bool capped = t_target - t < dt_free;
-    double dt_try = capped ? t_target - t : dt_free;
-    const double dt_used = dt_try;
-    if (stepper.try_step(system, x, dxdt, t, dt_try) == odeint::fail) {
-      ++summary.rejected_steps;
-      just_rejected = true;
-      dt = dt_try;
-      if (dt < set.min_step) throw stepCollapse(t, dt, "");
-      continue;
-    }
-    ++summary.steps;
-    dt = capped ? std::max(dt_try, dt_free) : dt_try;
-    // Hairer, Nørsett & Wanner I, §II.4: no growth right after a rejection. At the stability
-    // limit of a stiff contact this avoids the grow–reject cycle of the plain controller.
-    if (just_rejected) dt = std::min(dt, dt_used);
-    just_rejected = false;
-    if (x != last_x_) rhs(x, dxdt, t);
-    check(x, t);
-    if (settle(x, t)) rhs(x, dxdt, t);
-    impacts_.observe(t, kin_, last_pairs_);
-    if (t >= t_target - kOutputTimeSlack * interval) {
-      t = t_target;
-      on_output(snapshot(x, t, output_depths_));
-      ++next_output;
-    }
-    on_progress(t);
-  }
 }
 
 // CVODE steps freely (up to max_step) and the outputs are read from each step's interpolating

@@ -42,6 +42,7 @@
 namespace vcontact::dynamics {
 
 class BdfError;
+class Dopri5Control;
 
 /// One contact patch of one step of the discrete stepper (simulator_discrete.cpp).
 struct DiscretePatch {
@@ -181,6 +182,10 @@ class Simulator {
   using State = std::vector<double>;
 
  private:
+  // Output times k / rate are reached by shortened steps; a step that ends within this
+  // fraction of the output interval of it counts as landing on it (round-off of t + dt).
+  static constexpr double kOutputTimeSlack = 1e-9;
+
   using OutputFn = std::function<void(const Snapshot&)>;
   using ProgressFn = std::function<void(double t)>;
   void runDopri5(State& x, State& dxdt, double& t, const OutputFn& on_output,
@@ -202,6 +207,13 @@ class Simulator {
   double impactDuration(std::size_t k) const;
   bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool onsets_only, double h) const;
   void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
+  // A Dormand–Prince attempt of dt from (x, t) for runDopri5 and resolveInterval: a rejection is
+  // counted, leaves the smaller step in dt and throws when it falls below min_step.
+  bool tryDopri5(Dopri5Control& control, State& x, State& dxdt, double& t, double& dt,
+                 SimulationSummary& summary);
+  // After an accepted Dormand–Prince step: the contacts at x, the checks, the pair states'
+  // discrete updates and the impact tracker.
+  void afterDopri5Step(State& x, State& dxdt, double t);
   void stepImpulses(double h);
   void sleepBeforeStep(State& x, double t);
   bool lacksDepth(std::size_t k) const;

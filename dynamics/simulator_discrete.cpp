@@ -20,9 +20,6 @@ namespace {
 
 constexpr int kBodyStates = 13;  // as simulator.cpp: p (3), q (w, x, y, z), v (3), ω (3)
 
-// A step that ends within this fraction of the output interval of an output time lands on it.
-constexpr double kOutputTimeSlack = 1e-9;
-
 // G of a body at lever arm r = p_c − p_cm: the velocity at p_c and ω from the body's twist
 // (v_cm, ω), v(p_c) = v_cm + ω × r; Gᵀ moves a wrench at p_c to the centre of mass.
 Matrix6d leverMap(const Eigen::Vector3d& r) {

@@ -14,10 +14,10 @@
 // step out of contact lands a resting body (g h): resting contact and its hop (§5) stay on the
 // fixed step. Outputs stay on the fixed grid; the Dormand–Prince steps inside are not output.
 
-#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <numbers>
 
+#include "dynamics/dopri5_control.hpp"
 #include "dynamics/simulator.hpp"
 
 namespace vcontact::dynamics {
@@ -117,39 +117,26 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   impacts_.observe(t, kin_, last_pairs_, &step_impulse_);
 }
 
-// Dormand–Prince from t to t1 as runDopri5 steps (the same controller and checks), its step
-// size carried from one resolved interval to the next.
+// Dormand–Prince from t to t1 as runDopri5 steps (the same control and checks), its step size
+// carried from one resolved interval to the next.
 void Simulator::resolveInterval(State& x, State& dxdt, double& t, double t1,
                                 SimulationSummary& summary) {
-  namespace odeint = boost::numeric::odeint;
   const SimulationSettings& set = scenario_.settings;
   ++summary.resolved_steps;
-  auto stepper =
-      odeint::make_controlled(set.abs_tol, set.rel_tol, odeint::runge_kutta_dopri5<State>());
-  auto system = [this](const State& x, State& dxdt, double t) { rhs(x, dxdt, t); };
+  Dopri5Control control(set.abs_tol, set.rel_tol);
   double dt = std::min(resolve_dt_ > 0.0 ? resolve_dt_ : set.initial_step, set.max_step);
-  bool just_rejected = false;
   const double span = t1 - t;
   while (t < t1) {
     const bool capped = t1 - t <= dt * (1.0 + kEndSlack);
     double dt_try = capped ? t1 - t : dt;
-    const double dt_used = dt_try;
-    if (stepper.try_step(system, x, dxdt, t, dt_try) == odeint::fail) {
-      ++summary.rejected_steps;
-      just_rejected = true;
+    if (!tryDopri5(control, x, dxdt, t, dt_try, summary)) {
       dt = dt_try;
-      if (dt < set.min_step) throw stepCollapse(t, dt, "");
       continue;
     }
     ++summary.resolution_substeps;
-    dt = std::min(capped ? std::max(dt_try, dt) : dt_try, set.max_step);
-    if (just_rejected) dt = std::min(dt, dt_used);  // as runDopri5
-    just_rejected = false;
+    dt = control.afterAccept(std::min(capped ? std::max(dt_try, dt) : dt_try, set.max_step));
     if (capped || t1 - t <= kEndSlack * span) t = t1;
-    if (x != last_x_) rhs(x, dxdt, t);
-    check(x, t);
-    if (settle(x, t)) rhs(x, dxdt, t);
-    impacts_.observe(t, kin_, last_pairs_);
+    afterDopri5Step(x, dxdt, t);
   }
   resolve_dt_ = dt;
 }
