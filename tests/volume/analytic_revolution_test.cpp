@@ -13,6 +13,7 @@
 #include "support/test_support.hpp"
 #include "volume/analytic.hpp"
 #include "volume/analytic_segment.hpp"
+#include "volume/revolution_references.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -21,6 +22,9 @@ using Eigen::Isometry3d;
 using Eigen::Vector3d;
 using test::randomPose;
 using test::relativeDifference;
+using vcontact::test::pinOnItsSide;
+using vcontact::test::segment;
+using vcontact::test::sphereCap;
 using Kind = ProfilePiece::Kind;
 
 // The backend promises 1e-9 relative (quadrature to 1e-11 against ∫|f|); the closed forms
@@ -53,15 +57,6 @@ ProfilePiece arc(double z0, double z1, double rho, double zc, double a) {
   p.a = a;
   return p;
 }
-
-// Area of a circular segment of height h on radius ρ, stable for h ≪ ρ.
-double segment(double rho, double h) {
-  if (h <= 0.0) return 0.0;
-  return rho * rho * 2.0 * std::asin(std::sqrt(h / (2.0 * rho))) -
-         (rho - h) * std::sqrt(h * (2.0 * rho - h));
-}
-
-double sphereCap(double R, double d) { return M_PI * d * d * (3.0 * R - d) / 3.0; }
 
 void expectSameContact(const ContactVolume& a, const ContactVolume& b, double tol) {
   ASSERT_GT(b.volume, 0.0);
@@ -181,20 +176,6 @@ TEST(AnalyticRevolution, CapsuleOnItsEndIsTheSphereCap) {
       expectSameContact(cv, ref, tilt == 0.0 ? kPromised : 2e-8 / ratio);
     }
   }
-}
-
-// A pin of radius r, length Lp from z = 0, 45° chamfers c: lying on its side pressed d < c,
-// V = (Lp − 2c) × segment(r, d) + 2 ∫ segment(r − t, d − t) dt over t ∈ [0, d] (the chamfer's
-// slice t from its rim), here by Simpson's rule on 20,000 intervals after t = d(1 − u²),
-// which removes the (d − t)^{3/2} end behaviour (error < 1e-9).
-double pinOnItsSide(double r, double Lp, double c, double d) {
-  const int n = 20000;
-  double sum = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    const double u = static_cast<double>(i) / n, t = d * (1.0 - u * u);
-    sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * segment(r - t, d - t) * 2.0 * d * u;
-  }
-  return (Lp - 2.0 * c) * segment(r, d) + 2.0 * sum / (3.0 * n);
 }
 
 TEST(AnalyticRevolution, ChamferedPinOnItsSideAgainstSimpson) {

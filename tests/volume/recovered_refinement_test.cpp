@@ -18,46 +18,21 @@
 #include "support/test_support.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume/mesh_mesh.hpp"
+#include "volume/revolution_references.hpp"
 
 namespace vcontact::volume {
 namespace {
 
 using geometry::recogniseSurfaces;
 using geometry::TriangleMesh;
+using vcontact::test::chamferedPin;
+using vcontact::test::pinOnItsSide;
+using vcontact::test::segment;
 
 // The refinement aims at 0.1 % (RefinementOptions::tolerance) and reports a Richardson
 // estimate; the tests accept 0.2 %: the estimate is of the leading 1/k² term only, and the
 // references below carry errors of their own of 1e-5 or less.
 constexpr double kAccepted = 2e-3;
-
-// The area of a circular segment of height h on a circle of radius ρ, stable for h ≪ ρ
-// (acos(1 − x) = 2 asin(√(x/2))).
-double segment(double rho, double h) {
-  if (h <= 0.0) return 0.0;
-  return rho * rho * 2.0 * std::asin(std::sqrt(h / (2.0 * rho))) -
-         (rho - h) * std::sqrt(h * (2.0 * rho - h));
-}
-
-// A pin of radius r and length L along z from z = 0, with 45° chamfers c at both ends.
-TriangleMesh chamferedPin(double r, double L, double c, int segments) {
-  return geometry::tessellateRevolution({{r - c, 0.0}, {r, c}, {r, L - c}, {r - c, L}}, segments);
-}
-
-// V of that pin lying on its side, pressed d < c into a plate: the straight part's segment
-// times its length, and each chamfer, whose section at t from the rim is a segment of height
-// d − t on radius r − t (45°), integrated by Simpson's rule on 20,000 intervals after the
-// substitution t = d(1 − u²), which removes the (d − t)^{3/2} end behaviour (error < 1e-9).
-double pinOnItsSide(double r, double L, double c, double d) {
-  const int n = 20000;
-  double sum = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    const double u = static_cast<double>(i) / n;
-    const double t = d * (1.0 - u * u);
-    const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-    sum += w * segment(r - t, d - t) * 2.0 * d * u;  // dt = 2 d u du
-  }
-  return (L - 2.0 * c) * segment(r, d) + 2.0 * sum / (3.0 * n);
-}
 
 // The refinement itself, on the faces that reach the plane: the bodies below are solids of
 // revolution, which halfspaceContact answers by closed-form slices instead

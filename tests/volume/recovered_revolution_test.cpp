@@ -15,6 +15,7 @@
 #include "volume/halfspace_clip.hpp"
 #include "volume/recovered_refinement.hpp"
 #include "volume/recovered_surface.hpp"
+#include "volume/revolution_references.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -23,37 +24,16 @@ using Eigen::Isometry3d;
 using Eigen::Vector3d;
 using geometry::recogniseSurfaces;
 using geometry::TriangleMesh;
+using vcontact::test::chamferedPin;
+using vcontact::test::pinOnItsSide;
+using vcontact::test::segment;
+using vcontact::test::sphereCap;
 
 // The recovered parameters are the tessellation's to ~1e-12 of the part (recovered_surface_
 // test.cpp); V's sensitivity to a surface moved by g is about 2g/d of V, which at
 // d = 1e-4 r is 2e4 g/r: 1e-7 bounds it with margin, and any faceting error (the polyhedra
 // are off by 10 % to 90 % at these depths) fails it.
 constexpr double kRelative = 1e-7;
-
-double segment(double rho, double h) {
-  if (h <= 0.0) return 0.0;
-  return rho * rho * 2.0 * std::asin(std::sqrt(h / (2.0 * rho))) -
-         (rho - h) * std::sqrt(h * (2.0 * rho - h));
-}
-
-double sphereCap(double R, double d) { return M_PI * d * d * (3.0 * R - d) / 3.0; }
-
-TriangleMesh chamferedPin(double r, double L, double c) {
-  return geometry::tessellateRevolution({{r - c, 0.0}, {r, c}, {r, L - c}, {r - c, L}}, 64);
-}
-
-// V of that pin on its side pressed d < c: the straight part's segment times its length, and
-// each chamfer's sections (a segment of height d − t on radius r − t, t from the rim) by
-// Simpson's rule after t = d(1 − u²) (error < 1e-9).
-double pinOnItsSide(double r, double L, double c, double d) {
-  const int n = 20000;
-  double sum = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    const double u = static_cast<double>(i) / n, t = d * (1.0 - u * u);
-    sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * segment(r - t, d - t) * 2.0 * d * u;
-  }
-  return (L - 2.0 * c) * segment(r, d) + 2.0 * sum / (3.0 * n);
-}
 
 // A capsule of radius R, straight length L from z = 0 to L, `segments` around and `rings`
 // from a pole to the equator, and as many rings again along the straight part: the

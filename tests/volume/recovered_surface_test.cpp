@@ -12,6 +12,7 @@
 #include "io/mesh_io.hpp"
 #include "support/test_support.hpp"
 #include "volume/halfspace_clip.hpp"
+#include "volume/revolution_references.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -19,14 +20,13 @@ namespace {
 using geometry::recogniseSurfaces;
 using geometry::tessellateCylinder;
 using geometry::tessellateSphere;
+using vcontact::test::sphereCap;
 
 // The recovered radius and centre are those of the tessellation's vertices to about 1e-12 of
 // the part (the polish fits exact vertices), and V's sensitivity to them is V·2/d per metre
 // at depth d: at d/R = 1e-4 that is 2e4/R, so 1e-12·R moves V by 2e-8 of itself. 1e-7
 // bounds it with margin and fails on any faceting error (the polyhedron is off by 3 % to 100 %).
 constexpr double kRelative = 1e-7;
-
-double sphereCap(double R, double d) { return M_PI * d * d * (3.0 * R - d) / 3.0; }
 
 double cylinderSegment(double R, double L, double d) {
   const double h = R - d;

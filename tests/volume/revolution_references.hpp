@@ -1,0 +1,46 @@
+#pragma once
+// Closed forms and references of solids of revolution on a plate, shared by the tests of the
+// slices (analytic_revolution_test), of the recovered profiles (recovered_revolution_test), of
+// the refinement (recovered_refinement_test) and of the recovered sphere
+// (recovered_surface_test).
+
+#include <cmath>
+
+#include "geometry/tessellate.hpp"
+
+namespace vcontact::test {
+
+/// Area of a circular segment of height h on a circle of radius ρ (0 for h ≤ 0), stable for
+/// h ≪ ρ: acos(1 − x) = 2 asin(√(x/2)).
+inline double segment(double rho, double h) {
+  if (h <= 0.0) return 0.0;
+  return rho * rho * 2.0 * std::asin(std::sqrt(h / (2.0 * rho))) -
+         (rho - h) * std::sqrt(h * (2.0 * rho - h));
+}
+
+/// Volume of the cap of height d of a sphere of radius R.
+inline double sphereCap(double R, double d) { return M_PI * d * d * (3.0 * R - d) / 3.0; }
+
+/// A pin of radius r and length L along z from z = 0, with 45° chamfers c at both ends,
+/// `segments` around.
+inline geometry::TriangleMesh chamferedPin(double r, double L, double c, int segments = 64) {
+  return geometry::tessellateRevolution({{r - c, 0.0}, {r, c}, {r, L - c}, {r - c, L}}, segments);
+}
+
+/// V of that pin lying on its side, pressed d < c into a plate: the straight part's segment
+/// times its length, and each chamfer, whose section at t from the rim is a segment of height
+/// d − t on radius r − t (45°), integrated by Simpson's rule on 20,000 intervals after the
+/// substitution t = d(1 − u²), which removes the (d − t)^{3/2} end behaviour (error < 1e-9).
+inline double pinOnItsSide(double r, double L, double c, double d) {
+  const int n = 20000;
+  double sum = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double u = static_cast<double>(i) / n;
+    const double t = d * (1.0 - u * u);
+    const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+    sum += w * segment(r - t, d - t) * 2.0 * d * u;  // dt = 2 d u du
+  }
+  return (L - 2.0 * c) * segment(r, d) + 2.0 * sum / (3.0 * n);
+}
+
+}  // namespace vcontact::test
