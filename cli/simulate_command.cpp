@@ -22,7 +22,7 @@ struct SimulateOptions {
   std::string out = "out";
   std::optional<double> outputRate;  ///< Hz; the scenario's output_rate when not given
   bool quiet = false;
-  std::string outputThread = "on";  ///< "on": the CSVs are written on a thread of their own
+  std::string outputThread = "off";  ///< "on": the CSVs are written on a thread of their own
 };
 
 // The run's figures on standard error, for a person at a terminal.
