@@ -9,7 +9,7 @@
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
 #include "io/progress.hpp"
-#include "report/simulation_csv.hpp"
+#include "report/async_simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
 
 namespace vcontact::cli {
@@ -22,6 +22,7 @@ struct SimulateOptions {
   std::string out = "out";
   std::optional<double> outputRate;  ///< Hz; the scenario's output_rate when not given
   bool quiet = false;
+  std::string outputThread = "off";  ///< "on": the CSVs are written on a thread of their own
 };
 
 // The run's figures on standard error, for a person at a terminal.
@@ -84,7 +85,9 @@ void runSimulate(const SimulateOptions& o) {
   printRecognition(file.scenario, o.quiet);
   dynamics::Simulator sim(file.scenario);
   sim.setOutputDepths(file.outputs.pairs);  // the depth column is in the pair files only
-  report::SimulationCsvWriter writer(o.out, sim.scenario(), file.outputs);
+  const report::OutputThread thread =
+      o.outputThread == "on" ? report::OutputThread::kOn : report::OutputThread::kOff;
+  report::AsyncSimulationCsvWriter writer(o.out, sim.scenario(), file.outputs, thread);
   io::Progress progress("simulate", file.scenario.settings.duration, "s", o.quiet);
   dynamics::SimulationSummary summary;
   try {
@@ -116,6 +119,11 @@ void addSimulateCommand(CLI::App& app) {
   cmd->add_option("--output-rate", opts->outputRate,
                   "states written per simulated second, Hz (default: the scenario's "
                   "output_rate_hz)");
+  cmd->add_option("--output-thread", opts->outputThread,
+                  "on: the CSVs are formatted and written on a second thread while the run steps "
+                  "on; off: on the stepping thread (the same files)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd->add_flag("--quiet", opts->quiet, "no progress on standard error (none in pipes or CI)");
   cmd->callback([opts] { runSimulate(*opts); });
 }

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "report/async_simulation_csv.hpp"
 #include "report/simulation_csv.hpp"
 
 namespace vcontact::report {
@@ -88,13 +89,32 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
   return j;
 }
 
+namespace {
+
+// Either writer: its commit() puts the CSVs and summary.json in place together.
+template <class Writer>
+nlohmann::json finishWith(Writer& writer, const std::string& dir,
+                          const dynamics::SimulationSummary& summary,
+                          const std::string& scenario_path, const std::optional<StopInfo>& stop) {
+  nlohmann::json j = simulationSummaryJson(summary, scenario_path, stop);
+  writer.commit(dir + "/summary.json", j.dump(2) + '\n');  // all the run's files, or none
+  return j;
+}
+
+}  // namespace
+
 nlohmann::json finishSimulationOutput(SimulationCsvWriter& writer, const std::string& dir,
                                       const dynamics::SimulationSummary& summary,
                                       const std::string& scenario_path,
                                       const std::optional<StopInfo>& stop) {
-  nlohmann::json j = simulationSummaryJson(summary, scenario_path, stop);
-  writer.commit(dir + "/summary.json", j.dump(2) + '\n');  // all the run's files, or none
-  return j;
+  return finishWith(writer, dir, summary, scenario_path, stop);
+}
+
+nlohmann::json finishSimulationOutput(AsyncSimulationCsvWriter& writer, const std::string& dir,
+                                      const dynamics::SimulationSummary& summary,
+                                      const std::string& scenario_path,
+                                      const std::optional<StopInfo>& stop) {
+  return finishWith(writer, dir, summary, scenario_path, stop);
 }
 
 }  // namespace vcontact::report

@@ -13,6 +13,7 @@
 namespace vcontact::report {
 
 class SimulationCsvWriter;
+class AsyncSimulationCsvWriter;
 
 /// Where and why a run stopped: "stopped_at_s" and "stop_cause" (dynamics::stopCauseName),
 /// and the message, which becomes the summary's "status".
@@ -34,6 +35,11 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& summary,
 /// stopped run keeps its rows up to the stop). Returns the summary written.
 /// @throws InputError naming the file when a write failed; no file of the run is left then
 nlohmann::json finishSimulationOutput(SimulationCsvWriter& writer, const std::string& dir,
+                                      const dynamics::SimulationSummary& summary,
+                                      const std::string& scenario_path,
+                                      const std::optional<StopInfo>& stop);
+/// The same through the threaded writer: what was handed over is written first.
+nlohmann::json finishSimulationOutput(AsyncSimulationCsvWriter& writer, const std::string& dir,
                                       const dynamics::SimulationSummary& summary,
                                       const std::string& scenario_path,
                                       const std::optional<StopInfo>& stop);
