@@ -28,8 +28,9 @@ namespace {
 
 // Impacts lasting fewer steps than this are resolved: backward Euler's restitution of an
 // elastic impact is 0.66 at 14 steps per impact, 0.81 at 28 and 0.978 at 280, so 2 % needs
-// about 250 steps (docs/DISCRETE.md §5). With 25, the steps of 25–250 per impact were left to
-// the plain step and lost a fifth to a half of the rebound, more at a smaller h.
+// about 250 steps (docs/DISCRETE.md §5). With 25, impacts estimated at 25–250 steps were left
+// to the plain step and lost up to a fifth of the rebound, more where the estimate at a face's
+// first touch (a sliver of contact) is longer than the impact.
 constexpr double kResolvedSteps = 250.0;
 // m/s, the least impact speed to resolve without gravity (the threshold is 2 |g| h otherwise).
 constexpr double kMinImpactSpeed = 1e-3;
