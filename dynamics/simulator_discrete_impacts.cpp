@@ -9,8 +9,8 @@
 //     step's start (a new contact, a new patch of a pair in contact, or one that stiffened in
 //     the step: the step is then taken again from its start, one query wasted per impact),
 //
-// where a region is a patch of a pair with several slots (its own normal and centroid) or the
-// single-region contact of the others, and the region's estimated impact duration
+// where a region is a pair's single-region contact or, with several slots, one of its patches
+// (its own normal and centroid), and the region's estimated impact duration
 // π sqrt(m_eff / k_n) (k_n = f_n A / V, which is kv (1 + a δ̇_c) A for the volumetric model,
 // m_eff the pair's effective mass along the normal at the region's centroid) is below
 // kResolvedSteps steps. The threshold 2 |g| h is twice the speed at which a step out of contact
@@ -62,11 +62,12 @@ double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv,
 
 // Whether a contact region of a pair at the latest query is in an impact to resolve over a
 // step h, its normal speed at the region's centroid taken from speed_kin. The regions are the
-// patches of a pair with several slots (each with its own normal and centroid: a tray rocking
-// on its base while its pins touch the hole walls has a fast corner and a slow aggregate),
-// the single-region contact otherwise. approaching_only: the check after a plain step, which
-// takes any region approaching faster than the threshold at the step's start (a pair apart
-// then, or a patch that appeared or stiffened in the step).
+// pair's single-region contact (the aggregate) and, for a pair with several slots, each of its
+// patches with its own normal and centroid: a tray's base landing while its pins touch the
+// hole walls is fast where the aggregate is slow, and a peg driven down a hole whose wall
+// patches slide along their normals' planes is fast only in the aggregate. approaching_only: the
+// check after a plain step, which takes any region approaching faster than the threshold at the
+// step's start (a pair apart then, or a patch that appeared or stiffened in the step).
 bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
                             double h) const {
   const double threshold = impactThreshold(h);
@@ -81,10 +82,8 @@ bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool a
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
     if (!out.cv.inContact()) continue;
-    if (slots_[k] == 1 || out.patches.empty()) {
-      if (fast(k, out.cv, out.result.f_n)) return true;
-      continue;
-    }
+    if (fast(k, out.cv, out.result.f_n)) return true;
+    if (slots_[k] == 1) continue;
     for (const PatchOutput& p : out.patches) {
       if (fast(k, p.cv, p.result.f_n)) return true;
     }
