@@ -204,8 +204,9 @@ class Simulator {
   void discreteInterval(State& x, State& dxdt, double& t, double h, double t1, bool lands,
                         SimulationSummary& summary);
   double impactThreshold(double h) const;
-  double impactDuration(std::size_t k) const;
-  bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool onsets_only, double h) const;
+  double impactDuration(std::size_t k, const volume::ContactVolume& cv, double f_n) const;
+  bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
+                   double h) const;
   void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
   // A Dormand–Prince attempt of dt from (x, t) for runDopri5 and resolveInterval: a rejection is
   // counted, leaves the smaller step in dt and throws when it falls below min_step.
@@ -327,7 +328,6 @@ class Simulator {
   // the latest discrete step; the latest accepted step of the resolutions.
   State start_x_, start_dxdt_;
   std::vector<BodyKinematics> start_kin_;
-  std::vector<char> start_contact_;
   std::vector<double> step_impulse_;
   double resolve_dt_ = 0.0;
   ImpactTracker impacts_;

@@ -3,16 +3,19 @@
 // not rebound at all. With "impacts": "resolve" (the default) a step is instead integrated by
 // Dormand–Prince at the scenario's tolerances, from its start to its end, when
 //
-//   - a pair in contact at its start moves along the normal faster than the impact threshold
+//   - a contact region at its start moves along its normal faster than the impact threshold
 //     (either way: the compression and the rebound both need resolving), or
-//   - the plain step brought a pair into contact that approached faster than the threshold
-//     (the step is then taken again from its start: one query wasted per impact),
+//   - a contact region after the plain step approached faster than the threshold at the
+//     step's start (a new contact, a new patch of a pair in contact, or one that stiffened in
+//     the step: the step is then taken again from its start, one query wasted per impact),
 //
-// and the estimated impact duration π sqrt(m_eff / k_n) (k_n = f_n A / V, which is
-// kv (1 + a δ̇_c) A for the volumetric model, m_eff the pair's effective mass along the
-// normal) is below kResolvedSteps steps. The threshold 2 |g| h is twice the speed at which a
-// step out of contact lands a resting body (g h): resting contact and its hop (§5) stay on the
-// fixed step. Outputs stay on the fixed grid; the Dormand–Prince steps inside are not output.
+// where a region is a pair's single-region contact or, with several slots, one of its patches
+// (its own normal and centroid), and the region's estimated impact duration
+// π sqrt(m_eff / k_n) (k_n = f_n A / V, which is kv (1 + a δ̇_c) A for the volumetric model,
+// m_eff the pair's effective mass along the normal at the region's centroid) is below
+// kResolvedSteps steps. The threshold 2 |g| h is twice the speed at which a step out of contact
+// lands a resting body (g h): resting contact and its hop (§5) stay on the fixed step. Outputs
+// stay on the fixed grid; the Dormand–Prince steps inside are not output.
 
 #include <cmath>
 #include <numbers>
@@ -23,9 +26,12 @@
 namespace vcontact::dynamics {
 namespace {
 
-// Impacts lasting fewer steps than this are resolved: backward Euler keeps a restitution of
-// about 0.8 at 2.5 steps per impact and needs 25 for 2 % (docs/DISCRETE.md §5).
-constexpr double kResolvedSteps = 25.0;
+// Impacts lasting fewer steps than this are resolved: backward Euler's restitution of an
+// elastic impact is 0.66 at 14 steps per impact, 0.81 at 28 and 0.978 at 280, so 2 % needs
+// about 250 steps (docs/DISCRETE.md §5). With 25, impacts estimated at 25–250 steps were left
+// to the plain step and lost up to a fifth of the rebound, more where the estimate at a face's
+// first touch (a sliver of contact) is longer than the impact.
+constexpr double kResolvedSteps = 250.0;
 // m/s, the least impact speed to resolve without gravity (the threshold is 2 |g| h otherwise).
 constexpr double kMinImpactSpeed = 1e-3;
 // A Dormand–Prince step that ends within this fraction of the interval of its end lands on it.
@@ -37,36 +43,50 @@ double Simulator::impactThreshold(double h) const {
   return std::max(2.0 * scenario_.gravity_W.norm() * h, kMinImpactSpeed);
 }
 
-// π sqrt(m_eff / k_n) of pair k at its latest contact; infinite without a normal force.
-double Simulator::impactDuration(std::size_t k) const {
+// π sqrt(m_eff / k_n) of a contact region cv of pair k with normal force f_n; infinite
+// without a normal force.
+double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv, double f_n) const {
   const ContactPair& pair = scenario_.pairs[k];
-  const PairOutput& out = last_pairs_[k];
-  const double k_n = out.result.f_n * out.cv.area / out.cv.volume;
+  const double k_n = f_n * cv.area / cv.volume;
   if (!(k_n > 0.0)) return std::numeric_limits<double>::infinity();
   double inverse_mass = 0.0;
   for (const std::size_t b : {pair.a, pair.b}) {
     if (offset_[b] < 0) continue;
     const Eigen::Matrix3d R = kin_[b].X_WB.linear();
-    const Eigen::Vector3d rn = (out.cv.p_WC - kin_[b].p_WBcm).cross(out.cv.n_W);
+    const Eigen::Vector3d rn = (cv.p_WC - kin_[b].p_WBcm).cross(cv.n_W);
     inverse_mass += 1.0 / scenario_.bodies[b].mass + rn.dot(R * I_inv_B_[b] * R.transpose() * rn);
   }
   if (inverse_mass == 0.0) return std::numeric_limits<double>::infinity();
   return std::numbers::pi * std::sqrt(1.0 / (inverse_mass * k_n));
 }
 
-// Whether a pair in contact at the latest query is in an impact to resolve over a step h, its
-// normal speed taken from speed_kin; onsets_only: only the pairs apart at the step's start.
-bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool onsets_only,
+// Whether a contact region of a pair at the latest query is in an impact to resolve over a
+// step h, its normal speed at the region's centroid taken from speed_kin. The regions are the
+// pair's single-region contact (the aggregate) and, for a pair with several slots, each of its
+// patches with its own normal and centroid: a tray's base landing while its pins touch the
+// hole walls is fast where the aggregate is slow, and a peg driven down a hole whose wall
+// patches slide along their normals' planes is fast only in the aggregate. approaching_only: the
+// check after a plain step, which takes any region approaching faster than the threshold at the
+// step's start (a pair apart then, or a patch that appeared or stiffened in the step).
+bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
                             double h) const {
   const double threshold = impactThreshold(h);
-  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
-    const volume::ContactVolume& cv = last_pairs_[k].cv;
-    if (!cv.inContact() || (onsets_only && start_contact_[k])) continue;
+  const auto fast = [&](std::size_t k, const volume::ContactVolume& cv, double f_n) {
+    if (!cv.inContact()) return false;
     const ContactPair& pair = scenario_.pairs[k];
     const double speed = cv.n_W.dot(speed_kin[pair.a].pointVelocity(cv.p_WC) -
                                     speed_kin[pair.b].pointVelocity(cv.p_WC));
-    const bool fast = onsets_only ? -speed > threshold : std::abs(speed) > threshold;
-    if (fast && impactDuration(k) < kResolvedSteps * h) return true;
+    const bool quick = approaching_only ? -speed > threshold : std::abs(speed) > threshold;
+    return quick && impactDuration(k, cv, f_n) < kResolvedSteps * h;
+  };
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const PairOutput& out = last_pairs_[k];
+    if (!out.cv.inContact()) continue;
+    if (fast(k, out.cv, out.result.f_n)) return true;
+    if (slots_[k] == 1) continue;
+    for (const PatchOutput& p : out.patches) {
+      if (fast(k, p.cv, p.result.f_n)) return true;
+    }
   }
   return false;
 }
@@ -84,10 +104,6 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
     start_x_ = x;
     start_dxdt_ = dxdt;
     start_kin_ = kin_;
-    start_contact_.resize(scenario_.pairs.size());
-    for (std::size_t k = 0; k < start_contact_.size(); ++k) {
-      start_contact_[k] = last_pairs_[k].cv.inContact();
-    }
   }
   const double t0 = t;
   discreteStep(x, t, h);

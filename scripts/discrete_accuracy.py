@@ -5,14 +5,15 @@ output time (docs/DISCRETE.md §4):
 
   python3 scripts/discrete_accuracy.py SCENARIO --out DIR [--duration S] [--output-rate HZ]
       [--steps 1e-3,5e-4,2.5e-4] [--tolerances ABS,REL] [--vcontact build/bin/vcontact]
-      [--skip-reference] [--no-sleep]
+      [--skip-reference] [--no-sleep] [--impacts resolve|implicit]
 
 Each variant is a copy of the scenario in DIR (mesh and model paths made absolute) with
 "integrator", "step", "duration", "output_rate" and, for dopri5, "tolerances" abs/rel changed;
 its output goes to DIR/<variant>/ and its log (wall time, steps) to DIR/<variant>.log.
 --skip-reference reuses DIR/dopri5/ from an earlier run. The discrete variants sleep as the
 scenario says (on by default, docs/SLEEP.md); --no-sleep sets "sleep": false in them, for a
-comparison of the awake stepper with the reference.
+comparison of the awake stepper with the reference. --impacts sets "impacts" in the discrete
+variants (docs/DISCRETE.md §5) and appends it to their names (discrete_1ms_implicit).
 """
 import argparse
 import json
@@ -76,6 +77,8 @@ def main():
     p.add_argument("--skip-reference", action="store_true")
     p.add_argument("--no-sleep", action="store_true",
                    help='the discrete variants with "sleep": false')
+    p.add_argument("--impacts", choices=("resolve", "implicit"),
+                   help='"impacts" of the discrete variants (default: as the scenario says)')
     a = p.parse_args()
     with open(a.scenario) as f:
         scenario = json.load(f)
@@ -94,8 +97,10 @@ def main():
     if not a.skip_reference:
         run(a.vcontact, variant(scenario, base, a.out, "dopri5", reference), a.out, "dopri5")
     for h in a.steps.split(","):
-        name = f"discrete_{float(h) * 1e3:g}ms"
+        name = f"discrete_{float(h) * 1e3:g}ms" + (f"_{a.impacts}" if a.impacts else "")
         changes = dict(common, integrator="discrete", step=float(h))
+        if a.impacts:
+            changes["impacts"] = a.impacts
         if a.no_sleep:
             changes["sleep"] = False
         run(a.vcontact, variant(scenario, base, a.out, name, changes), a.out, name)
