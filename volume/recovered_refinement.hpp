@@ -51,11 +51,20 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
                                   const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
                                   double depth);
 
-/// Two meshes on their recovered surfaces (a pin in a bore): both bodies' faces within reach
-/// of the other refined, the exact `fast` method (mesh_mesh.hpp) on the two refinements.
+/// Two meshes on their recovered surfaces by refinement alone: both bodies' faces within
+/// reach of the other refined, the exact `fast` method (mesh_mesh.hpp) on the two refinements.
 /// representation "refined" when a curved recognised surface of either body can reach the
 /// other, else "mesh" (the polyhedra, exact for planes; free-form faces stay polyhedral).
 /// `parts` names the body ("A", "B") of each part.
+/// @pre both meshes as meshMeshContact requires
+RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
+                                        const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
+                                        const RefinementOptions& options = {});
+
+/// Two meshes on their recovered surfaces: a pin in a bore by slices when one body is a
+/// solid of revolution in a cylindrical bore of the other parallel to it
+/// (volume/recovered_bore.hpp, representation "revolution_in_bore", tried with A as the pin,
+/// then B), else refinedMeshMeshContact, whose `reason` then says why the slices did not apply.
 /// @pre both meshes as meshMeshContact requires
 RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
                                           const RecoveredBody& b, const Eigen::Isometry3d& X_WB,

@@ -88,6 +88,11 @@ class RecoveredBody {
   const geometry::MeshBvh& bvh() const { return bvh_; }
   /// Per face: the largest distance between its chord and its surface, m (0: free-form).
   const std::vector<double>& faceGaps() const { return faceGap_; }
+  /// The body's profile when its whole surface is one solid of revolution (a cylinder or
+  /// cone, sphere and torus pieces on one axis closed by planes), else null.
+  const RevolutionBody* revolution() const {
+    return whole_ && !whole_->sphere ? &whole_->revolution : nullptr;
+  }
   /// The largest chord gap of any face, m: how far outside the mesh the true surface may lie.
   double margin() const { return margin_; }
   /// The faces whose lowest vertex is within margin() of the plane z_H = 0 or below it.

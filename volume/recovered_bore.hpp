@@ -1,0 +1,35 @@
+#pragma once
+// Two meshes on their recovered surfaces, a pin in a bore, by slices (docs/SURFACES.md, "Two
+// meshes: a pin in a bore"): when one body is one solid of revolution (RecoveredBody::
+// revolution) and the faces of the other within its reach lie on one concave cylinder (the
+// bore) parallel to its axis and on planes across that axis (the faces the bore opens
+// onto), the interference is computed slice by slice across the pin's axis
+// (volume/analytic_bore.hpp): no refinement.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+
+#include "volume/recovered_surface.hpp"
+
+namespace vcontact::volume {
+
+/// The contact of `pin` (pose X_WP) in the bore of `block` (pose X_WB) by slices,
+/// representation "revolution_in_bore", n out of the block into the pin; nothing when the
+/// slices do not apply, with `reason` saying why: the pin is not one solid of revolution;
+/// the block's faces within reach of the pin's bounding cylinder are free-form, on another
+/// curved surface than one concave cylinder, on a plane that is not across the pin's axis
+/// (the pin near a side face), or on two planes on one side (a step or a counterbore); the
+/// bore's axis is not parallel to the pin's (|cos| within 1e-9 of 1); the pin reaches beyond
+/// the bore where no plane closes the block.
+///
+/// volume_error_bound: the contact area times the largest fit residual of the surfaces used
+/// and the quadrature's estimate times V, plus what taking the axes and planes as parallel
+/// costs: the bore's section is an ellipse whose semi-axes are R and R/cos β (area times
+/// R(1/cos β − 1)), and a plane tilted by γ from across the axis moves across the pin's disc
+/// by r·tan γ (the planes' crescents times r·tan γ).
+std::optional<RecoveredContact> boreContact(const RecoveredBody& pin, const Eigen::Isometry3d& X_WP,
+                                            const RecoveredBody& block,
+                                            const Eigen::Isometry3d& X_WB, std::string& reason);
+
+}  // namespace vcontact::volume
