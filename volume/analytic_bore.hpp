@@ -18,6 +18,7 @@
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <vector>
 
 #include "volume/analytic_revolution.hpp"
 #include "volume/contact_volume.hpp"
@@ -50,11 +51,36 @@ struct BoreContact {
   double plane_area = 0.0;
 };
 
+/// A plane of the bored body in the pin's frame R: B's material on the side n·(p − point) ≤ 0
+/// (n the plane's outward normal, unit).
+struct BorePlane {
+  Eigen::Vector3d normal_R = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d point_R = Eigen::Vector3d::Zero();
+};
+
 /// The interference of the solid of revolution (pose X_WR, axis the z axis of R) and the
 /// body outside `bore`. The normal points out of the bored body into the pin.
 /// @throws InputError on an empty profile, pieces that are not contiguous and ascending, a
 ///   radius that is not positive or an axis along which ζ does not advance
 BoreContact revolutionInBore(const RevolutionProfile& profile, const Eigen::Isometry3d& X_WR,
                              const BoreSection& bore);
+
+/// The same for a bore whose axis is tilted from the pin's (bore.axis_R with a positive z
+/// component; zeta_lo and zeta_hi are not read): B's material is outside the bore and inside
+/// every plane of `planes` (the faces the bore opens onto). In the slice at ζ the bore's
+/// section is an ellipse and each plane's trace a line, so the region is not two segments:
+/// it is integrated in the polar angle ψ about the disc's centre, along each ray in closed
+/// form (the ray leaves the ellipse at the roots of a quadratic, crosses each plane's line
+/// once), over ψ by adaptive Gauss–Kronrod between the angles where the ray's intervals
+/// change (found by bisection between 64 samples), then over ζ as above, with breakpoints
+/// where the slice's region appears or vanishes (bisection on its area between 16 samples a
+/// piece) and where a plane's line enters or leaves the largest disc. `cv.relative_error` is
+/// the outer quadrature's estimate (the inner one asked 1e-12). n ∝ −∫ n_A dS over the pin's
+/// boundary inside B (its side, and its end faces), the same as ∫ n_B dS over B's inside the
+/// pin for a closed region (MODEL.md §1); area |∫ n_A dS|, the shadow along n where n_A·n keeps
+/// its sign; depth the largest radial depth of a ray. plane_area is 0.
+/// @throws InputError as revolutionInBore
+BoreContact revolutionInTiltedBore(const RevolutionProfile& profile, const Eigen::Isometry3d& X_WR,
+                                   const BoreSection& bore, const std::vector<BorePlane>& planes);
 
 }  // namespace vcontact::volume

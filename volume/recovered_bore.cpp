@@ -73,8 +73,10 @@ geometry::Aabb pinBox(const RevolutionBody& pin, const Isometry3d& X_BR, double 
 struct BoreSetup {
   BoreSection section;
   const RecognisedSurface* bore = nullptr;
-  double residual = 0.0;   // the largest fit residual of the block's surfaces used, m
-  double planeTilt = 0.0;  // the largest tan γ of a plane taken as across the axis
+  double residual = 0.0;          // the largest fit residual of the block's surfaces used, m
+  double planeTilt = 0.0;         // the largest tan γ of a plane taken as across the axis
+  bool tilted = false;            // the bore's axis is not parallel to the pin's
+  std::vector<BorePlane> planes;  // tilted: the planes across the bore's axis
 };
 
 bool parallel(double cosine) { return std::abs(cosine) >= 1.0 - kParallel; }
@@ -99,20 +101,38 @@ bool addPlane(const RecognisedSurface& s, const Isometry3d& X_RB, BoreSetup& set
   return true;
 }
 
-// The bore's faces' extent along the pin's axis.
+// A tilted bore: a plane across the bore's axis bounds the block along it.
+bool addTiltedPlane(const RecognisedSurface& s, const Isometry3d& X_RB, BoreSetup& setup,
+                    std::string& reason) {
+  const Vector3d n = X_RB.linear() * s.axis, axis = setup.section.axis_R;
+  if (!parallel(n.dot(axis))) {
+    reason = "a plane of the bored body that is not across the bore's axis is within reach";
+    return false;
+  }
+  for (const BorePlane& q : setup.planes)
+    if ((q.normal_R.dot(axis) > 0.0) == (n.dot(axis) > 0.0)) {
+      reason = "two planes of the bored body bound the pin on one side (a step or a counterbore)";
+      return false;
+    }
+  setup.planes.push_back({n, X_RB * s.point});
+  return true;
+}
+
+// The bore's faces' extent along `dir` from `origin` (in R).
 std::pair<double, double> boreExtent(const RecoveredBody& block, const RecognisedSurface& bore,
-                                     const Isometry3d& X_RB) {
+                                     const Isometry3d& X_RB, const Vector3d& dir,
+                                     const Vector3d& origin) {
   double lo = INFINITY, hi = -INFINITY;
   for (int f : bore.faces)
     for (int c = 0; c < 3; ++c) {
-      const double z = (X_RB * block.mesh().corner(f, c)).z();
+      const double z = dir.dot(X_RB * block.mesh().corner(f, c) - origin);
       lo = std::min(lo, z);
       hi = std::max(hi, z);
     }
   return {lo, hi};
 }
 
-// The one concave cylinder among the block's surfaces within reach, parallel to the pin's axis.
+// The one concave cylinder among the block's surfaces within reach, and whether it is tilted.
 bool findBore(const geometry::SurfaceRecognition& rec, const std::set<int>& touched,
               const Isometry3d& X_RB, BoreSetup& setup, std::string& reason) {
   for (int index : touched) {
@@ -136,10 +156,7 @@ bool findBore(const geometry::SurfaceRecognition& rec, const std::set<int>& touc
   }
   Vector3d axis = X_RB.linear() * setup.bore->axis;
   if (axis.z() < 0.0) axis = -axis;
-  if (!parallel(axis.z())) {
-    reason = "the bore's axis is tilted from the pin's (only parallel axes are sliced)";
-    return false;
-  }
+  setup.tilted = !parallel(axis.z());
   setup.section.point_R = X_RB * setup.bore->point;
   setup.section.axis_R = axis;
   setup.section.radius = setup.bore->radius;
@@ -157,9 +174,40 @@ std::optional<BoreSetup> boreOf(const RecoveredBody& block, const std::set<int>&
     const RecognisedSurface& s = rec.surfaces[static_cast<std::size_t>(index)];
     if (s.kind != SurfaceKind::kPlane) continue;
     setup.residual = std::max(setup.residual, s.max_residual);
-    if (!addPlane(s, X_RB, setup, reason)) return std::nullopt;
+    if (!(setup.tilted ? addTiltedPlane : addPlane)(s, X_RB, setup, reason)) return std::nullopt;
   }
   return setup;
+}
+
+// Beyond the bore's ends the block's material is unknown unless a plane closes it there: the
+// part of the pin's bounding cylinder between the planes must lie within the bore's extent,
+// along the bore's axis (in R: along ζ for a parallel bore, whose planes bound ζ).
+bool withinBore(const RevolutionBody& pin, const RecoveredBody& block, const BoreSetup& setup,
+                const Isometry3d& X_RB) {
+  const BoreSection& sec = setup.section;
+  const Vector3d dir = setup.tilted ? sec.axis_R : Vector3d::UnitZ();
+  const Vector3d origin = setup.tilted ? sec.point_R : Vector3d::Zero();
+  const auto [lo, hi] = boreExtent(block, *setup.bore, X_RB, dir, origin);
+  double pinLo = INFINITY, pinHi = -INFINITY;
+  const double r = largestRadius(pin.profile);
+  for (int i = 0; i < 8; ++i) {
+    const double t = dir.dot(Vector3d(i & 1 ? r : -r, i & 2 ? r : -r,
+                                      i & 4 ? pin.profile.back().z1 : pin.profile.front().z0) -
+                             origin);
+    pinLo = std::min(pinLo, t);
+    pinHi = std::max(pinHi, t);
+  }
+  double planeLo = sec.zeta_lo, planeHi = sec.zeta_hi;
+  for (const BorePlane& q : setup.planes) {
+    const double t = dir.dot(q.point_R - origin);
+    if (q.normal_R.dot(dir) > 0.0) {
+      planeHi = t;
+    } else {
+      planeLo = t;
+    }
+  }
+  const double tol = kTolerances * block.recognition().tolerance;
+  return std::max(pinLo, planeLo) >= lo - tol && std::min(pinHi, planeHi) <= hi + tol;
 }
 
 }  // namespace
@@ -177,23 +225,22 @@ std::optional<RecoveredContact> boreContact(const RecoveredBody& pin, const Isom
       surfacesWithin(block, pinBox(*rev, X_BR, pin.margin() + block.margin()));
   std::optional<BoreSetup> setup = boreOf(block, touched, X_BR.inverse(), reason);
   if (!setup) return std::nullopt;
-  // Beyond the bore's ends the block's material is unknown unless a plane closes it there.
-  const auto [lo, hi] = boreExtent(block, *setup->bore, X_BR.inverse());
-  const double tol = kTolerances * block.recognition().tolerance;
-  const BoreSection& sec = setup->section;
-  if (std::max(rev->profile.front().z0, sec.zeta_lo) < lo - tol ||
-      std::min(rev->profile.back().z1, sec.zeta_hi) > hi + tol) {
+  if (!withinBore(*rev, block, *setup, X_BR.inverse())) {
     reason = "the pin reaches beyond the bore where no plane of the bored body closes it";
     return std::nullopt;
   }
-  const BoreContact bc = revolutionInBore(rev->profile, X_WR, sec);
+  const BoreSection& sec = setup->section;
+  const BoreContact bc = setup->tilted
+                             ? revolutionInTiltedBore(rev->profile, X_WR, sec, setup->planes)
+                             : revolutionInBore(rev->profile, X_WR, sec);
   const ContactVolume& cv = bc.cv;
-  const double R = sec.radius, cosBeta = sec.axis_R.z();
   const double residual = std::max(rev->max_residual, setup->residual);
   const double method = std::isfinite(cv.relative_error) ? cv.relative_error : 0.0;
   RecoveredContact r{cv, "revolution_in_bore", "", 0.0, {}, 0, true};
-  r.volume_error_bound = cv.area * (residual + R * (1.0 / cosBeta - 1.0)) + cv.volume * method +
-                         bc.plane_area * largestRadius(rev->profile) * setup->planeTilt;
+  r.volume_error_bound = cv.area * residual + cv.volume * method;
+  if (!setup->tilted)  // what taking the axes and the planes as parallel costs
+    r.volume_error_bound += cv.area * sec.radius * (1.0 / sec.axis_R.z() - 1.0) +
+                            bc.plane_area * largestRadius(rev->profile) * setup->planeTilt;
   return r;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
-// Contact on recovered surfaces that have no closed form (cones, tori, a cylinder meeting a
-// chamfer, two meshes: a pin in a bore), by the exact polyhedral methods run on the mesh
-// refined towards its recognised surfaces around the patch (geometry/surface_refinement.hpp),
-// at a level raised until V converges (docs/SURFACES.md, "Refinement").
+// Contact on recovered surfaces that have no closed form (tori off a common axis, concave
+// surfaces, two meshes other than a pin in a parallel bore: recovered_bore.hpp), by the exact
+// polyhedral methods run on the mesh refined towards its recognised surfaces around the patch
+// (geometry/surface_refinement.hpp), at a level raised until V converges (docs/SURFACES.md,
+// "Refinement").
 //
 // Error model. The refined faces are inscribed: a chord of length L on a radius R misses the
 // surface by its sagitta L²/(8R), so splitting a face k×k divides its chord gap G by k², and V
