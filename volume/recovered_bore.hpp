@@ -2,9 +2,10 @@
 // Two meshes on their recovered surfaces, a pin in a bore, by slices (docs/SURFACES.md, "Two
 // meshes: a pin in a bore"): when one body is one solid of revolution (RecoveredBody::
 // revolution) and the faces of the other within its reach lie on one concave cylinder (the
-// bore) parallel to its axis and on planes across that axis (the faces the bore opens
-// onto), the interference is computed slice by slice across the pin's axis
-// (volume/analytic_bore.hpp): no refinement.
+// bore) and on planes across the bore's axis (the faces the bore opens onto), the
+// interference is computed slice by slice across the pin's axis (volume/analytic_bore.hpp):
+// in closed form when the axes are parallel, in the polar angle when the pin is tilted; no
+// refinement.
 
 #include <Eigen/Geometry>
 #include <optional>
