@@ -72,7 +72,8 @@ BoreContact revolutionInBore(const RevolutionProfile& profile, const Eigen::Isom
 /// it is integrated in the polar angle ψ about the disc's centre, along each ray in closed
 /// form (the ray leaves the ellipse at the roots of a quadratic, crosses each plane's line
 /// once), over ψ by adaptive Gauss–Kronrod between the angles where the ray's intervals
-/// change (found by bisection between 64 samples), then over ζ as above, with breakpoints
+/// change (found by bisection between 64 rays from the crescent's deepest direction), then
+/// over ζ as above, with breakpoints
 /// where the slice's region appears or vanishes (bisection on its area between 16 samples a
 /// piece) and where a plane's line enters or leaves the largest disc. `cv.relative_error` is
 /// the outer quadrature's estimate (the inner one asked 1e-12). n ∝ −∫ n_A dS over the pin's

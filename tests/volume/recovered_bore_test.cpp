@@ -148,7 +148,8 @@ TEST(AnalyticBore, PolarSlicesOfAParallelBoreAreTheClosedForm) {
       {ProfilePiece::Kind::kLinear, 0.0, kChamfer, kR - kChamfer, kR},
       {ProfilePiece::Kind::kConstant, kChamfer, kLength - kChamfer, kR, kR},
       {ProfilePiece::Kind::kLinear, kLength - kChamfer, kLength, kR, kR - kChamfer}};
-  for (double ratio : {1e-4, 1e-2}) {
+  // 1e-5: a crescent 0.06 rad wide, narrower than the rays sampled are apart
+  for (double ratio : {1e-5, 1e-4, 1e-2}) {
     const double d = ratio * kR, e = kBore - kR + d;
     BoreSection bore;
     bore.point_R = Vector3d(0.6 * e, -0.8 * e, 0.0);
