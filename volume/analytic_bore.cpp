@@ -229,11 +229,13 @@ constexpr double kBandTolerance = 1e-4;
 // would send the quadratures chasing their noise; a real region narrower than that on some
 // rays (a crescent's tips) loses less than (1e-13 r)² per radian of them.
 constexpr double kRayNoise = 1e-13;
-// The floor added to the area over ψ and ζ, relative to the slice's r² (the part's L²): the
-// quadratures then stop on 1e-12 (1e-9) of it where the region is a sliver; the crescent of
-// a 5 mm pin at d/r = 1e-5 in a 0.1 mm clearance is 4e-7 r² a radian, so the floor costs it
-// at most 2.5e-12 (2.5e-9) of itself.
+// The floors added to the area: over ψ, kFloor r² a radian; over ζ, kFloorZeta L² per unit
+// length (L the part's size). The quadratures then stop on 1e-12 (1e-9) of the floor where
+// the region is a sliver. The crescent of a 5 mm pin at d/r = 1e-5 in a 0.1 mm clearance is
+// 4e-7 r² a radian and 2.4e-8 r² a slice (L = 3r): the floors cost it at most 2.5e-12 and
+// 4e-10 of itself.
 constexpr double kFloor = 1e-6;
+constexpr double kFloorZeta = 1e-9;
 constexpr int kAngleSamples = 64;  // rays between which the intervals' changes are bisected
 constexpr int kZetaSamples = 16;   // slices a piece between which the region's ends are bisected
 constexpr int kBisections = 45;    // 2π/64 or a sixteenth of a piece to 1e-15 of it
@@ -441,7 +443,7 @@ struct Tilted {
     x.head<12>() *= e.J;
     x(12) = -e.drdt * q(8);  // the side's element r(e_r − r' e_z) dψ dζ, r' J = dr/dt
     x(13) = (std::abs(e.J) + std::abs(e.drdt)) * (q(8) + L);
-    x(0) += kFloor * L * x(13);  // a floor, as over ψ (integrateRays)
+    x(0) += kFloorZeta * L * x(13);  // a floor, as over ψ (integrateRays)
     x.segment<3>(1) += L * x(0) * Eigen::Vector3d::Ones();
     x.segment<6>(4) += L * L * x(0) * Eigen::Matrix<double, 6, 1>::Ones();
     x.segment<3>(10) += x(13) * Eigen::Vector3d::Ones();
@@ -452,7 +454,7 @@ struct Tilted {
     x.segment<3>(1) -= L * x(0) * Eigen::Vector3d::Ones();
     x.segment<6>(4) -= L * L * x(0) * Eigen::Matrix<double, 6, 1>::Ones();
     x.segment<3>(10) -= x(13) * Eigen::Vector3d::Ones();
-    x(0) -= kFloor * L * x(13);
+    x(0) -= kFloorZeta * L * x(13);
   }
 };
 
