@@ -40,7 +40,9 @@ struct RecoveredContact {
   ContactVolume cv;
   /// What the contact was computed on: "sphere", "cylinder" (a cylinder closed by flat ends)
   /// or "revolution" (cylinders, cones, spheres and tori on one axis closed by planes across
-  /// it: volume/recovered_revolution.hpp), by closed-form slices; "refined" (the polyhedron refined
+  /// it: volume/recovered_revolution.hpp), by closed-form slices; "revolution_in_bore" (two
+  /// meshes, a solid of revolution in a cylindrical bore: volume/recovered_bore.hpp, by
+  /// slices); "refined" (the polyhedron refined
   /// towards its recognised surfaces around the patch until V converged, surface_refinement.hpp),
   /// or "mesh" (the polyhedron).
   std::string representation;
