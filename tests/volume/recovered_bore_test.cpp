@@ -114,13 +114,17 @@ TEST(AnalyticBore, BoreInsideTheDiscAndDiscOutsideTheBoreAreWholeDiscs) {
               1e-12 * L * r * r);
 }
 
+// The pin's profile by hand: cone, cylinder, cone, ζ from 0 to kLength.
+RevolutionProfile chamferedProfile() {
+  return {{ProfilePiece::Kind::kLinear, 0.0, kChamfer, kR - kChamfer, kR},
+          {ProfilePiece::Kind::kConstant, kChamfer, kLength - kChamfer, kR, kR},
+          {ProfilePiece::Kind::kLinear, kLength - kChamfer, kLength, kR, kR - kChamfer}};
+}
+
 // The chamfered profile with its top chamfer cut by a plane of B half-way through the slices
 // where the crescent lasts, and the bottom one outside B.
 TEST(AnalyticBore, ChamferCutByAPlaneMatchesSimpson) {
-  const RevolutionProfile pin = {
-      {ProfilePiece::Kind::kLinear, 0.0, kChamfer, kR - kChamfer, kR},
-      {ProfilePiece::Kind::kConstant, kChamfer, kLength - kChamfer, kR, kR},
-      {ProfilePiece::Kind::kLinear, kLength - kChamfer, kLength, kR, kR - kChamfer}};
+  const RevolutionProfile pin = chamferedProfile();
   for (double ratio : {1e-4, 1e-3, 1e-2}) {
     const double d = ratio * kR, e = kBore - kR + d;
     for (double into : {0.5, 2.0}) {  // the plane within the crescent's slices, or beyond them
@@ -144,10 +148,7 @@ TEST(AnalyticBore, ChamferCutByAPlaneMatchesSimpson) {
 // the shadow ∫ width dζ + |n_z| × the planes' parts, apart by the chamfer's slope times the
 // cut chamfer's share (2e-6 here).
 TEST(AnalyticBore, PolarSlicesOfAParallelBoreAreTheClosedForm) {
-  const RevolutionProfile pin = {
-      {ProfilePiece::Kind::kLinear, 0.0, kChamfer, kR - kChamfer, kR},
-      {ProfilePiece::Kind::kConstant, kChamfer, kLength - kChamfer, kR, kR},
-      {ProfilePiece::Kind::kLinear, kLength - kChamfer, kLength, kR, kR - kChamfer}};
+  const RevolutionProfile pin = chamferedProfile();
   // 1e-5: a crescent 0.06 rad wide, narrower than the rays sampled are apart
   for (double ratio : {1e-5, 1e-4, 1e-2}) {
     const double d = ratio * kR, e = kBore - kR + d;
