@@ -4,8 +4,8 @@
 //   usage: vcontact_error_table OUTPUT_DIR
 // writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv,
 // faceting_error_chamfered_pin.csv (a solid of revolution, by slices:
-// volume/recovered_revolution.hpp) and, refined (volume/recovered_refinement.hpp),
-// faceting_error_pin_in_bore.csv.
+// volume/recovered_revolution.hpp) and faceting_error_pin_in_bore.csv (two meshes, the pin's
+// slices in the bore's section: volume/recovered_bore.hpp).
 
 #include <chrono>
 #include <cmath>
@@ -96,6 +96,7 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 // The chamfered pin (r 5 mm, 30 mm, 0.5 mm chamfers) in the bundled block's 5.1 mm bore, axes
 // parallel, pressed sideways by d along the block's 20 mm: V = 20 mm times the pin's disk
 // outside the bore's (the pin's segment beyond the circles' crossing chord less the bore's).
+// Recovered: by slices (representation revolution_in_bore; the refinement before them).
 void writePinInBore(const std::string& path, const std::string& assets) {
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);

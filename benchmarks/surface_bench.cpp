@@ -4,9 +4,9 @@
 // bodies of one closed form; the same sphere with a free-form patch on top, so that each
 // query scans the vertices for the faces that reach the plane; and the rolling ball of
 // assets/scenarios/ball_roll_recovered.json; a chamfered pin on its side on a plate, a solid
-// of revolution (volume/recovered_revolution.hpp). Refined (volume/recovered_refinement.hpp):
-// the pin pressed into the bundled block's bore (surface/pin_in_bore: the fast method on the
-// polyhedra against the refined pair).
+// of revolution (volume/recovered_revolution.hpp). Two meshes: the pin pressed into the
+// bundled block's bore (surface/pin_in_bore: the fast method on the polyhedra against the
+// recovered pair, by slices across the pin's axis, volume/recovered_bore.hpp).
 
 #include <benchmark/benchmark.h>
 
@@ -94,7 +94,9 @@ void registerCase(const std::string& name, std::function<std::shared_ptr<Case>()
 }
 
 // A pin (r 5 mm, 64 segments, chamfered) in the bundled block's 5.1 mm bore, pressed sideways
-// by d/r = 1e-3: the fast method on the two polyhedra against the two refined meshes.
+// by d/r = 1e-3: the fast method on the two polyhedra against the recovered pair (the pin's
+// profile in the bore's section by slices; before them, the two meshes refined at level 50);
+// `tilt` turns the pin about its middle across the pressing direction (rad).
 struct PinInBore {
   TriangleMesh pin, block;
   vcontact::geometry::SurfaceRecognition recPin, recBlock;
@@ -104,7 +106,7 @@ struct PinInBore {
   Isometry3d X_BA = Isometry3d::Identity();
 };
 
-std::shared_ptr<PinInBore> makePinInBore() {
+std::shared_ptr<PinInBore> makePinInBore(double tilt) {
   auto c = std::make_shared<PinInBore>();
   const double r = 0.005, e = 0.0051 - r + 1e-3 * r;
   c->pin = vcontact::geometry::tessellateRevolution(
@@ -121,16 +123,21 @@ std::shared_ptr<PinInBore> makePinInBore() {
   c->topoA = std::make_unique<vcontact::geometry::MeshTopology>(c->pin);
   c->topoB = std::make_unique<vcontact::geometry::MeshTopology>(c->block);
   c->X_BA.translation() = Eigen::Vector3d(e * std::cos(0.3), e * std::sin(0.3), -0.025);
+  if (tilt != 0.0) {  // tilted about the pin's middle, which stays where it was
+    const Eigen::Vector3d side(-std::sin(0.3), std::cos(0.3), 0.0), middle(0, 0, 0.015);
+    c->X_BA.linear() = Eigen::AngleAxisd(tilt, side).toRotationMatrix();
+    c->X_BA.translation() += middle - c->X_BA.linear() * middle;
+  }
   return c;
 }
 
-void registerPinInBore() {
-  const auto once = [c = std::make_shared<std::shared_ptr<PinInBore>>()] {
-    if (!*c) *c = makePinInBore();
+void registerPinInBore(const std::string& name, double tilt) {
+  const auto once = [tilt, c = std::make_shared<std::shared_ptr<PinInBore>>()] {
+    if (!*c) *c = makePinInBore(tilt);
     return *c;
   };
   const Isometry3d I = Isometry3d::Identity();
-  benchmark::RegisterBenchmark("surface/pin_in_bore/mesh", [=](benchmark::State& s) {
+  benchmark::RegisterBenchmark(("surface/" + name + "/mesh").c_str(), [=](benchmark::State& s) {
     const auto c = once();
     vcontact::volume::ContactPatches p;
     for (auto _ : s) {
@@ -140,17 +147,18 @@ void registerPinInBore() {
     }
     s.counters["V"] = p.aggregate.volume;
   });
-  benchmark::RegisterBenchmark("surface/pin_in_bore/recovered", [=](benchmark::State& s) {
-    const auto c = once();
-    vcontact::volume::RecoveredContact r;
-    for (auto _ : s) {
-      r = vcontact::volume::recoveredMeshMeshContact(*c->a, c->X_BA, *c->b, I);
-      benchmark::DoNotOptimize(r);
-    }
-    s.counters["V"] = r.cv.volume;
-    s.counters["level"] = r.level;
-    s.SetLabel(r.representation);
-  });
+  benchmark::RegisterBenchmark(
+      ("surface/" + name + "/recovered").c_str(), [=](benchmark::State& s) {
+        const auto c = once();
+        vcontact::volume::RecoveredContact r;
+        for (auto _ : s) {
+          r = vcontact::volume::recoveredMeshMeshContact(*c->a, c->X_BA, *c->b, I);
+          benchmark::DoNotOptimize(r);
+        }
+        s.counters["V"] = r.cv.volume;
+        s.counters["level"] = r.level;
+        s.SetLabel(r.representation);
+      });
 }
 
 [[maybe_unused]] const bool kRegistered = [] {
@@ -185,7 +193,10 @@ void registerPinInBore() {
                        {{r - 5e-4, 0.0}, {r, 5e-4}, {r, 0.0295}, {r - 5e-4, 0.03}}, 64),
                    side, kDepthRatio, r);
   });
-  registerPinInBore();
+  registerPinInBore("pin_in_bore", 0.0);
+  // the same pin tilted by 0.2 mrad about its middle (in the bore's wall by 8 µm at the
+  // block's top face and 2 µm at its bottom): an ellipse in each slice, polar slices
+  registerPinInBore("pin_in_bore_tilted", 2e-4);
   return true;
 }();
 

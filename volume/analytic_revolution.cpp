@@ -310,20 +310,7 @@ QuadratureResult<kSliceSize> integrateCurved(const Revolution& rv, const Profile
     const PieceAt e = pieceAt(p, tA + off);
     return curvedSlice(rv, e, angleOf(e.r, anchoredDepth(rv, p, tA, off)));
   };
-  const double len = b - a;
-  if (singA && singB) {
-    const auto f = [&](double u) -> SliceVector {
-      const double jac = 0.5 * M_PI * len * std::sin(M_PI * u);
-      return (u < 0.5 ? at(a, len * std::pow(std::sin(0.5 * M_PI * u), 2))
-                      : at(b, -len * std::pow(std::cos(0.5 * M_PI * u), 2))) *
-             jac;
-    };
-    return integrateAdaptive<kSliceSize>(f, 0.0, 1.0, kQuadratureTolerance);
-  }
-  const auto f = [&](double u) -> SliceVector {
-    return (singA ? at(a, len * u * u) : at(b, -len * u * u)) * (2.0 * len * u);
-  };
-  return integrateAdaptive<kSliceSize>(f, 0.0, 1.0, kQuadratureTolerance);
+  return integrateSingularEnds<kSliceSize>(at, a, b, singA, singB, kQuadratureTolerance);
 }
 
 void addArcPiece(const Revolution& rv, const ProfilePiece& p, CylinderIntegrals& out) {
@@ -511,17 +498,6 @@ double deepest(const Revolution& rv, const RevolutionProfile& profile) {
   return depth;
 }
 
-void checkProfile(const RevolutionProfile& profile) {
-  if (profile.empty()) throw InputError("revolutionHalfspace", "the profile has no piece");
-  for (std::size_t i = 0; i < profile.size(); ++i) {
-    const ProfilePiece& p = profile[i];
-    if (!(p.z1 > p.z0) || (i > 0 && p.z0 != profile[i - 1].z1))
-      throw InputError("revolutionHalfspace", "piece " + std::to_string(i) +
-                                                  " is empty or does not begin where the "
-                                                  "one before it ends");
-  }
-}
-
 ContactVolume revolutionInOwnFrame(const RevolutionProfile& profile, const Vector3d& n_C, double h,
                                    const Isometry3d& X_WC, const Vector3d& n_W) {
   Revolution rv{std::hypot(n_C.x(), n_C.y()), n_C.z(), h};
@@ -578,7 +554,7 @@ RevolutionProfile cylinderProfile(double radius, double length) {
 
 ContactVolume revolutionHalfspace(const RevolutionProfile& profile, const Isometry3d& X_WR,
                                   const Isometry3d& X_WH) {
-  checkProfile(profile);
+  detail::checkProfile(profile, "revolutionHalfspace");
   const Isometry3d X_HR = X_WH.inverse() * X_WR;
   // z_H = n_R·p_R + t_z ≤ 0  ⇔  n_R·p_R ≤ h = −t_z, with n_R the third row of R_HR.
   const Vector3d n_R = X_HR.linear().row(2).transpose();

@@ -38,6 +38,9 @@ using RevolutionProfile = std::vector<ProfilePiece>;
 /// The radius of a piece at ζ (clamped into the piece).
 double profileRadius(const ProfilePiece& piece, double zeta);
 
+/// The largest radius of the profile, m (at a piece's end or an arc's crest).
+double largestRadius(const RevolutionProfile& profile);
+
 /// The finite cylinder of radius `radius` and length `length` centred on R's origin.
 RevolutionProfile cylinderProfile(double radius, double length);
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
+
+#include "geometry/error.hpp"
 
 namespace vcontact::volume::detail {
 namespace {
@@ -216,12 +219,32 @@ double parameterOf(const ProfilePiece& p, double zeta) {
   return p.kind == ProfilePiece::Kind::kArc ? arcAngle(p, zeta) : zeta;
 }
 
+void checkProfile(const RevolutionProfile& profile, const char* where) {
+  if (profile.empty()) throw InputError(where, "the profile has no piece");
+  for (std::size_t i = 0; i < profile.size(); ++i) {
+    const ProfilePiece& p = profile[i];
+    if (!(p.z1 > p.z0) || (i > 0 && p.z0 != profile[i - 1].z1))
+      throw InputError(where, "piece " + std::to_string(i) +
+                                  " is empty or does not begin where the one before it ends");
+  }
+}
+
 }  // namespace vcontact::volume::detail
 
 namespace vcontact::volume {
 
 double profileRadius(const ProfilePiece& piece, double zeta) {
   return detail::pieceAt(piece, detail::parameterOf(piece, std::clamp(zeta, piece.z0, piece.z1))).r;
+}
+
+double largestRadius(const RevolutionProfile& profile) {
+  double r = 0.0;
+  for (const ProfilePiece& p : profile) {
+    r = std::max({r, profileRadius(p, p.z0), profileRadius(p, p.z1)});
+    if (p.kind == ProfilePiece::Kind::kArc && p.z0 <= p.z_c && p.z_c <= p.z1)
+      r = std::max(r, profileRadius(p, p.z_c));
+  }
+  return r;
 }
 
 }  // namespace vcontact::volume

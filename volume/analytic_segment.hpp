@@ -48,4 +48,8 @@ double linearSlope(const ProfilePiece& p);
 /// The parameter of ζ on the piece.
 double parameterOf(const ProfilePiece& p, double zeta);
 
+/// @throws InputError from `where` on an empty profile or pieces that are not contiguous and
+///   ascending
+void checkProfile(const RevolutionProfile& profile, const char* where);
+
 }  // namespace vcontact::volume::detail

@@ -114,4 +114,29 @@ QuadratureResult<N> integrateAdaptive(F&& f, double a, double b, double tol,
   return {total, err.cwiseQuotient(scale).maxCoeff(), evaluations};
 }
 
+/// ∫_a^b of a function that goes like (t − e)^{3/2} at a singular end e (a circular segment
+/// appearing: its moments grow as its depth to the power 3/2), after t = a + (b − a)u² at a
+/// singular a (t = b − (b − a)u² at a singular b; t = a + (b − a)(1 − cos πu)/2 at both), in
+/// which it is smooth. `at(anchor, offset)` evaluates at t = anchor + offset, the offset from
+/// the nearer singular end, so that an integrand can keep the digits of the small offset.
+template <int N, class F>
+QuadratureResult<N> integrateSingularEnds(F&& at, double a, double b, bool singA, bool singB,
+                                          double tol) {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  const double len = b - a;
+  if (singA && singB) {
+    const auto f = [&](double u) -> Vec {
+      const double jac = 0.5 * M_PI * len * std::sin(M_PI * u);
+      return (u < 0.5 ? at(a, len * std::pow(std::sin(0.5 * M_PI * u), 2))
+                      : at(b, -len * std::pow(std::cos(0.5 * M_PI * u), 2))) *
+             jac;
+    };
+    return integrateAdaptive<N>(f, 0.0, 1.0, tol);
+  }
+  const auto f = [&](double u) -> Vec {
+    return (singA ? at(a, len * u * u) : at(b, -len * u * u)) * (2.0 * len * u);
+  };
+  return integrateAdaptive<N>(f, 0.0, 1.0, tol);
+}
+
 }  // namespace vcontact::volume

@@ -5,11 +5,14 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string>
 
 #include "geometry/mesh_topology.hpp"
 #include "geometry/surface_refinement.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume/mesh_mesh.hpp"
+#include "volume/recovered_bore.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -214,9 +217,9 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
   return faces;
 }
 
-RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
-                                          const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
-                                          const RefinementOptions& options) {
+RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
+                                        const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
+                                        const RefinementOptions& options) {
   // A face of one body may lie inside the other as deep as the true surfaces overlap, beyond
   // the reach of the other's faces' boxes: the boxes grow by the polyhedra's overlap depth
   // and both chord margins, 1.5 times (the polyhedra's depth misses the true one by at most
@@ -258,6 +261,22 @@ RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::I
   both.residual = std::max(za.residual, zb.residual);
   return fromConverged(converge(eval, G, 0.0, levelCap(both, options), options.tolerance),
                        both.residual, std::move(parts));
+}
+
+RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
+                                          const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
+                                          const RefinementOptions& options) {
+  std::string aInB, bInA;
+  if (std::optional<RecoveredContact> r = boreContact(a, X_WA, b, X_WB, aInB)) return *r;
+  if (std::optional<RecoveredContact> r = boreContact(b, X_WB, a, X_WA, bInA)) {
+    r->cv = swapped(r->cv);
+    return *r;
+  }
+  RecoveredContact r = refinedMeshMeshContact(a, X_WA, b, X_WB, options);
+  const std::string why =
+      "no slices (A in a bore of B: " + aInB + "; B in a bore of A: " + bInA + ")";
+  r.reason = r.reason.empty() ? why : r.reason + "; " + why;
+  return r;
 }
 
 }  // namespace vcontact::volume

@@ -1,8 +1,9 @@
 #pragma once
-// Contact on recovered surfaces that have no closed form (cones, tori, a cylinder meeting a
-// chamfer, two meshes: a pin in a bore), by the exact polyhedral methods run on the mesh
-// refined towards its recognised surfaces around the patch (geometry/surface_refinement.hpp),
-// at a level raised until V converges (docs/SURFACES.md, "Refinement").
+// Contact on recovered surfaces that have no closed form (tori off a common axis, concave
+// surfaces, two meshes other than a pin in a parallel bore: recovered_bore.hpp), by the exact
+// polyhedral methods run on the mesh refined towards its recognised surfaces around the patch
+// (geometry/surface_refinement.hpp), at a level raised until V converges (docs/SURFACES.md,
+// "Refinement").
 //
 // Error model. The refined faces are inscribed: a chord of length L on a radius R misses the
 // surface by its sagitta L²/(8R), so splitting a face k×k divides its chord gap G by k², and V
@@ -51,11 +52,20 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
                                   const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
                                   double depth);
 
-/// Two meshes on their recovered surfaces (a pin in a bore): both bodies' faces within reach
-/// of the other refined, the exact `fast` method (mesh_mesh.hpp) on the two refinements.
+/// Two meshes on their recovered surfaces by refinement alone: both bodies' faces within
+/// reach of the other refined, the exact `fast` method (mesh_mesh.hpp) on the two refinements.
 /// representation "refined" when a curved recognised surface of either body can reach the
 /// other, else "mesh" (the polyhedra, exact for planes; free-form faces stay polyhedral).
 /// `parts` names the body ("A", "B") of each part.
+/// @pre both meshes as meshMeshContact requires
+RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
+                                        const RecoveredBody& b, const Eigen::Isometry3d& X_WB,
+                                        const RefinementOptions& options = {});
+
+/// Two meshes on their recovered surfaces: a pin in a bore by slices when one body is a
+/// solid of revolution in a cylindrical bore of the other parallel to it
+/// (volume/recovered_bore.hpp, representation "revolution_in_bore", tried with A as the pin,
+/// then B), else refinedMeshMeshContact, whose `reason` then says why the slices did not apply.
 /// @pre both meshes as meshMeshContact requires
 RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
                                           const RecoveredBody& b, const Eigen::Isometry3d& X_WB,

@@ -40,7 +40,9 @@ struct RecoveredContact {
   ContactVolume cv;
   /// What the contact was computed on: "sphere", "cylinder" (a cylinder closed by flat ends)
   /// or "revolution" (cylinders, cones, spheres and tori on one axis closed by planes across
-  /// it: volume/recovered_revolution.hpp), by closed-form slices; "refined" (the polyhedron refined
+  /// it: volume/recovered_revolution.hpp), by closed-form slices; "revolution_in_bore" (two
+  /// meshes, a solid of revolution in a cylindrical bore: volume/recovered_bore.hpp, by
+  /// slices); "refined" (the polyhedron refined
   /// towards its recognised surfaces around the patch until V converged, surface_refinement.hpp),
   /// or "mesh" (the polyhedron).
   std::string representation;
@@ -88,6 +90,11 @@ class RecoveredBody {
   const geometry::MeshBvh& bvh() const { return bvh_; }
   /// Per face: the largest distance between its chord and its surface, m (0: free-form).
   const std::vector<double>& faceGaps() const { return faceGap_; }
+  /// The body's profile when its whole surface is one solid of revolution (a cylinder or
+  /// cone, sphere and torus pieces on one axis closed by planes), else null.
+  const RevolutionBody* revolution() const {
+    return whole_ && !whole_->sphere ? &whole_->revolution : nullptr;
+  }
   /// The largest chord gap of any face, m: how far outside the mesh the true surface may lie.
   double margin() const { return margin_; }
   /// The faces whose lowest vertex is within margin() of the plane z_H = 0 or below it.

@@ -27,6 +27,7 @@ using geometry::recogniseSurfaces;
 using geometry::TriangleMesh;
 using vcontact::test::chamferedPin;
 using vcontact::test::pinOnItsSide;
+using vcontact::test::pinOutsideBore;
 using vcontact::test::segment;
 
 // The refinement aims at 0.1 % (RefinementOptions::tolerance) and reports a Richardson
@@ -178,15 +179,6 @@ TEST(RecoveredRefinement, PlanesOnlyStayExactlyTheClip) {
   EXPECT_EQ(got.cv.p_WC, clip.p_WC);
 }
 
-// The part of a pin's disk (radius r, centre at e from the bore's) outside the bore's disk
-// (radius R < r + e): beyond the chord through the two circles' crossings, the pin's segment
-// (height h_B + d, d = r + e − R) less the bore's (height h_B = (r − R + e)(r + R − e)/(2e)),
-// written without the cancellation of πr² − lens at d ≪ r.
-double pinOutsideBore(double r, double R, double e) {
-  const double hB = (r - R + e) * (r + R - e) / (2.0 * e);
-  return segment(r, hB + (r + e - R)) - segment(R, hB);
-}
-
 // A chamfered pin in the bundled block's bore (block_hole_d10.stl: 40 × 40 × 20 mm, a 64-gon
 // bore of radius 5.1 mm, single-precision STL), axes parallel, pressed sideways by d into the
 // wall along the whole 20 mm of the block (the chamfers lie outside it): V = 20 mm times the
@@ -211,7 +203,7 @@ TEST(RecoveredRefinement, PinPressedIntoABoreIsTheDiskOutsideTheBore) {
         ratio < 5e-3 ? std::vector<unsigned>{0u, 31u} : std::vector<unsigned>{0u};
     for (unsigned seed : seeds) {
       const Eigen::Isometry3d X_WB = seed ? test::randomPose(seed) : Eigen::Isometry3d::Identity();
-      const RecoveredContact got = recoveredMeshMeshContact(a, X_WB * X_BA, b, X_WB);
+      const RecoveredContact got = refinedMeshMeshContact(a, X_WB * X_BA, b, X_WB);
       ASSERT_EQ(got.representation, "refined") << got.reason;
       EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected) << ratio;
       EXPECT_TRUE(got.converged);
