@@ -38,6 +38,10 @@ constexpr double kSquareBand = 1e-9;
 /// are widened by this fraction of that size (about 90 ulps), so that they hold for the
 /// computed values, not only for the exact ones.
 constexpr double kSlack = 1e-14;
+/// The cell boxes of the bounds are grown by this many τ (cellBox): the points evaluated for a
+/// cell lie in it or within τ of a point in it (a vertex's column reaches τ; a crossing's
+/// bottom edge is taken within τ of its top edge's point).
+constexpr double kClipGrowth = 4.0;
 
 double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -96,7 +100,8 @@ void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
                 a.cwiseMax(b),
                 (b - a).norm(),
                 std::min(ha, hb) - slack,
-                std::max(ha, hb) + slack};
+                std::max(ha, hb) + slack,
+                slack};
     if (k == 0 || in.key != input_[static_cast<std::size_t>(order_[k - 1])].key) {
       const double c = in.n_f.dot(n);
       const int seg = static_cast<int>(segs_.size());
@@ -144,28 +149,63 @@ void ColumnDepth::buildGrid() {
   grid_.inv_hy = 1.0 / grid_.hy;
 }
 
-/// Files segment s, row by row, in the cells its projection passes within τ of.
+/// Files segment s, row by row, in the cells its projection passes within τ of, and bounds
+/// each of those cells by the heights of its part inside the cell's box grown by kClipGrowth τ.
+/// The box holds every point the pass evaluates for the cell (a vertex filed in it and the
+/// points within τ of it, a crossing located in it and its bottom edge's point within τ), with
+/// a margin far beyond the rounding of the cells' indices and of the parameters below (a few ε
+/// of the coordinates). The height is linear along s: over the parameter interval [t0, t1] of
+/// its part in the box it lies between its values at t0 and t1, computed by the pass's own
+/// formula and widened by s's slack, which covers the rounding of both evaluations.
 void ColumnDepth::fileSegment(int index) {
   const Seg& s = segs_[static_cast<std::size_t>(index)];
   const double ylo = std::min(s.a.y(), s.b.y()), yhi = std::max(s.a.y(), s.b.y());
-  const double dy = s.b.y() - s.a.y();
+  const double dx = s.b.x() - s.a.x(), dy = s.b.y() - s.a.y(), dh = s.hb - s.ha;
+  const double ix = dx != 0.0 ? 1.0 / dx : 0.0, iy = dy != 0.0 ? 1.0 / dy : 0.0;
+  const double g = kClipGrowth * tau_;
   const int r0 = grid_.row(ylo - tau_), r1 = grid_.row(yhi + tau_);
   for (int r = r0; r <= r1; ++r) {
     double xlo = std::min(s.a.x(), s.b.x()), xhi = std::max(s.a.x(), s.b.x());
-    if (dy != 0.0) {  // the x range of the segment within this row's slab
+    double ty0 = 0.0, ty1 = 1.0;  // the parameters of its part in the row's grown slab
+    if (dy != 0.0) {              // the x range of the segment within this row's slab
       const double y0 = std::clamp(grid_.y0 + r * grid_.hy - tau_, ylo, yhi);
       const double y1 = std::clamp(grid_.y0 + (r + 1) * grid_.hy + tau_, ylo, yhi);
-      const double x0 = s.a.x() + (y0 - s.a.y()) * (s.b.x() - s.a.x()) / dy;
-      const double x1 = s.a.x() + (y1 - s.a.y()) * (s.b.x() - s.a.x()) / dy;
+      const double x0 = s.a.x() + (y0 - s.a.y()) * dx / dy;
+      const double x1 = s.a.x() + (y1 - s.a.y()) * dx / dy;
       xlo = std::max(xlo, std::min(x0, x1));
       xhi = std::min(xhi, std::max(x0, x1));
+      const double ta = (grid_.y0 + r * grid_.hy - g - s.a.y()) * iy;
+      const double tb = (grid_.y0 + (r + 1) * grid_.hy + g - s.a.y()) * iy;
+      ty0 = std::max(0.0, std::min(ta, tb));
+      ty1 = std::min(1.0, std::max(ta, tb));
     }
     const int c0 = grid_.col(xlo - tau_), c1 = grid_.col(xhi + tau_);
-    for (int c = r * grid_.nx + c0; c <= r * grid_.nx + c1; ++c) {
-      segPairs_.emplace_back(c, index);
-      bound(c, s);
+    for (int c = c0; c <= c1; ++c) {
+      segPairs_.emplace_back(r * grid_.nx + c, index);
+      double t0 = ty0, t1 = ty1;
+      if (dx != 0.0) {
+        const double ta = (grid_.x0 + c * grid_.hx - g - s.a.x()) * ix;
+        const double tb = (grid_.x0 + (c + 1) * grid_.hx + g - s.a.x()) * ix;
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+      }
+      double lo = s.hmin, hi = s.hmax;
+      if (t0 <= t1) {  // else filed by the τ of the filing alone: all of it is kept
+        const double h0 = s.ha + t0 * dh, h1 = s.ha + t1 * dh;
+        lo = std::max(lo, std::min(h0, h1) - s.slack);
+        hi = std::min(hi, std::max(h0, h1) + s.slack);
+      }
+      bound(r * grid_.nx + c, s, lo, hi);
     }
   }
+}
+
+/// The box of cell c grown by kClipGrowth τ (fileSegment).
+void ColumnDepth::cellBox(int c, Vector2d& lo, Vector2d& hi) const {
+  const int r = c / grid_.nx, k = c % grid_.nx;
+  const double g = kClipGrowth * tau_;
+  lo = {grid_.x0 + k * grid_.hx - g, grid_.y0 + r * grid_.hy - g};
+  hi = {grid_.x0 + (k + 1) * grid_.hx + g, grid_.y0 + (r + 1) * grid_.hy + g};
 }
 
 /// Files a top or bottom face in the cells its projection's bounding box covers (a point of
@@ -366,27 +406,43 @@ void ColumnDepth::listVertices() {
     segPairs_.emplace_back(c, i);
     CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
     b.vertices = true;
-    b.hi = std::max(b.hi, s.hmax);  // filed in this cell too; included should rounding differ
-    b.lo = std::min(b.lo, s.hmin);
+    b.hi = std::max(b.hi, s.ha);  // the column's own height (its segment is filed here too)
+    b.lo = std::min(b.lo, s.ha);
   }
   toCsr(segPairs_, grid_.nx * grid_.ny, vertexStart_, cellVertices_);
 }
 
 /// Widens cell c's bounds by segment s filed in it.
-void ColumnDepth::bound(int c, const Seg& s) {
+void ColumnDepth::bound(int c, const Seg& s, double lo, double hi) {
   CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
-  b.hi = std::max(b.hi, s.hmax);
-  b.lo = std::min(b.lo, s.hmin);
-  if (s.side > 0) b.topHi = std::max(b.topHi, s.hmax);
-  if (s.side < 0) b.bottomLo = std::min(b.bottomLo, s.hmin);
+  b.hi = std::max(b.hi, hi);
+  b.lo = std::min(b.lo, lo);
+  if (s.side > 0) b.topHi = std::max(b.topHi, hi);
+  if (s.side < 0) b.bottomLo = std::min(b.bottomLo, lo);
+}
+
+/// Widens [lo, hi] by the heights height(F, x) takes at the points x of the box [blo, bhi]
+/// that lie in F's bounding box (the only ones where the pass evaluates it). Each rounded
+/// operation of height() is monotonic, so the computed height is monotonic in x and in y,
+/// and over the box it lies between its values at the two corners the slopes' signs pick.
+void ColumnDepth::faceHeights(const Face& F, const Vector2d& blo, const Vector2d& bhi, double& lo,
+                              double& hi) {
+  if (F.bmax.x() < blo.x() || F.bmin.x() > bhi.x() || F.bmax.y() < blo.y() ||
+      F.bmin.y() > bhi.y()) {
+    return;
+  }
+  const Vector2d up(F.slope_u >= 0.0 ? blo.x() : bhi.x(), F.slope_v >= 0.0 ? blo.y() : bhi.y());
+  const Vector2d down(F.slope_u >= 0.0 ? bhi.x() : blo.x(), F.slope_v >= 0.0 ? bhi.y() : blo.y());
+  hi = std::max(hi, height(F, up));
+  lo = std::min(lo, height(F, down));
 }
 
 /// An upper bound of every candidate value of each cell, and the cells with a positive one,
-/// largest bound first. A crossing's value is a top height minus a bottom one, each within
-/// its segment's [hmin, hmax]; a vertex column's span is a difference of heights on the
-/// cell's segments (and of the vertex itself, one of their ends) or of the faces of its block
-/// clamped to their [lo, hi]. Rounding is monotonic, so the computed difference of the bounds
-/// bounds the computed difference of the values.
+/// largest bound first. A crossing located in the cell has a top height minus a bottom one,
+/// each within the bounds of its segment's part near the cell (clippedHeights); a vertex
+/// column's span is a difference of heights of its vertex, of the segments' parts within τ
+/// of it and of the faces of its block at it (faceHeights). Rounding is monotonic, so the
+/// computed difference of the bounds bounds the computed difference of the values.
 void ColumnDepth::boundCells() {
   cells_.clear();
   for (int c = 0; c < grid_.nx * grid_.ny; ++c) {
@@ -394,10 +450,10 @@ void ColumnDepth::boundCells() {
     double bound = b.topHi - b.bottomLo;  // −∞ or NaN without a top and a bottom segment
     if (b.vertices) {
       const int block = blockOf(c / grid_.nx / kBlock, c % grid_.nx / kBlock);
+      Vector2d lo, hi;
+      cellBox(c, lo, hi);
       for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
-        const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
-        b.hi = std::max(b.hi, F.hi);
-        b.lo = std::min(b.lo, F.lo);
+        faceHeights(faces_[static_cast<std::size_t>(cellFaces_[k])], lo, hi, b.lo, b.hi);
       }
       bound = std::max(bound, b.hi - b.lo);
     }

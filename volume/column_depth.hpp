@@ -37,7 +37,10 @@
 // hmax), and a face's height is clamped to its range [lo, hi]; rounding is monotonic, so a
 // difference of such bounds bounds the computed value. Each cell gets the bound of its
 // candidates (crossings: its top segments' highest minus its bottom segments' lowest; vertex
-// columns: all its segments' and its block's faces' range), and the cells are evaluated
+// columns: all its segments' and its block's faces' range), each segment and face taken over
+// its part inside the cell's box grown by 4τ only (heights linear along a segment, monotonic
+// over a face's plane: their values at the part's ends or the box's corners bound them), which
+// keeps a tilted region's bounds near its depth; and the cells are evaluated
 // largest bound first until the bound does not exceed the best value found. Within a cell a
 // top/bottom pair whose own bound does not exceed it is passed over, and a vertex column whose
 // faces (taken from their boxes, before the crossing-number test) cannot lift its span above
@@ -94,6 +97,7 @@ class ColumnDepth {
     Eigen::Vector2d lo, hi;  ///< bounding box of a, b
     double len;              ///< |b − a|
     double hmin, hmax;       ///< bounds of any height the pass interpolates on it (kSlack)
+    double slack;            ///< hmax − max(ha, hb): the rounding allowed for on its heights
   };
   struct Face {
     double slope_u, slope_v;     ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
@@ -139,7 +143,10 @@ class ColumnDepth {
     bool vertices = false;                  ///< holds the first end of a segment
   };
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  void bound(int c, const Seg& s);
+  void bound(int c, const Seg& s, double lo, double hi);
+  void cellBox(int c, Eigen::Vector2d& lo, Eigen::Vector2d& hi) const;
+  static void faceHeights(const Face& F, const Eigen::Vector2d& blo, const Eigen::Vector2d& bhi,
+                          double& lo, double& hi);
   void listVertices();
   void boundCells();
   double evaluateCell(int c, double best);
