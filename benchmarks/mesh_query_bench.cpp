@@ -9,9 +9,10 @@
 //   variants: cold (no cache: both trees descended every query), cached (the pair's
 //     MeshMeshCache of leaf pairs, as the simulator passes it), cached_depth (the same with the
 //     exact depth pass, as at an output time).
-// query/cad_tray/<pair>/rest/depth_reference and depth: the depth pass alone at the rest pose,
-//   on the boundary segments of the query (the pass of 89ea7e6, kept in the tests as
-//   ReferenceColumnDepth, against volume/column_depth.cpp).
+// query/cad_tray/<pair>/<rest|landing>/depth_reference and depth: the depth pass alone at the
+//   rest pose or at 25 ms (the landing), on the boundary segments of the query (its last patch's)
+//   (the pass of 89ea7e6, kept in the tests as ReferenceColumnDepth, against
+//   volume/column_depth.cpp).
 // Counters: V (m³), the leaf pairs the cache holds and its refreshes, so that a fast wrong answer
 // shows beside its time.
 
@@ -96,13 +97,13 @@ void query(benchmark::State& state, std::size_t k, std::size_t first, std::size_
   state.counters["refreshes"] = static_cast<double>(cache.refreshes);
 }
 
-/// The depth pass alone on the segments of pair k's query at the rest pose: the current pass
-/// (ColumnDepth) or the reference (the pass of 89ea7e6).
+/// The depth pass alone on the segments of pair k's query at pose `at` of the trajectory: the
+/// current pass (ColumnDepth) or the reference (the pass of 89ea7e6).
 template <typename Pass>
-void depthPass(benchmark::State& state, std::size_t k) {
+void depthPass(benchmark::State& state, std::size_t k, std::size_t at) {
   const Trajectory& t = trayTrajectory();
   const auto& pair = t.scenario.pairs[k];
-  const auto& X = t.poses.back();
+  const auto& X = t.poses[at];
   vcontact::volume::fastContact(t.scenario.bodies[pair.a].shape, X[pair.a],
                                 t.scenario.bodies[pair.b].shape, X[pair.b], nullptr, true);
   const vcontact::volume::ColumnDepth& last = vcontact::volume::internal::lastDepthPass();
@@ -136,12 +137,17 @@ void depthPass(benchmark::State& state, std::size_t k) {
                                    variant)
           ->Unit(benchmark::kMicrosecond);
     }
-    const std::string depth = std::string("query/cad_tray/") + pairName + "/rest/depth";
-    benchmark::RegisterBenchmark((depth + "_reference").c_str(),
-                                 depthPass<vcontact::volume::test::ReferenceColumnDepth>, k)
-        ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark(depth.c_str(), depthPass<vcontact::volume::ColumnDepth>, k)
-        ->Unit(benchmark::kMicrosecond);
+    // The rest pose (0.2 s) and a pose of the landing (25 ms: the tray's pins in the chamfers,
+    // the upper tray tilted on the rim).
+    for (const auto& [phase, at] : {std::pair<const char*, std::size_t>{"rest", 200},
+                                    std::pair<const char*, std::size_t>{"landing", 25}}) {
+      const std::string depth = std::string("query/cad_tray/") + pairName + "/" + phase + "/depth";
+      benchmark::RegisterBenchmark((depth + "_reference").c_str(),
+                                   depthPass<vcontact::volume::test::ReferenceColumnDepth>, k, at)
+          ->Unit(benchmark::kMicrosecond);
+      benchmark::RegisterBenchmark(depth.c_str(), depthPass<vcontact::volume::ColumnDepth>, k, at)
+          ->Unit(benchmark::kMicrosecond);
+    }
   }
   return true;
 }();
