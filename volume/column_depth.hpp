@@ -37,14 +37,15 @@
 // hmax), and a face's height is clamped to its range [lo, hi]; rounding is monotonic, so a
 // difference of such bounds bounds the computed value. Each cell gets the bound of its
 // candidates (crossings: its top segments' highest minus its bottom segments' lowest; vertex
-// columns: all its segments' and its block's faces' range), each segment and face taken over
-// its part inside the cell's box grown by 4τ only (heights linear along a segment, monotonic
-// over a face's plane: their values at the part's ends or the box's corners bound them), which
-// keeps a tilted region's bounds near its depth; and the cells are evaluated
+// columns: all its segments' and its block's faces' range), and the cells are evaluated
 // largest bound first until the bound does not exceed the best value found. A large region
 // (kBlocksFrom segments or more, column_depth_bounds.cpp) is first filed and bounded in blocks
-// of 4 × 4 cells only, and a block is filed into its cells when its bound comes first: the
-// resting tray files a few of its 400 blocks finely instead of its 6,400 cells. Within a cell a
+// of 4 × 4 cells only, and a block is filed into its cells when its bound comes first (the
+// resting tray files a few of its 400 blocks finely instead of its 6,400 cells); there each
+// segment and face is taken over its part inside the block's or cell's box grown by 4τ only
+// (heights linear along a segment, monotonic over a face's plane: their values at the part's
+// ends or the box's corners bound them), which keeps a tilted region's bounds near its depth
+// (the upper tray on the rim: half the cells evaluated). Within a cell a
 // top/bottom pair whose own bound does not exceed it is passed over, and a vertex column whose
 // faces (taken from their boxes, before the crossing-number test) cannot lift its span above
 // it; a face whose height lies within the column's span so far is not tested at all. Only
@@ -178,7 +179,8 @@ class ColumnDepth {
   std::vector<Face> faces_;
   Grid grid_;
   double tau_ = 0.0;
-  Grid blocks_;  ///< the blocks of kBlock × kBlock cells as cells of their own
+  Grid blocks_;       ///< the blocks of kBlock × kBlock cells as cells of their own
+  bool clip_ = true;  ///< bounds from the parts of segments and faces in a cell (large regions)
   std::vector<std::pair<int, int>> segPairs_, facePairs_;  ///< (bin, item) before CSR
   std::vector<int> blockSegStart_, blockSegs_;             ///< segments by block
   std::vector<int> blockVertexStart_, blockVertices_;      ///< segments by block of first end

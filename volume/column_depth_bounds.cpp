@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "volume/column_depth.hpp"
 
@@ -30,11 +31,13 @@ constexpr double kClipGrowth = 4.0;
 /// of their cells differ by the rounding of kBlock · h against the cells' own, far below τ,
 /// so a block holds every segment that the cells inside it hold.
 constexpr double kBlockReach = 2.0;
-/// Regions of fewer segments are filed in cells directly (deepestInCells). Filing in blocks
-/// first pays where most blocks cannot beat the depth (the trays resting flat or on the rim:
-/// 3.5k and 6.4k segments, a few per cent of their blocks refined); the small regions of the
-/// landing (the pins in the chamfers: 0.3k to 2k segments) refine 80 to 95 % of their blocks,
-/// which would then be filed twice. Measured on cad_tray_drop (docs/DISCRETE.md §4.2).
+/// Regions of fewer segments are filed in cells directly, with the whole segments' and faces'
+/// bounds (deepestInCells, clip_ false). Filing in blocks and clipping pay where most blocks
+/// cannot beat the depth (the trays resting flat or on the rim: 3.5k and 6.4k segments, a few
+/// per cent of their blocks refined); the small regions of the landing (the pins in the
+/// chamfers: 0.3k to 2k segments) refine 80 to 95 % of their blocks, which would then be filed
+/// twice, and bin_of_ten's small flat regions pay for the clipping more than it saves.
+/// Measured on cad_tray_drop and bin_of_ten (docs/DISCRETE.md §4.2).
 constexpr std::size_t kBlocksFrom = 3000;
 
 }  // namespace
@@ -50,7 +53,7 @@ void ColumnDepth::walk(const Grid& g, const Seg& s, double reach, const int (&ra
                        Emit&& emit) const {
   const double ylo = std::min(s.a.y(), s.b.y()), yhi = std::max(s.a.y(), s.b.y());
   const double dx = s.b.x() - s.a.x(), dy = s.b.y() - s.a.y(), dh = s.hb - s.ha;
-  const double ix = dx != 0.0 ? 1.0 / dx : 0.0, iy = dy != 0.0 ? 1.0 / dy : 0.0;
+  const double ix = dx != 0.0 && clip_ ? 1.0 / dx : 0.0, iy = dy != 0.0 && clip_ ? 1.0 / dy : 0.0;
   const double grow = kClipGrowth * tau_;
   const int r0 = std::max(g.row(ylo - reach), range[0]);
   const int r1 = std::min(g.row(yhi + reach), range[1]);
@@ -64,6 +67,8 @@ void ColumnDepth::walk(const Grid& g, const Seg& s, double reach, const int (&ra
       const double x1 = s.a.x() + (y1 - s.a.y()) * dx / dy;
       xlo = std::max(xlo, std::min(x0, x1));
       xhi = std::min(xhi, std::max(x0, x1));
+    }
+    if (dy != 0.0 && clip_) {
       const double ta = (g.y0 + r * g.hy - grow - s.a.y()) * iy;
       const double tb = (g.y0 + (r + 1) * g.hy + grow - s.a.y()) * iy;
       ty0 = std::max(0.0, std::min(ta, tb));
@@ -72,6 +77,10 @@ void ColumnDepth::walk(const Grid& g, const Seg& s, double reach, const int (&ra
     const int c0 = std::max(g.col(xlo - reach), range[2]);
     const int c1 = std::min(g.col(xhi + reach), range[3]);
     for (int c = c0; c <= c1; ++c) {
+      if (!clip_) {
+        emit(r * g.nx + c, s.hmin, s.hmax);
+        continue;
+      }
       double t0 = ty0, t1 = ty1;
       if (dx != 0.0) {
         const double ta = (g.x0 + c * g.hx - grow - s.a.x()) * ix;
@@ -181,7 +190,13 @@ double ColumnDepth::upperBound(CellBound& b, int block, const Vector2d& lo,
   double value = b.topHi - b.bottomLo;  // −∞ without a top and a bottom segment
   if (b.vertices) {
     for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
-      faceHeights(faces_[static_cast<std::size_t>(cellFaces_[k])], lo, hi, b.lo, b.hi);
+      const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
+      if (clip_) {
+        faceHeights(F, lo, hi, b.lo, b.hi);
+      } else {
+        b.lo = std::min(b.lo, F.lo);
+        b.hi = std::max(b.hi, F.hi);
+      }
     }
     value = std::max(value, b.hi - b.lo);
   }
@@ -253,8 +268,8 @@ void ColumnDepth::refine(int B, double best) {
   }
 }
 
-/// The pass without blocks, for small regions: every cell filed and bounded, then evaluated
-/// largest bound first.
+/// The pass without blocks, for small regions: every cell filed and bounded by its segments'
+/// and faces' whole ranges, then evaluated largest bound first.
 double ColumnDepth::deepestInCells() {
   cellBounds_.assign(cellBounds_.size(), CellBound{});
   for (const int side : {1, -1, 0}) {
@@ -287,14 +302,26 @@ double ColumnDepth::deepestInCells() {
   toLists(vertexBegin_, vertexEnd_, cellVertices_);
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) fileFace(f);
   toCsr(facePairs_, blockOf(0, 0, true), faceStart_, cellFaces_);
+  const Vector2d lo = Vector2d::Zero(), hi = lo;  // unused without clipping
   for (int c = 0; c < cells; ++c) {
-    Vector2d lo, hi;
-    box(grid_, c, lo, hi);
     const double value =
         upperBound(cellBounds_[static_cast<std::size_t>(c)], blockOfCell(c), lo, hi);
-    if (value > 0.0) queue(value, c);
+    if (value > 0.0) queue_.emplace_back(value, c);
   }
-  return branchAndBound();
+  // The cell of the largest bound first, then those still above its best, largest first (a
+  // sort of the few left rather than a heap of all).
+  if (queue_.empty()) return 0.0;
+  const auto first = std::max_element(queue_.begin(), queue_.end());
+  const int c0 = first->second;
+  double best = evaluateCell(c0, 0.0);
+  const auto beaten = [&](const std::pair<double, int>& b) { return b.first <= best; };
+  queue_.erase(std::remove_if(queue_.begin(), queue_.end(), beaten), queue_.end());
+  std::sort(queue_.begin(), queue_.end(), std::greater<>());
+  for (const auto& [value, c] : queue_) {
+    if (value <= best) break;
+    if (c != c0) best = evaluateCell(c, best);
+  }
+  return best;
 }
 
 void ColumnDepth::queue(double value, int id) {
@@ -319,7 +346,8 @@ double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) 
   cellSegs_.clear();
   cellVertices_.clear();
   queue_.clear();
-  if (segs_.size() < kBlocksFrom) return deepestInCells();
+  clip_ = segs_.size() >= kBlocksFrom;
+  if (!clip_) return deepestInCells();
   // Top edges first, then bottom ones, then walls': each block's list keeps that order.
   const int all[4] = {0, blocks_.ny - 1, 0, blocks_.nx - 1};
   for (const int side : {1, -1, 0}) {
