@@ -110,7 +110,7 @@ void depthPass(benchmark::State& state, std::size_t k, std::size_t at) {
         .aggregate.inContact();
   };
   // The first pose in contact from `at` on (the pair bounces during the landing).
-  while (at + 1 < t.poses.size() && !contact(at)) ++at;
+  while (!contact(at) && at + 1 < t.poses.size()) ++at;
   state.counters["pose_ms"] = static_cast<double>(at);
   const vcontact::volume::ColumnDepth& last = vcontact::volume::internal::lastDepthPass();
   const auto inputs = last.inputs();
