@@ -9,8 +9,9 @@
 //   variants: cold (no cache: both trees descended every query), cached (the pair's
 //     MeshMeshCache of leaf pairs, as the simulator passes it), cached_depth (the same with the
 //     exact depth pass, as at an output time).
-// query/cad_tray/<pair>/rest/depth_reference and depth: the depth pass alone at the rest pose,
-//   on the boundary segments of the query (the pass of 89ea7e6, kept in the tests as
+// query/cad_tray/<pair>/<rest|landing>/depth_reference and depth: the depth pass alone at the
+//   rest pose or at the first pose in contact from 23 ms on (the landing), on the boundary segments
+//   of the query (its last patch's) (the pass of 89ea7e6, kept in the tests as
 //   ReferenceColumnDepth, against volume/column_depth.cpp).
 // Counters: V (m³), the leaf pairs the cache holds and its refreshes, so that a fast wrong answer
 // shows beside its time.
@@ -96,15 +97,21 @@ void query(benchmark::State& state, std::size_t k, std::size_t first, std::size_
   state.counters["refreshes"] = static_cast<double>(cache.refreshes);
 }
 
-/// The depth pass alone on the segments of pair k's query at the rest pose: the current pass
-/// (ColumnDepth) or the reference (the pass of 89ea7e6).
+/// The depth pass alone on the segments of pair k's query at pose `at` of the trajectory: the
+/// current pass (ColumnDepth) or the reference (the pass of 89ea7e6).
 template <typename Pass>
-void depthPass(benchmark::State& state, std::size_t k) {
+void depthPass(benchmark::State& state, std::size_t k, std::size_t at) {
   const Trajectory& t = trayTrajectory();
   const auto& pair = t.scenario.pairs[k];
-  const auto& X = t.poses.back();
-  vcontact::volume::fastContact(t.scenario.bodies[pair.a].shape, X[pair.a],
-                                t.scenario.bodies[pair.b].shape, X[pair.b], nullptr, true);
+  const auto contact = [&](std::size_t i) {
+    const auto& X = t.poses[i];
+    return vcontact::volume::fastContact(t.scenario.bodies[pair.a].shape, X[pair.a],
+                                         t.scenario.bodies[pair.b].shape, X[pair.b], nullptr, true)
+        .aggregate.inContact();
+  };
+  // The first pose in contact from `at` on (the pair bounces during the landing).
+  while (!contact(at) && at + 1 < t.poses.size()) ++at;
+  state.counters["pose_ms"] = static_cast<double>(at);
   const vcontact::volume::ColumnDepth& last = vcontact::volume::internal::lastDepthPass();
   const auto inputs = last.inputs();
   const auto args = last.lastArguments();
@@ -136,12 +143,17 @@ void depthPass(benchmark::State& state, std::size_t k) {
                                    variant)
           ->Unit(benchmark::kMicrosecond);
     }
-    const std::string depth = std::string("query/cad_tray/") + pairName + "/rest/depth";
-    benchmark::RegisterBenchmark((depth + "_reference").c_str(),
-                                 depthPass<vcontact::volume::test::ReferenceColumnDepth>, k)
-        ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark(depth.c_str(), depthPass<vcontact::volume::ColumnDepth>, k)
-        ->Unit(benchmark::kMicrosecond);
+    // The rest pose (0.2 s) and the first pose in contact from 23 ms on (the landing: the
+    // tray's pins in the chamfers, the upper tray tilted on the rim).
+    for (const auto& [phase, at] : {std::pair<const char*, std::size_t>{"rest", 200},
+                                    std::pair<const char*, std::size_t>{"landing", 23}}) {
+      const std::string depth = std::string("query/cad_tray/") + pairName + "/" + phase + "/depth";
+      benchmark::RegisterBenchmark((depth + "_reference").c_str(),
+                                   depthPass<vcontact::volume::test::ReferenceColumnDepth>, k, at)
+          ->Unit(benchmark::kMicrosecond);
+      benchmark::RegisterBenchmark(depth.c_str(), depthPass<vcontact::volume::ColumnDepth>, k, at)
+          ->Unit(benchmark::kMicrosecond);
+    }
   }
   return true;
 }();

@@ -12,12 +12,6 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-/// τ as a fraction of the largest coordinate: two boundary points on one column (a vertex of
-/// one body straight above a crossing on the other) differ in projection by their rounding, a
-/// few ε of that size (≈ 1e-15); 1e-12 covers it a thousand times (as the box margin of
-/// mesh_mesh.cpp does). The column's span is taken over this reach, which adds at most τ times
-/// the boundary's slope to the depth (a 1 m part at the origin, slope 1: 1e-12 m).
-constexpr double kReach = 1e-12;
 /// |n_f·n| at or below this: the face is a wall (parallel to the columns), seen only through
 /// its edges. Above it the plane's height is evaluated and clamped to the face's own range,
 /// so a steep face's large slope does no harm.
@@ -26,10 +20,6 @@ constexpr double kWall = 1e-12;
 /// (or of another segment) is beyond τ by far more than the rounding of the exact formulas
 /// (a few ε of the coordinates, against τ = 1e-12 of them), which would reject it as well.
 constexpr double kBoxGrowth = 2.0;
-/// Faces are filed in blocks of kBlock × kBlock cells: a face's projection covers many cells
-/// (a flat contact's faces are large against its segments), and a vertex column passes over
-/// the faces of its block whose box misses it at the cost of a comparison.
-constexpr int kBlock = 4;
 /// The test |den| > τ·√m of crossingDepth decided on squares where they differ by more than
 /// this fraction (a few ulps of rounding either way), by the square root in the band between.
 constexpr double kSquareBand = 1e-9;
@@ -96,7 +86,8 @@ void ColumnDepth::project(const Vector3d& n, const Vector3d& o) {
                 a.cwiseMax(b),
                 (b - a).norm(),
                 std::min(ha, hb) - slack,
-                std::max(ha, hb) + slack};
+                std::max(ha, hb) + slack,
+                slack};
     if (k == 0 || in.key != input_[static_cast<std::size_t>(order_[k - 1])].key) {
       const double c = in.n_f.dot(n);
       const int seg = static_cast<int>(segs_.size());
@@ -142,55 +133,15 @@ void ColumnDepth::buildGrid() {
   grid_.hy = H > 0.0 ? H / grid_.ny : 1.0;
   grid_.inv_hx = 1.0 / grid_.hx;
   grid_.inv_hy = 1.0 / grid_.hy;
-}
-
-/// Files segment s, row by row, in the cells its projection passes within τ of.
-void ColumnDepth::fileSegment(int index) {
-  const Seg& s = segs_[static_cast<std::size_t>(index)];
-  const double ylo = std::min(s.a.y(), s.b.y()), yhi = std::max(s.a.y(), s.b.y());
-  const double dy = s.b.y() - s.a.y();
-  const int r0 = grid_.row(ylo - tau_), r1 = grid_.row(yhi + tau_);
-  for (int r = r0; r <= r1; ++r) {
-    double xlo = std::min(s.a.x(), s.b.x()), xhi = std::max(s.a.x(), s.b.x());
-    if (dy != 0.0) {  // the x range of the segment within this row's slab
-      const double y0 = std::clamp(grid_.y0 + r * grid_.hy - tau_, ylo, yhi);
-      const double y1 = std::clamp(grid_.y0 + (r + 1) * grid_.hy + tau_, ylo, yhi);
-      const double x0 = s.a.x() + (y0 - s.a.y()) * (s.b.x() - s.a.x()) / dy;
-      const double x1 = s.a.x() + (y1 - s.a.y()) * (s.b.x() - s.a.x()) / dy;
-      xlo = std::max(xlo, std::min(x0, x1));
-      xhi = std::min(xhi, std::max(x0, x1));
-    }
-    const int c0 = grid_.col(xlo - tau_), c1 = grid_.col(xhi + tau_);
-    for (int c = r * grid_.nx + c0; c <= r * grid_.nx + c1; ++c) {
-      segPairs_.emplace_back(c, index);
-      bound(c, s);
-    }
-  }
-}
-
-/// Files a top or bottom face in the cells its projection's bounding box covers (a point of
-/// the face lies in one of them; a wall holds no column's inside and is not filed).
-void ColumnDepth::fileFace(int index) {
-  const Face& f = faces_[static_cast<std::size_t>(index)];
-  if (f.side == 0) return;
-  const int r0 = grid_.row(f.bmin.y()) / kBlock, r1 = grid_.row(f.bmax.y()) / kBlock;
-  const int c0 = grid_.col(f.bmin.x()) / kBlock, c1 = grid_.col(f.bmax.x()) / kBlock;
-  for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) facePairs_.emplace_back(blockOf(r, c), index);
-  }
-}
-
-/// (bin, item) pairs to compressed rows: bin b's items are items[start[b] .. start[b + 1]).
-void ColumnDepth::toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
-                        std::vector<int>& items) {
-  start.assign(static_cast<std::size_t>(bins) + 1, 0);
-  for (const auto& [bin, item] : pairs) ++start[static_cast<std::size_t>(bin) + 1];
-  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  items.resize(pairs.size());
-  std::vector<int>& next = next_;
-  next.assign(start.begin(), start.end() - 1);
-  for (const auto& [bin, item] : pairs) items[static_cast<std::size_t>(next[bin]++)] = item;
-  pairs.clear();
+  // The blocks of kBlock × kBlock cells as a grid of their own (the rounding of its cells'
+  // edges against those of the cells is covered by the filing's reach, deepest()).
+  blocks_ = grid_;
+  blocks_.nx = (grid_.nx + kBlock - 1) / kBlock;
+  blocks_.ny = (grid_.ny + kBlock - 1) / kBlock;
+  blocks_.hx = kBlock * grid_.hx;
+  blocks_.hy = kBlock * grid_.hy;
+  blocks_.inv_hx = 1.0 / blocks_.hx;
+  blocks_.inv_hy = 1.0 / blocks_.hy;
 }
 
 /// Whether x lies inside the projection of face f: the crossing number along +u over the
@@ -229,7 +180,7 @@ double ColumnDepth::height(const Face& F, const Vector2d& x) {
 double ColumnDepth::columnBound(const Vector2d& x, double h, int cell, int block) const {
   const double g = kBoxGrowth * tau_;
   double hi = h, lo = h;
-  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
+  for (int k = segBegin_[cell]; k < segEnd_[cell]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
     if (misses(s, x, g)) continue;
     hi = std::max(hi, s.hmax);
@@ -258,7 +209,7 @@ double ColumnDepth::columnSpanAt(const Vector2d& x, double h, double best) const
   };
   // Edges within τ: the heights over the part of each that lies within τ of the column.
   const double g = kBoxGrowth * tau_;
-  for (int k = segStart_[cell]; k < segStart_[cell + 1]; ++k) {
+  for (int k = segBegin_[cell]; k < segEnd_[cell]; ++k) {
     const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
     if (misses(s, x, g)) continue;
     const Vector2d d = s.b - s.a, w = x - s.a;
@@ -309,7 +260,7 @@ bool ColumnDepth::sameEnds(const Seg& s, const Seg& t) {
 /// lies on s and within τ of t, both to a rounding far below τ, so the edges come within
 /// about τ of each other, and of each other's lines.
 double ColumnDepth::crossingsIn(int cell, double best) const {
-  const int first = segStart_[cell], last = segStart_[cell + 1];
+  const int first = segBegin_[cell], last = segEnd_[cell];
   int bottoms = first;
   while (bottoms < last && segs_[static_cast<std::size_t>(cellSegs_[bottoms])].side > 0) {
     ++bottoms;
@@ -357,54 +308,6 @@ double ColumnDepth::crossingDepth(const Seg& s, const Seg& t) const {
   return s.side > 0 ? hs - ht : ht - hs;
 }
 
-/// The first ends of the segments (the ends of a face's loops are the first ends of its
-/// segments) by cell.
-void ColumnDepth::listVertices() {
-  for (int i = 0; i < static_cast<int>(segs_.size()); ++i) {
-    const Seg& s = segs_[static_cast<std::size_t>(i)];
-    const int c = grid_.row(s.a.y()) * grid_.nx + grid_.col(s.a.x());
-    segPairs_.emplace_back(c, i);
-    CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
-    b.vertices = true;
-    b.hi = std::max(b.hi, s.hmax);  // filed in this cell too; included should rounding differ
-    b.lo = std::min(b.lo, s.hmin);
-  }
-  toCsr(segPairs_, grid_.nx * grid_.ny, vertexStart_, cellVertices_);
-}
-
-/// Widens cell c's bounds by segment s filed in it.
-void ColumnDepth::bound(int c, const Seg& s) {
-  CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
-  b.hi = std::max(b.hi, s.hmax);
-  b.lo = std::min(b.lo, s.hmin);
-  if (s.side > 0) b.topHi = std::max(b.topHi, s.hmax);
-  if (s.side < 0) b.bottomLo = std::min(b.bottomLo, s.hmin);
-}
-
-/// An upper bound of every candidate value of each cell, and the cells with a positive one,
-/// largest bound first. A crossing's value is a top height minus a bottom one, each within
-/// its segment's [hmin, hmax]; a vertex column's span is a difference of heights on the
-/// cell's segments (and of the vertex itself, one of their ends) or of the faces of its block
-/// clamped to their [lo, hi]. Rounding is monotonic, so the computed difference of the bounds
-/// bounds the computed difference of the values.
-void ColumnDepth::boundCells() {
-  cells_.clear();
-  for (int c = 0; c < grid_.nx * grid_.ny; ++c) {
-    CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
-    double bound = b.topHi - b.bottomLo;  // −∞ or NaN without a top and a bottom segment
-    if (b.vertices) {
-      const int block = blockOf(c / grid_.nx / kBlock, c % grid_.nx / kBlock);
-      for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
-        const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
-        b.hi = std::max(b.hi, F.hi);
-        b.lo = std::min(b.lo, F.lo);
-      }
-      bound = std::max(bound, b.hi - b.lo);
-    }
-    if (bound > 0.0) cells_.emplace_back(bound, c);
-  }
-}
-
 /// The candidates of cell c (its vertex columns, its top/bottom crossings) that can raise best.
 double ColumnDepth::evaluateCell(int c, double best) {
   // Equal first ends (the same computed point, filed by several faces) are one column,
@@ -413,8 +316,8 @@ double ColumnDepth::evaluateCell(int c, double best) {
     const Seg& s = segs_[static_cast<std::size_t>(i)];
     return std::tuple(s.a.x(), s.a.y(), s.ha);
   };
-  cellScratch_.assign(cellVertices_.begin() + vertexStart_[c],
-                      cellVertices_.begin() + vertexStart_[c + 1]);
+  cellScratch_.assign(cellVertices_.begin() + vertexBegin_[c],
+                      cellVertices_.begin() + vertexEnd_[c]);
   std::sort(cellScratch_.begin(), cellScratch_.end(),
             [&](int i, int j) { return key(i) < key(j); });
   for (std::size_t k = 0; k < cellScratch_.size(); ++k) {
@@ -423,42 +326,6 @@ double ColumnDepth::evaluateCell(int c, double best) {
     best = std::max(best, columnSpanAt(s.a, s.ha, best));
   }
   return crossingsIn(c, best);
-}
-
-double ColumnDepth::deepest(const Vector3d& n, const Vector3d& o, double scale) {
-  last_ = {n, o, scale};
-  if (input_.empty()) return 0.0;
-  tau_ = kReach * scale;
-  project(n, o);
-  buildGrid();
-  cellBounds_.assign(static_cast<std::size_t>(grid_.nx) * grid_.ny, CellBound{});
-  // Top edges first, then bottom ones, then walls': each cell's list keeps that order.
-  for (const int side : {1, -1, 0}) {
-    for (int s = 0; s < static_cast<int>(segs_.size()); ++s) {
-      if (segs_[static_cast<std::size_t>(s)].side == side) fileSegment(s);
-    }
-  }
-  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) fileFace(f);
-  toCsr(segPairs_, grid_.nx * grid_.ny, segStart_, cellSegs_);
-  toCsr(facePairs_, blockOf(0, 0, true), faceStart_, cellFaces_);
-  listVertices();
-  boundCells();
-  // Branch and bound: the maximum of the candidates' values does not depend on their order,
-  // and a cell (or a segment pair) whose bound does not exceed the best value so far holds
-  // none that would raise it. The cell of the largest bound first, then those still above
-  // its best, largest bound first.
-  if (cells_.empty()) return 0.0;
-  const auto first = std::max_element(cells_.begin(), cells_.end());
-  const int c0 = first->second;
-  double best = evaluateCell(c0, 0.0);
-  const auto beaten = [&](const std::pair<double, int>& b) { return b.first <= best; };
-  cells_.erase(std::remove_if(cells_.begin(), cells_.end(), beaten), cells_.end());
-  std::sort(cells_.begin(), cells_.end(), std::greater<>());
-  for (const auto& [bound, c] : cells_) {
-    if (bound <= best) break;
-    if (c != c0) best = evaluateCell(c, best);
-  }
-  return best;
 }
 
 }  // namespace vcontact::volume

@@ -38,7 +38,14 @@
 // difference of such bounds bounds the computed value. Each cell gets the bound of its
 // candidates (crossings: its top segments' highest minus its bottom segments' lowest; vertex
 // columns: all its segments' and its block's faces' range), and the cells are evaluated
-// largest bound first until the bound does not exceed the best value found. Within a cell a
+// largest bound first until the bound does not exceed the best value found. A large region
+// (kBlocksFrom segments or more, column_depth_bounds.cpp) is first filed and bounded in blocks
+// of 4 × 4 cells only, and a block is filed into its cells when its bound comes first (the
+// resting tray files a few of its 400 blocks finely instead of its 6,400 cells); there each
+// segment and face is taken over its part inside the block's or cell's box grown by 4τ only
+// (heights linear along a segment, monotonic over a face's plane: their values at the part's
+// ends or the box's corners bound them), which keeps a tilted region's bounds near its depth
+// (the upper tray on the rim: half the cells evaluated). Within a cell a
 // top/bottom pair whose own bound does not exceed it is passed over, and a vertex column whose
 // faces (taken from their boxes, before the crossing-number test) cannot lift its span above
 // it; a face whose height lies within the column's span so far is not tested at all. Only
@@ -94,6 +101,7 @@ class ColumnDepth {
     Eigen::Vector2d lo, hi;  ///< bounding box of a, b
     double len;              ///< |b − a|
     double hmin, hmax;       ///< bounds of any height the pass interpolates on it (kSlack)
+    double slack;            ///< hmax − max(ha, hb): the rounding allowed for on its heights
   };
   struct Face {
     double slope_u, slope_v;     ///< n_f·u / n_f·n, n_f·v / n_f·n (0 for a wall)
@@ -115,33 +123,49 @@ class ColumnDepth {
     }
   };
 
+  /// Cells of kBlock × kBlock cells: the bins of the faces and the first filing (deepest()).
+  static constexpr int kBlock = 4;
+  struct CellBound;
   void project(const Eigen::Vector3d& n, const Eigen::Vector3d& o);
   void buildGrid();
-  void fileSegment(int s);
+  template <class Emit>
+  void walk(const Grid& g, const Seg& s, double reach, const int (&range)[4], Emit&& emit) const;
+  void box(const Grid& g, int c, Eigen::Vector2d& lo, Eigen::Vector2d& hi) const;
   void fileFace(int f);
   int blockOf(int r, int c, bool count = false) const;
+  int vertexCell(const Seg& s) const;
+  int blockOfCell(int c) const;
   void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
              std::vector<int>& items);
+  void distribute(const int (&range)[4], std::vector<int>& begin, std::vector<int>& end,
+                  std::vector<int>& pool);
   bool holds(const Face& f, const Eigen::Vector2d& x) const;
   static bool misses(const Seg& s, const Eigen::Vector2d& x, double g);
   static bool inBox(const Face& f, const Eigen::Vector2d& x);
   static double height(const Face& f, const Eigen::Vector2d& x);
+  static void faceHeights(const Face& F, const Eigen::Vector2d& blo, const Eigen::Vector2d& bhi,
+                          double& lo, double& hi);
   double columnBound(const Eigen::Vector2d& x, double h, int cell, int block) const;
   double columnSpanAt(const Eigen::Vector2d& x, double h, double best) const;
   double crossingsIn(int cell, double best) const;
   double crossingDepth(const Seg& s, const Seg& t) const;
   static bool beyondLine(const Seg& s, const Seg& t, double g);
   static bool sameEnds(const Seg& s, const Seg& t);
-  /// Upper and lower bounds of the heights of a cell's candidates (boundCells).
+  /// Upper and lower bounds of the heights of a cell's (or block's) candidates.
   struct CellBound {
     double hi = -kInf, lo = kInf;           ///< any segment filed, vertex, face of its block
     double topHi = -kInf, bottomLo = kInf;  ///< top and bottom segments filed
     bool vertices = false;                  ///< holds the first end of a segment
   };
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  void bound(int c, const Seg& s);
+  static void bound(CellBound& b, const Seg& s, double lo, double hi);
   void listVertices();
-  void boundCells();
+  double upperBound(CellBound& b, int block, const Eigen::Vector2d& lo,
+                    const Eigen::Vector2d& hi) const;
+  void refine(int block, double best);
+  void queue(double value, int id);
+  double deepestInCells();
+  double branchAndBound();
   double evaluateCell(int c, double best);
 
   std::vector<Input> input_;
@@ -155,14 +179,21 @@ class ColumnDepth {
   std::vector<Face> faces_;
   Grid grid_;
   double tau_ = 0.0;
-  std::vector<std::pair<int, int>> segPairs_, facePairs_;  ///< (cell, item) before CSR
-  std::vector<int> segStart_, cellSegs_;
-  std::vector<int> faceStart_, cellFaces_;       ///< by block of cells (fileFace)
-  std::vector<int> next_;                        ///< CSR fill cursor
-  std::vector<int> vertexStart_, cellVertices_;  ///< segments by the cell of their first end
-  std::vector<CellBound> cellBounds_;
+  Grid blocks_;       ///< the blocks of kBlock × kBlock cells as cells of their own
+  bool clip_ = true;  ///< bounds from the parts of segments and faces in a cell (large regions)
+  std::vector<std::pair<int, int>> segPairs_, facePairs_;  ///< (bin, item) before CSR
+  std::vector<int> blockSegStart_, blockSegs_;             ///< segments by block
+  std::vector<int> blockVertexStart_, blockVertices_;      ///< segments by block of first end
+  std::vector<int> faceStart_, cellFaces_;                 ///< faces by block (fileFace)
+  std::vector<int> next_;                                  ///< CSR fill cursor
+  std::vector<int> cellStart_;                             ///< CSR rows (deepestInCells)
+  std::vector<CellBound> blockBounds_, cellBounds_;        ///< cells': of refined blocks only
+  /// Of the cells of refined blocks: segments filed in cell c, cellSegs_[segBegin_[c] ..
+  /// segEnd_[c]); segments whose first end lies in it, likewise in cellVertices_.
+  std::vector<int> segBegin_, segEnd_, cellSegs_;
+  std::vector<int> vertexBegin_, vertexEnd_, cellVertices_;
   std::vector<int> cellScratch_;               ///< a cell's vertices, sorted (evaluateCell)
-  std::vector<std::pair<double, int>> cells_;  ///< (upper bound, cell), deepest first
+  std::vector<std::pair<double, int>> queue_;  ///< heap of (bound, cell or −1 − block)
   Arguments last_;
 };
 

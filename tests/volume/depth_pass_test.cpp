@@ -13,6 +13,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "column_depth_reference.hpp"
 #include "geometry/tessellate.hpp"
@@ -103,6 +104,87 @@ TEST(DepthPass, EqualsTheReferenceOnTheRestingTrays) {
     upper.translation().z() = upper0.translation().z() - 1e-7;
     expectSameDepth(tray, upper, tray, tray0, "upper tray, moved " + std::to_string(k));
   }
+}
+
+/// The trays' poses at output times of the landing in a discrete run (`vcontact simulate` of
+/// cad_tray_drop.json with "integrator": "discrete", "step": 0.001, "impacts": "implicit";
+/// bodies.csv, the fixture at the origin).
+struct LandingPose {
+  double t;
+  Isometry3d tray, upper;
+};
+
+std::vector<LandingPose> landingPoses() {
+  return {
+      {0.016,
+       pose({0.0009979744303743856, 4.5923662391691725e-09, 0.005241153221232744},
+            {0.9999984802626799, 1.698587534325493e-07, 2.261015451739207e-05,
+             0.0017432616219505142}),
+       pose({0.001, 0, 0.025744319999999998}, {0.9999984769132877, 0, 0, 0.0017453283658983084})},
+      {0.021,
+       pose({0.0006440304645903746, -5.197311701562892e-06, 0.004962280136914345},
+            {0.9999991166429595, -6.324376251797711e-05, 0.0003301706926580324,
+             0.0012859630013470273}),
+       pose({0.001, 0, 0.024836894999999994}, {0.9999984769132877, 0, 0, 0.0017453283658983084})},
+      {0.023,
+       pose({0.0005185294762385237, -7.685769677853404e-06, 0.0046566288827895866},
+            {0.9999984787135198, -9.768958964793837e-05, 0.0012961931762469861,
+             0.001163146869537796}),
+       pose({0.0009135852689755031, -1.158018440638184e-06, 0.024588192491279165},
+            {0.9999982165735745, -3.405892280885978e-05, 0.0009660648604330463,
+             0.0016224698288893693})},
+      {0.025,
+       pose({0.00037294675810169327, -1.2687652757887584e-05, 0.004310874440216877},
+            {0.9999966214095717, -0.00017119896726579552, 0.0023846228206200384,
+             0.0010205069126165956}),
+       pose({0.0008120488984091372, -3.313780931799227e-06, 0.024322959406909136},
+            {0.9999967885994382, -0.00010709125744425245, 0.0020546344762922726,
+             0.0014797970948621467})},
+      {0.040,
+       pose({-0.0001526821012327092, 1.3467717192809325e-05, 0.0013418372574702901},
+            {0.9999898696698029, -1.4135425619868628e-05, 0.004480074779240866,
+             -0.0004350723305797156}),
+       pose({0.0001973315436698374, -3.0159427087643512e-06, 0.021399070326594983},
+            {0.9999853886467781, -0.00021122585555302548, 0.005398762678371694,
+             0.00017674312672806})},
+      {0.046,
+       pose({-0.00014499835289114537, 4.520102982333184e-05, -2.040044183927378e-05},
+            {0.9999968703234142, 0.0005111622288399947, 0.0022537412450730865,
+             -0.0009584920201942377}),
+       pose({0.00010564524914981902, 1.3009594801399806e-05, 0.019851604493951333},
+            {0.9999915436469348, 0.00026168272669832175, 0.004081679492471393,
+             -0.00042900966400580574})},
+      {0.049,
+       pose({-0.00014502661225047686, 4.52071756458191e-05, 8.839530017605308e-05},
+            {0.9999970140003911, 0.0005042708231006759, 0.002190659022737358,
+             -0.0009584958449701496}),
+       pose({0.00010392539624388897, 1.3268832158554571e-05, 0.020057758960767533},
+            {0.9999918226449255, 0.0002555109725461265, 0.0040131370652179334,
+             -0.0004290551463692897})},
+  };
+}
+
+// The landing (issue 18): the tray's pins in the chamfers and its base reaching the block, the
+// upper tray tilted on the rim (0.1-0.25 mm deep, columns whose lengths vary over the region by
+// as much as the deepest: the regions where a cell's bound comes from the heights of its part
+// of each segment and face, not of the whole), each pose as it is and moved by 2 um.
+TEST(DepthPass, EqualsTheReferenceOnTheLandingTrays) {
+  const geometry::Shape fixture = vcontact::test::scenarioMesh("fixture_10k.stl");
+  const geometry::Shape tray = vcontact::test::scenarioMesh("tray_10k.stl");
+  std::mt19937 rng(21);
+  int trayPoses = 0, upperPoses = 0;
+  for (const LandingPose& p : landingPoses()) {
+    const std::string t = " at " + std::to_string(p.t) + " s";
+    for (const bool moved : {false, true}) {
+      const Isometry3d J = moved ? jitter(rng, 2e-6) : Isometry3d::Identity();
+      trayPoses += expectSameDepth(tray, J * p.tray, fixture, Isometry3d::Identity(),
+                                   "tray on fixture" + t, true);
+      upperPoses += expectSameDepth(tray, J * p.upper, tray, p.tray, "upper tray" + t, true);
+    }
+  }
+  // In contact at every pose but the upper tray's first (t = 0.016 s): not vacuous.
+  EXPECT_GE(trayPoses, 12);
+  EXPECT_GE(upperPoses, 10);
 }
 
 // A lens of two 10k spheres (its poles in the region, where slivers of faces meet).
