@@ -13,8 +13,8 @@
 //   rest pose or at the first pose in contact from 23 ms on (the landing), on the boundary segments
 //   of the query (its last patch's) (the pass of 89ea7e6, kept in the tests as
 //   ReferenceColumnDepth, against volume/column_depth.cpp).
-// Counters: V (m³), the leaf pairs the cache holds and its refreshes, so that a fast wrong answer
-// shows beside its time.
+// Counters: V (m³), the leaf pairs the cache holds, its refreshes and its plain descents (after
+// a recording no query reused), so that a fast wrong answer shows beside its time.
 
 #include <benchmark/benchmark.h>
 
@@ -95,6 +95,7 @@ void query(benchmark::State& state, std::size_t k, std::size_t first, std::size_
   state.counters["V"] = cv.volume;
   state.counters["leaf_pairs"] = static_cast<double>(cache.leafPairs.size());
   state.counters["refreshes"] = static_cast<double>(cache.refreshes);
+  state.counters["plain"] = static_cast<double>(cache.plain);
 }
 
 /// The depth pass alone on the segments of pair k's query at pose `at` of the trajectory: the

@@ -55,6 +55,10 @@ namespace vcontact::volume {
 /// query tests those instead of descending both trees; a query beyond that re-records them.
 /// The result is the same as without the cache up to the rounding of the sums (the order in
 /// which crossings are found changes the integration's apex). One cache per pair and thread.
+/// A recording that no query reused (the pair moves farther than m between queries, as in a
+/// landing) is not repeated at the next miss: that query descends as without the cache and
+/// keeps only its pose (`recorded` false), and the pairs are recorded again once a query
+/// finds itself within m of the last pose kept.
 struct MeshMeshCache {
   /// m as a fraction of the two root boxes' half-diagonals: for 30 mm parts, 40 µm, some
   /// steps of a stiff contact; large enough to be reused across a step's evaluations, small
@@ -66,8 +70,11 @@ struct MeshMeshCache {
   Eigen::Isometry3d X_BA = Eigen::Isometry3d::Identity();  ///< pose they were recorded at
   double reach = 0.0;                                      ///< m, in metres
   std::vector<std::pair<int, int>> leafPairs;              ///< node indices (A, B)
-  long reuses = 0;     ///< queries answered from the recorded pairs
-  long refreshes = 0;  ///< descents that recorded them
+  bool recorded = false;    ///< leafPairs are those of X_BA (false: X_BA is a plain descent's)
+  long reuses = 0;          ///< queries answered from the recorded pairs
+  long refreshes = 0;       ///< descents that recorded them
+  long plain = 0;           ///< descents that did not record (the last recording went unused)
+  long reusesAtRecord = 0;  ///< `reuses` when the pairs were last recorded
 
   /// Are the recorded pairs valid for these trees at relative pose X_BA_now?
   bool covers(const geometry::MeshBvh& treeA, const geometry::MeshBvh& treeB,

@@ -46,7 +46,9 @@ void TreePairDescent::record(MeshMeshCache& cache) {
   cache.b = &b_;
   cache.X_BA = X_BA_;
   cache.reach = reach;
+  cache.recorded = true;
   ++cache.refreshes;
+  cache.reusesAtRecord = cache.reuses;
 }
 
 }  // namespace internal

@@ -36,7 +36,10 @@ class TreePairDescent {
 
   /// Calls atLeaves(ia, ib) (node indices of A's and B's trees) for every overlapping pair of
   /// leaves: by descending both trees, or with a cache from its recorded pairs (recorded
-  /// again first when it does not cover X_BA).
+  /// again first when it does not cover X_BA, unless its last recording went unused: then
+  /// by the plain descent, keeping only the pose). Either way in the same order: the
+  /// descent's order, of which a recording keeps a superset (every ancestor of an
+  /// overlapping leaf pair overlaps when grown).
   template <typename AtLeaves>
   void forEachLeafPair(MeshMeshCache* cache, const AtLeaves& atLeaves) {
     const auto overlap = [this](int ia, int ib) { return overlaps(ia, ib); };
@@ -44,10 +47,19 @@ class TreePairDescent {
       descend(overlap, atLeaves);
       return;
     }
-    if (cache->covers(a_, b_, X_BA_)) {
+    const bool near = cache->covers(a_, b_, X_BA_);
+    if (near && cache->recorded) {
       ++cache->reuses;
-    } else {
+    } else if (near || cache->a != &a_ || cache->b != &b_ ||
+               cache->reuses > cache->reusesAtRecord) {
       record(*cache);
+    } else {
+      // The last recording went unused: descend without one, keep the pose (MeshMeshCache).
+      ++cache->plain;
+      cache->recorded = false;
+      cache->X_BA = X_BA_;
+      descend(overlap, atLeaves);
+      return;
     }
     for (const auto& [ia, ib] : cache->leafPairs) {
       if (overlaps(ia, ib)) atLeaves(ia, ib);

@@ -207,6 +207,36 @@ TEST(FastMeshMesh, CachedLeafPairsGiveTheFreshResultAlongAPath) {
   }
 }
 
+// A pair that moves farther than the reach between queries (a landing) wastes each recording:
+// after one unused recording the cache descends plainly, keeping only the pose, records again
+// once two queries come within the reach, and records at the next jump after a reused one.
+// Each answer is the fresh one (the plain descent is the fresh query's own path; the reused
+// pairs come in the descent's order, so the same crossings in the same order).
+TEST(FastMeshMesh, CacheDescendsPlainlyAfterAnUnusedRecording) {
+  const std::vector<Case> all = cases();
+  const Case& c = all.front();
+  MeshMeshCache cache;
+  const double reach = MeshMeshCache::kReach *
+                       (c.a->bvh.root().halfExtent.norm() + c.b->bvh.root().halfExtent.norm());
+  // 4 jumps of 3 reaches, 4 steps of a tenth of the reach, then a jump again.
+  const double steps[] = {0, 3, -3, 3, -3, 0.1, 0.1, 0.1, 0.1, 3};
+  Isometry3d X_WA = c.X_WA;
+  const Vector3d dir = Vector3d(1, 2, 2) / 3.0;  // a unit vector
+  for (double s : steps) {
+    X_WA.translation() += dir * (s * reach);
+    const ContactVolume fresh = fast(*c.a, X_WA, *c.b, c.X_WB);
+    const ContactVolume cached =
+        meshMeshContact(c.a->bvh, c.a->topo, X_WA, c.b->bvh, c.b->topo, c.X_WB, &cache).aggregate;
+    EXPECT_EQ(cached.volume, fresh.volume) << "step " << s;
+    EXPECT_EQ(cached.p_WC, fresh.p_WC) << "step " << s;
+  }
+  // Recorded at the first query, descended plainly at the 4 jumps, recorded at the first
+  // small step, reused by the next 3, recorded at the last jump.
+  EXPECT_EQ(cache.plain, 4);
+  EXPECT_EQ(cache.refreshes, 3);
+  EXPECT_EQ(cache.reuses, 3);
+}
+
 // Another pair of trees, or the same trees swapped, is never answered from the cache.
 TEST(FastMeshMesh, CacheIsForItsOwnTrees) {
   const std::vector<Case> all = cases();
