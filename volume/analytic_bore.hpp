@@ -36,6 +36,9 @@ struct BoreSection {
   double radius = 0.0;
   double zeta_lo = -std::numeric_limits<double>::infinity();
   double zeta_hi = std::numeric_limits<double>::infinity();
+  /// Tilted bores: every slice by the polar quadrature, none by the closed forms (the
+  /// reference the tests and benchmarks compare them with).
+  bool polar_slices = false;
 };
 
 struct BoreContact {

@@ -1,0 +1,216 @@
+#include "volume/analytic_bore_slices.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "volume/analytic_segment.hpp"
+
+namespace vcontact::volume::detail {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// The first harmonic of the circle's side of the ellipse must exceed the second this many
+// times for its derivative to vanish only twice (more than √20, see discLessEllipse).
+constexpr double kHarmonicRatio = 5.0;
+// Below −kEmptyMargin R² the largest value of the side (bounded through its harmonics) leaves
+// no doubt that the ellipse holds the disc; the harmonics carry a few ε R² of rounding.
+constexpr double kEmptyMargin = 64.0 * kEps;
+constexpr int kNewtonSteps = 100;  // Newton, else bisection: at most ~60 halvings of π
+constexpr int kGoldenSteps = 60;   // the deepest ray, to 1e-12 of the arc
+
+Segment wholeDisc(double r) {
+  const double A = M_PI * r * r;
+  return {A, A * r, 1.25 * A * r * r, 0.25 * A * r * r};
+}
+
+// Removes the region g, whose moments are about a point δ further along u.
+void subtract(InSlice& m, const Segment& g, double delta) {
+  m.A -= g.A;
+  m.S1 -= g.S1 + delta * g.A;
+  m.S11 -= g.S11 + 2.0 * delta * g.S1 + delta * delta * g.A;
+  m.S22 -= g.S22;
+}
+
+// The circle's point at ψ from its direction u (x = r (cos ψ u + sin ψ u⊥)) against the
+// ellipse: f(ψ) = |S⁻¹(x − c)|² − R², positive outside.
+struct Side {
+  double r;
+  Vector2d u, w;  // u and u⊥
+  Vector2d c;
+  Matrix2d Sinv;
+  double R;
+
+  Vector2d at(double psi) const { return r * (std::cos(psi) * u + std::sin(psi) * w); }
+  double f(double psi) const {
+    const double y = (Sinv * (at(psi) - c)).norm();
+    return (y - R) * (y + R);
+  }
+  double df(double psi) const {
+    const Vector2d y = Sinv * (at(psi) - c);
+    const Vector2d dx = r * (-std::sin(psi) * u + std::cos(psi) * w);
+    return 2.0 * y.dot(Sinv * dx);
+  }
+  // The root of f in (a, b), where f changes sign once, from the guess x: Newton kept in the
+  // bracket, bisection where it leaves it.
+  double root(double a, double b, double x) const {
+    const bool posA = f(a) > 0.0;
+    for (int i = 0; i < kNewtonSteps; ++i) {
+      const double fx = f(x);
+      if (fx == 0.0) return x;
+      ((fx > 0.0) == posA ? a : b) = x;
+      const double d = df(x);
+      double next = d != 0.0 ? x - fx / d : 0.5 * (a + b);
+      if (!(next > a && next < b)) next = 0.5 * (a + b);
+      if (std::abs(next - x) <= 4.0 * kEps * std::max(1.0, std::abs(x)) || !(b - a > 0.0))
+        return next;
+      x = next;
+    }
+    return x;
+  }
+  // The ray's radial depth r − ρ_E at ψ (ρ_E its exit from the ellipse, 0 behind the centre).
+  double rayDepth(double psi) const {
+    const Vector2d d = Sinv * (std::cos(psi) * u + std::sin(psi) * w), s = Sinv * c;
+    const double qa = d.squaredNorm(), qb = -2.0 * d.dot(s), qc = (s.norm() - R) * (s.norm() + R);
+    const double disc = qb * qb - 4.0 * qa * qc;
+    if (!(disc > 0.0)) return r;
+    const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
+    const double exit = std::max(q / qa, qc / q);
+    return std::max(0.0, r - std::max(0.0, exit));
+  }
+};
+
+double angleBetween(const Vector2d& a, const Vector2d& b) {
+  return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
+}
+
+// The moments about the centre of the segment of the disc of radius ρ beyond the chord
+// n·y = ρ cos θ (n unit): area, ∫y, ∫y yᵀ.
+struct Moments2 {
+  double A;
+  Vector2d m1;
+  Matrix2d m2;
+};
+
+Moments2 segmentAbout(double rho, const Vector2d& n, double theta) {
+  const Segment g = shallowSegmentMoments(rho, theta);
+  const Vector2d t(-n.y(), n.x());
+  return {
+      g.A, (rho * g.A - g.S1) * n,
+      (rho * rho * g.A - 2.0 * rho * g.S1 + g.S11) * n * n.transpose() + g.S22 * t * t.transpose()};
+}
+
+// The largest depth over ψ ∈ [lo, hi] by golden section (one crest: the crescent's).
+double deepest(const Side& s, double lo, double hi) {
+  const double k = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi, x1 = b - k * (b - a), x2 = a + k * (b - a);
+  double f1 = s.rayDepth(x1), f2 = s.rayDepth(x2);
+  for (int i = 0; i < kGoldenSteps; ++i) {
+    if (f1 < f2) {
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + k * (b - a);
+      f2 = s.rayDepth(x2);
+    } else {
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - k * (b - a);
+      f1 = s.rayDepth(x1);
+    }
+  }
+  return std::max({f1, f2, s.rayDepth(lo), s.rayDepth(hi)});
+}
+
+}  // namespace
+
+InSlice discLessBore(double r, double R, double e) {
+  InSlice m;
+  const double delta = r + e - R;  // the circles' overlap along u
+  if (!(r > 0.0) || delta <= 0.0) return m;
+  if (e >= r + R || r >= e + R) {  // the bore misses the disc, or lies wholly inside it
+    const Segment d = wholeDisc(r);
+    m = {d.A, d.S1, d.S11, d.S22, 0.0, 2.0 * r, 2.0 * r};
+    if (r >= e + R) subtract(m, wholeDisc(R), delta);
+    return m;
+  }
+  // two segments cut by the chord through the circles' crossings (analytic_bore.hpp)
+  const double tPin = segmentAngle(r, delta * (r + e + R) / (2.0 * e));
+  const double tBore = segmentAngle(R, delta * (r - e + R) / (2.0 * e));
+  const Segment g = shallowSegmentMoments(r, tPin);
+  const double width = tPin >= 0.5 * M_PI ? 2.0 * r : 2.0 * r * std::sin(tPin);
+  m = {g.A, g.S1, g.S11, g.S22, 2.0 * R * std::sin(tBore), width, delta};
+  subtract(m, shallowSegmentMoments(R, tBore), delta);
+  return m;
+}
+
+SliceEllipse boreEllipse(const Eigen::Vector3d& point, const Eigen::Vector3d& axis, double R,
+                         double zeta) {
+  SliceEllipse E;
+  E.R = R;
+  E.c = (point + axis * ((zeta - point.z()) / axis.z())).head<2>();
+  const double s2 = axis.head<2>().squaredNorm();
+  if (s2 > 0.0) {  // stretched by 1/cos γ along the axis' shadow u: 1/a_z − 1 = s²/(a_z(1 + a_z))
+    const Vector2d u = axis.head<2>() / std::sqrt(s2);
+    E.S += s2 / (axis.z() * (1.0 + axis.z())) * u * u.transpose();
+  }
+  return E;
+}
+
+// f(φ) = |S⁻¹(x − c)|² − R² on the circle x = r(cos φ, sin φ) is, with P = S⁻², the
+// trigonometric polynomial A₀ − 2r (Pc)·(cos φ, sin φ) + r² ((P₁₁ − P₂₂)/2 cos 2φ + P₁₂ sin 2φ),
+// A₀ = r² tr P/2 + cᵀPc − R². With ρ₁ = 2r|Pc| and ρ₂ the second harmonic's amplitude, f′ is
+// −ρ₁ sin ψ plus at most 2ρ₂ (ψ from the first harmonic's crest), with a derivative within 4ρ₂
+// of −ρ₁ cos ψ: for ρ₁ > √20 ρ₂ f′ vanishes once near ψ = 0 and once near π, so f has one
+// crest and one trough, and two roots when f(0) > 0 > f(π), one on either side of the crest.
+bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out) {
+  const Matrix2d Sinv = E.S.inverse(), P = Sinv * Sinv;
+  const Vector2d Pc = P * E.c;
+  const double rho1 = 2.0 * r * Pc.norm();
+  const double rho2 = r * r * std::hypot(0.5 * (P(0, 0) - P(1, 1)), P(0, 1));
+  const double A0 = 0.5 * r * r * P.trace() + E.c.dot(Pc) - E.R * E.R;
+  if (!(rho1 > kHarmonicRatio * rho2)) return false;
+  if (A0 + rho1 + rho2 < -kEmptyMargin * E.R * E.R) {  // the ellipse holds the disc
+    out = EllipseSlice{};
+    return true;
+  }
+  if (A0 - rho1 - rho2 > 0.0)
+    return false;  // no crossing: the disc holds the ellipse, or misses it
+  const Vector2d u = -Pc / Pc.norm();
+  const Side s{r, u, Vector2d(-u.y(), u.x()), E.c, Sinv, E.R};
+  if (!(s.f(0.0) > 0.0 && s.f(M_PI) < 0.0)) return false;
+  const double guess = std::acos(std::clamp(-A0 / rho1, -1.0, 1.0));
+  const double hi = s.root(0.0, M_PI, guess), lo = s.root(-M_PI, 0.0, -guess);
+  // the disc's arc outside the ellipse is [lo, hi], on the side n of the chord through the
+  // crossings; the region is the disc's segment there less the ellipse's (header)
+  const double thetaD = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  const Vector2d n = std::cos(mid) * s.u + std::sin(mid) * s.w;
+  const Moments2 disc = segmentAbout(r, n, thetaD);
+  const Vector2d yHi = Sinv * (s.at(hi) - E.c), yLo = Sinv * (s.at(lo) - E.c);
+  const Vector2d m = (E.S * n).normalized();
+  const double thetaE = 0.5 * (angleBetween(m, yHi) + angleBetween(m, yLo));
+  const Moments2 y = segmentAbout(E.R, m, thetaE);
+  const double det = E.S.determinant();
+  const Vector2d Sm1 = E.S * y.m1;
+  const double AE = det * y.A;
+  const Vector2d m1E = det * (y.A * E.c + Sm1);
+  const Matrix2d m2E = det * (y.A * E.c * E.c.transpose() + E.c * Sm1.transpose() +
+                              Sm1 * E.c.transpose() + E.S * y.m2 * E.S);
+  out.A = disc.A - AE;
+  out.Sx = disc.m1.x() - m1E.x();
+  out.Sy = disc.m1.y() - m1E.y();
+  out.Sxx = disc.m2(0, 0) - m2E(0, 0);
+  out.Sxy = disc.m2(0, 1) - m2E(0, 1);
+  out.Syy = disc.m2(1, 1) - m2E(1, 1);
+  out.arcX = 2.0 * r * std::sin(thetaD) * n.x();
+  out.arcY = 2.0 * r * std::sin(thetaD) * n.y();
+  out.arcLength = 2.0 * r * thetaD;
+  out.depth = deepest(s, lo, hi);
+  return true;
+}
+
+}  // namespace vcontact::volume::detail
