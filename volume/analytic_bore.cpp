@@ -358,18 +358,20 @@ RayVector integrateRays(PolarSlice& sl) {
   return sum;
 }
 
-// The slice's moments as integrateRays gives them: by closed forms (analytic_bore_ellipse.hpp)
-// where every plane's line misses the disc and the circle crosses the ellipse twice or lies
-// in it, by rays elsewhere or when `polarOnly`.
+// The slice's moments as integrateRays gives them: by closed forms (analytic_bore_slices.hpp)
+// where the circle crosses the ellipse twice or lies in it, the faces' lines cutting the
+// region or not; by rays elsewhere or when `polarOnly`.
 RayVector sliceMoments(PolarSlice& sl, bool polarOnly) {
   if (polarOnly) return integrateRays(sl);
+  bool cut = false;  // a line crosses the disc
   for (const auto& [m, k] : sl.lines) {
-    if (k >= sl.r * m.norm()) continue;                   // the whole disc on B's side
-    if (k <= -sl.r * m.norm()) return RayVector::Zero();  // none of it
-    return integrateRays(sl);
+    if (k <= -sl.r * m.norm()) return RayVector::Zero();  // the disc outside B
+    cut = cut || k < sl.r * m.norm();
   }
   detail::EllipseSlice e;
-  if (!detail::discLessEllipse(sl.r, sl.ellipse, e)) return integrateRays(sl);
+  const bool closed = cut ? detail::discLessEllipseCut(sl.r, sl.ellipse, sl.lines, e)
+                          : detail::discLessEllipse(sl.r, sl.ellipse, e);
+  if (!closed) return integrateRays(sl);
   sl.depth = std::max(sl.depth, e.depth);
   RayVector x;
   x << e.A, e.Sx, e.Sy, e.Sxx, e.Sxy, e.Syy, e.arcX, e.arcY, e.arcLength;

@@ -1,8 +1,10 @@
 #include "volume/analytic_bore_slices.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "volume/analytic_segment.hpp"
 
@@ -38,11 +40,11 @@ void subtract(InSlice& m, const Segment& g, double delta) {
 // The circle's point at ψ from its direction u (x = r (cos ψ u + sin ψ u⊥)) against the
 // ellipse: f(ψ) = |S⁻¹(x − c)|² − R², positive outside.
 struct Side {
-  double r;
+  double r = 0.0;
   Vector2d u, w;  // u and u⊥
   Vector2d c;
   Matrix2d Sinv;
-  double R;
+  double R = 0.0;
 
   Vector2d at(double psi) const { return r * (std::cos(psi) * u + std::sin(psi) * w); }
   double f(double psi) const {
@@ -167,24 +169,41 @@ SliceEllipse boreEllipse(const Eigen::Vector3d& point, const Eigen::Vector3d& ax
 // −ρ₁ sin ψ plus at most 2ρ₂ (ψ from the first harmonic's crest), with a derivative within 4ρ₂
 // of −ρ₁ cos ψ: for ρ₁ > √20 ρ₂ f′ vanishes once near ψ = 0 and once near π, so f has one
 // crest and one trough, and two roots when f(0) > 0 > f(π), one on either side of the crest.
-bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out) {
+namespace {
+
+// The crossings of the circle with the ellipse (the comment above): 0 where the ellipse holds
+// the disc, 1 for two crossings ψ = lo < 0 < hi about the direction s.u where f is largest,
+// −1 where neither is certified.
+int crossings(double r, const SliceEllipse& E, Side& s, double& lo, double& hi) {
   const Matrix2d Sinv = E.S.inverse(), P = Sinv * Sinv;
   const Vector2d Pc = P * E.c;
   const double rho1 = 2.0 * r * Pc.norm();
   const double rho2 = r * r * std::hypot(0.5 * (P(0, 0) - P(1, 1)), P(0, 1));
   const double A0 = 0.5 * r * r * P.trace() + E.c.dot(Pc) - E.R * E.R;
-  if (!(rho1 > kHarmonicRatio * rho2)) return false;
-  if (A0 + rho1 + rho2 < -kEmptyMargin * E.R * E.R) {  // the ellipse holds the disc
+  if (!(rho1 > kHarmonicRatio * rho2)) return -1;
+  if (A0 + rho1 + rho2 < -kEmptyMargin * E.R * E.R) return 0;  // the ellipse holds the disc
+  if (A0 - rho1 - rho2 > 0.0) return -1;  // no crossing: the disc holds the ellipse, or misses it
+  const Vector2d u = -Pc / Pc.norm();
+  s = Side{r, u, Vector2d(-u.y(), u.x()), E.c, Sinv, E.R};
+  if (!(s.f(0.0) > 0.0 && s.f(M_PI) < 0.0)) return -1;
+  const double guess = std::acos(std::clamp(-A0 / rho1, -1.0, 1.0));
+  hi = s.root(0.0, M_PI, guess);
+  lo = s.root(-M_PI, 0.0, -guess);
+  return 1;
+}
+
+}  // namespace
+
+bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out) {
+  Side s;
+  double lo = 0.0, hi = 0.0;
+  const int k = crossings(r, E, s, lo, hi);
+  if (k < 0) return false;
+  if (k == 0) {
     out = EllipseSlice{};
     return true;
   }
-  if (A0 - rho1 - rho2 > 0.0)
-    return false;  // no crossing: the disc holds the ellipse, or misses it
-  const Vector2d u = -Pc / Pc.norm();
-  const Side s{r, u, Vector2d(-u.y(), u.x()), E.c, Sinv, E.R};
-  if (!(s.f(0.0) > 0.0 && s.f(M_PI) < 0.0)) return false;
-  const double guess = std::acos(std::clamp(-A0 / rho1, -1.0, 1.0));
-  const double hi = s.root(0.0, M_PI, guess), lo = s.root(-M_PI, 0.0, -guess);
+  const Matrix2d& Sinv = s.Sinv;
   // the disc's arc outside the ellipse is [lo, hi], on the side n of the chord through the
   // crossings; the region is the disc's segment there less the ellipse's (header)
   const double thetaD = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
@@ -210,6 +229,152 @@ bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out) {
   out.arcY = 2.0 * r * std::sin(thetaD) * n.y();
   out.arcLength = 2.0 * r * thetaD;
   out.depth = deepest(s, lo, hi);
+  return true;
+}
+
+namespace {
+
+// Moments of a region by Green's theorem over its boundary, counter-clockwise: area, ∫x, ∫y,
+// ∫x², ∫xy, ∫y² as ∮ of x dy − y dx over 2, x²/2 dy, −y²/2 dx, x³/3 dy, x²y/2 dy, −y³/3 dx;
+// and the circle's arcs on the boundary (∫ρ(cos φ, sin φ) dφ, their length, their angles).
+struct Green {
+  double A = 0.0, X = 0.0, Y = 0.0, XX = 0.0, XY = 0.0, YY = 0.0;
+  Vector2d arc = Vector2d::Zero();
+  double arcLength = 0.0;
+  std::vector<std::pair<double, double>> arcs;
+};
+
+// A segment from P to Q: the integrands are cubics in its parameter, exact by two Gauss points.
+void addSegment(Green& g, const Vector2d& P, const Vector2d& Q) {
+  const Vector2d d = Q - P;
+  const double h = 0.5 / std::sqrt(3.0);
+  for (double t : {0.5 - h, 0.5 + h}) {
+    const double x = P.x() + t * d.x(), y = P.y() + t * d.y();
+    g.A += 0.25 * (x * d.y() - y * d.x());
+    g.X += 0.25 * x * x * d.y();
+    g.Y -= 0.25 * y * y * d.x();
+    g.XX += x * x * x * d.y() / 6.0;
+    g.XY += 0.25 * x * x * y * d.y();
+    g.YY -= y * y * y * d.x() / 6.0;
+  }
+}
+
+// The arc of the circle of radius ρ about the origin from angle a to b > a.
+void addArc(Green& g, double rho, double a, double b) {
+  const double r2 = rho * rho, r3 = r2 * rho, r4 = r2 * r2;
+  const auto at = [&](double p, double k) {  // the antiderivatives at p, as k = 1
+    const double sp = std::sin(p), cp = std::cos(p), s2 = std::sin(2.0 * p), s4 = std::sin(4.0 * p);
+    return std::array<double, 5>{k * (sp - sp * sp * sp / 3.0), k * (-cp + cp * cp * cp / 3.0),
+                                 k * (3.0 * p / 8.0 + s2 / 4.0 + s4 / 32.0),
+                                 k * (-cp * cp * cp * cp / 4.0),
+                                 k * (3.0 * p / 8.0 - s2 / 4.0 + s4 / 32.0)};
+  };
+  const std::array<double, 5> fa = at(a, 1.0), fb = at(b, 1.0);
+  g.A += 0.5 * r2 * (b - a);
+  g.X += 0.5 * r3 * (fb[0] - fa[0]);
+  g.Y += 0.5 * r3 * (fb[1] - fa[1]);
+  g.XX += r4 / 3.0 * (fb[2] - fa[2]);
+  g.XY += 0.5 * r4 * (fb[3] - fa[3]);
+  g.YY += r4 / 3.0 * (fb[4] - fa[4]);
+  g.arc += rho * Vector2d(std::sin(b) - std::sin(a), std::cos(a) - std::cos(b));
+  g.arcLength += rho * (b - a);
+  g.arcs.emplace_back(a, b);
+}
+
+// The disc of radius ρ about the origin cut by the half-planes a·y ≤ b (a convex region: the
+// circle's arcs inside them all, and each line's chord inside the others).
+Green clippedDisc(double rho, const HalfPlanes& hp) {
+  Green g;
+  std::vector<double> cuts;
+  for (const auto& [a, b] : hp) {
+    const double na = a.norm();
+    if (!(na > 0.0)) {
+      if (b < 0.0) return Green{};
+      continue;
+    }
+    const double q = b / (rho * na);
+    if (q <= -1.0) return Green{};  // the disc is outside
+    if (q >= 1.0) continue;
+    const double alpha = std::atan2(a.y(), a.x()), beta = std::acos(q);
+    cuts.push_back(alpha - beta);
+    cuts.push_back(alpha + beta);
+  }
+  if (cuts.empty()) {
+    addArc(g, rho, -M_PI, M_PI);
+    return g;
+  }
+  const double c0 = cuts[0];
+  for (double& c : cuts) c = c0 + std::fmod(std::fmod(c - c0, 2.0 * M_PI) + 2.0 * M_PI, 2.0 * M_PI);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.push_back(c0 + 2.0 * M_PI);
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
+    const Vector2d p = rho * Vector2d(std::cos(mid), std::sin(mid));
+    if (cuts[i + 1] > cuts[i] && std::all_of(hp.begin(), hp.end(), [&](const auto& h) {
+          return h.first.dot(p) <= h.second;
+        }))
+      addArc(g, rho, cuts[i], cuts[i + 1]);
+  }
+  for (std::size_t i = 0; i < hp.size(); ++i) {
+    const auto& [a, b] = hp[i];
+    const double na = a.norm(), dist = std::abs(b) / na;
+    if (!(na > 0.0) || !(dist < rho)) continue;
+    const Vector2d foot = a * (b / (na * na)), t = Vector2d(-a.y(), a.x()) / na;
+    double lo = -std::sqrt((rho - dist) * (rho + dist)), hi = -lo;
+    for (std::size_t j = 0; j < hp.size() && lo < hi; ++j) {
+      if (j == i) continue;
+      const double k = hp[j].first.dot(t), rhs = hp[j].second - hp[j].first.dot(foot);
+      if (k > 0.0) hi = std::min(hi, rhs / k);
+      if (k < 0.0) lo = std::max(lo, rhs / k);
+      if (k == 0.0 && rhs < 0.0) hi = lo;
+    }
+    if (hi > lo) addSegment(g, foot + lo * t, foot + hi * t);
+  }
+  return g;
+}
+
+}  // namespace
+
+bool discLessEllipseCut(double r, const SliceEllipse& E, const HalfPlanes& lines,
+                        EllipseSlice& out) {
+  Side s;
+  double lo = 0.0, hi = 0.0;
+  const int k = crossings(r, E, s, lo, hi);
+  if (k < 0) return false;
+  out = EllipseSlice{};
+  if (k == 0) return true;
+  // (disc ∩ {n·x ≥ h} less ellipse ∩ {n·x ≥ h}) ∩ the lines' half-planes, as discLessEllipse
+  const double thetaD = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  const Vector2d n = std::cos(mid) * s.u + std::sin(mid) * s.w;
+  HalfPlanes hp = lines;
+  hp.emplace_back(-n, -r * std::cos(thetaD));
+  const Green D = clippedDisc(r, hp);
+  for (auto& [a, b] : hp) {  // a·(c + S y) ≤ b
+    b -= a.dot(E.c);
+    a = E.S * a;
+  }
+  const Green Y = clippedDisc(E.R, hp);
+  const double det = E.S.determinant();
+  const Vector2d Sm1 = E.S * Vector2d(Y.X, Y.Y);
+  Matrix2d m2;
+  m2 << Y.XX, Y.XY, Y.XY, Y.YY;
+  const Vector2d m1E = det * (Y.A * E.c + Sm1);
+  const Matrix2d m2E = det * (Y.A * E.c * E.c.transpose() + E.c * Sm1.transpose() +
+                              Sm1 * E.c.transpose() + E.S * m2 * E.S);
+  out.A = D.A - det * Y.A;
+  out.Sx = D.X - m1E.x();
+  out.Sy = D.Y - m1E.y();
+  out.Sxx = D.XX - m2E(0, 0);
+  out.Sxy = D.XY - m2E(0, 1);
+  out.Syy = D.YY - m2E(1, 1);
+  out.arcX = D.arc.x();
+  out.arcY = D.arc.y();
+  out.arcLength = D.arcLength;
+  const double phiU = std::atan2(s.u.y(), s.u.x());
+  for (const auto& [a, b] : D.arcs) {  // the deepest ray whose end lies in B
+    const double shift = std::round((0.5 * (a + b) - phiU) / (2.0 * M_PI)) * 2.0 * M_PI;
+    out.depth = std::max(out.depth, deepest(s, a - phiU - shift, b - phiU - shift));
+  }
   return true;
 }
 

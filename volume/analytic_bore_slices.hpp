@@ -11,6 +11,8 @@
 // caller's polar quadrature.
 
 #include <Eigen/Core>
+#include <utility>
+#include <vector>
 
 namespace vcontact::volume::detail {
 
@@ -52,5 +54,16 @@ struct EllipseSlice {
 /// harmonic dominates, positive on one side and negative on the other). Returns false, and
 /// leaves `out` alone, otherwise.
 bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out);
+
+/// Half-planes a·x ≤ b.
+using HalfPlanes = std::vector<std::pair<Eigen::Vector2d, double>>;
+
+/// The same region cut by half-planes (B's side of its faces' lines in the slice): the disc's
+/// and the ellipse's parts beyond the chord through the crossings, each cut by the lines, by
+/// Green's theorem on their boundaries (the circle's arcs, the chords' pieces), the ellipse's
+/// through its affine map; depth over the disc's arcs inside the lines. The same cases as
+/// discLessEllipse are declined.
+bool discLessEllipseCut(double r, const SliceEllipse& E, const HalfPlanes& lines,
+                        EllipseSlice& out);
 
 }  // namespace vcontact::volume::detail

@@ -278,9 +278,10 @@ TEST(AnalyticBore, DiscLessEllipseEmptyOrDeclined) {
 }
 
 // The chamfered pin in a bore tilted by 0.2 mrad to 10 mrad, between two faces across the
-// bore's axis (so tilted from the slices: bands where their lines cross the disc, left to
-// the rays): the closed-form slices against the polar ones, V, centroid, J_v, n and area
-// within the outer quadrature's 1e-9 asked (1e-8 for V: the bands' 1e-4 of their share).
+// bore's axis (so tilted from the slices: bands where their lines cross the disc, the region
+// cut by them by Green's theorem): the closed-form slices against the polar ones, V,
+// centroid, J_v, n and area within the outer quadrature's 1e-9 asked (1e-8 for V: the
+// bands' 1e-4 of their share).
 TEST(AnalyticBore, TiltedClosedFormSlicesAreThePolarSlices) {
   const RevolutionProfile pin = chamferedProfile();
   for (double gamma : {2e-4, 1e-3, 1e-2})
@@ -304,7 +305,10 @@ TEST(AnalyticBore, TiltedClosedFormSlicesAreThePolarSlices) {
       EXPECT_NEAR((c.J_v - p.J_v).norm(), 0.0, 1e-8 * p.J_v.norm()) << gamma << " " << ratio;
       EXPECT_NEAR((c.n_W - p.n_W).norm(), 0.0, 1e-8) << gamma << " " << ratio;
       EXPECT_NEAR(c.area, p.area, 1e-8 * p.area) << gamma << " " << ratio;
-      EXPECT_NEAR(c.depth, p.depth, 1e-6 * p.depth) << gamma << " " << ratio;
+      // depth: the largest over the slices each quadrature sampled (not the same ones) and,
+      // for the rays, over the rays sampled; the closed form's is the largest over its arcs
+      EXPECT_NEAR(c.depth, p.depth, 1e-3 * p.depth) << gamma << " " << ratio;
+      EXPECT_GE(c.depth, p.depth * (1.0 - 1e-9)) << gamma << " " << ratio;
     }
 }
 
