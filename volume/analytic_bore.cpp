@@ -215,6 +215,7 @@ struct PolarSlice {
   double depth = 0.0;
   detail::SliceEllipse ellipse;  // the bore's section
   bool touched = false;          // whether a ray met the region
+  bool withDepth = true;         // false: the area is all that is wanted
 
   // The ray's allowed radii [lo, hi] (the disc and the planes) and the bore's (r1, r2).
   struct Ray {
@@ -369,8 +370,8 @@ RayVector sliceMoments(PolarSlice& sl, bool polarOnly) {
     cut = cut || k < sl.r * m.norm();
   }
   detail::EllipseSlice e;
-  const bool closed = cut ? detail::discLessEllipseCut(sl.r, sl.ellipse, sl.lines, e)
-                          : detail::discLessEllipse(sl.r, sl.ellipse, e);
+  const bool closed = cut ? detail::discLessEllipseCut(sl.r, sl.ellipse, sl.lines, e, sl.withDepth)
+                          : detail::discLessEllipse(sl.r, sl.ellipse, e, sl.withDepth);
   if (!closed) return integrateRays(sl);
   sl.depth = std::max(sl.depth, e.depth);
   RayVector x;
@@ -409,6 +410,7 @@ struct Tilted {
   }
   double area(double zeta, double r) const {
     PolarSlice sl = sliceAt(zeta, r);
+    sl.withDepth = false;
     return sliceMoments(sl, bore.polar_slices)(0);
   }
   // The slice's moments about O and the pin's boundary inside B, per unit of the piece's

@@ -52,8 +52,9 @@ struct EllipseSlice {
 /// (an empty region), or the two curves cross in exactly two points (certified by the
 /// circle's side of the ellipse as a trigonometric polynomial of degree 2 whose first
 /// harmonic dominates, positive on one side and negative on the other). Returns false, and
-/// leaves `out` alone, otherwise.
-bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out);
+/// leaves `out` alone, otherwise. Without `withDepth` out.depth is 0 (its search is most of
+/// the cost).
+bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out, bool withDepth = true);
 
 /// Half-planes a·x ≤ b.
 using HalfPlanes = std::vector<std::pair<Eigen::Vector2d, double>>;
@@ -63,7 +64,7 @@ using HalfPlanes = std::vector<std::pair<Eigen::Vector2d, double>>;
 /// Green's theorem on their boundaries (the circle's arcs, the chords' pieces), the ellipse's
 /// through its affine map; depth over the disc's arcs inside the lines. The same cases as
 /// discLessEllipse are declined.
-bool discLessEllipseCut(double r, const SliceEllipse& E, const HalfPlanes& lines,
-                        EllipseSlice& out);
+bool discLessEllipseCut(double r, const SliceEllipse& E, const HalfPlanes& lines, EllipseSlice& out,
+                        bool withDepth = true);
 
 }  // namespace vcontact::volume::detail
