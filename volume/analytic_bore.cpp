@@ -421,6 +421,10 @@ struct Tilted {
   // boundary's length (x(13)) added, and they are taken off after (untilt).
   SliceVector slice(const PieceAt& e) {
     PolarSlice sl = sliceAt(e.zeta, e.r);
+    // the ellipse holds the circle of radius R about c: no ray is deeper than r + |c| − R,
+    // and a slice that cannot beat the deepest so far is not searched
+    const double c = sl.ellipse.c.norm();
+    sl.withDepth = !(c < bore.radius && e.r + c - bore.radius <= depth);
     const RayVector q = sliceMoments(sl, bore.polar_slices);
     depth = std::max(depth, sl.depth);
     const double A = q(0), zp = e.zeta - zo, ox = o.x(), oy = o.y();
