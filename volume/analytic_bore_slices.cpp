@@ -74,8 +74,10 @@ struct Side {
     return x;
   }
   // The ray's radial depth r − ρ_E at ψ (ρ_E its exit from the ellipse, 0 behind the centre).
-  double rayDepth(double psi) const {
-    const Vector2d d = Sinv * (std::cos(psi) * u + std::sin(psi) * w), s = Sinv * c;
+  double rayDepth(double psi) const { return depthAlong(std::cos(psi) * u + std::sin(psi) * w); }
+  // The same along the unit direction v.
+  double depthAlong(const Vector2d& v) const {
+    const Vector2d d = Sinv * v, s = Sinv * c;
     const double qa = d.squaredNorm(), qb = -2.0 * d.dot(s), qc = (s.norm() - R) * (s.norm() + R);
     const double disc = qb * qb - 4.0 * qa * qc;
     if (!(disc > 0.0)) return r;
@@ -106,7 +108,7 @@ Moments2 segmentAbout(double rho, const Vector2d& n, double theta) {
 }
 
 // The largest depth over ψ ∈ [lo, hi] by golden section (one crest: the crescent's).
-double deepest(const Side& s, double lo, double hi) {
+double deepestByAngle(const Side& s, double lo, double hi) {
   const double k = 0.5 * (std::sqrt(5.0) - 1.0);
   double a = lo, b = hi, x1 = b - k * (b - a), x2 = a + k * (b - a);
   double f1 = s.rayDepth(x1), f2 = s.rayDepth(x2);
@@ -123,6 +125,34 @@ double deepest(const Side& s, double lo, double hi) {
       f2 = f1;
       x1 = b - k * (b - a);
       f1 = s.rayDepth(x1);
+    }
+  }
+  return std::max({f1, f2, s.rayDepth(lo), s.rayDepth(hi)});
+}
+
+double deepest(const Side& s, double lo, double hi) {
+  // along the tangent τ at the arc's middle direction m (the ray m + τ m⊥), free of sines
+  // where the arc is less than π - 0.2 wide
+  const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  if (!(half < 0.5 * M_PI - 0.1)) return deepestByAngle(s, lo, hi);
+  const Vector2d m = std::cos(mid) * s.u + std::sin(mid) * s.w, mt(-m.y(), m.x());
+  const auto at = [&](double t) { return s.depthAlong((m + t * mt).normalized()); };
+  const double k = 0.5 * (std::sqrt(5.0) - 1.0), end = std::tan(half);
+  double a = -end, b = end, x1 = b - k * (b - a), x2 = a + k * (b - a);
+  double f1 = at(x1), f2 = at(x2);
+  for (int i = 0; i < kGoldenSteps; ++i) {
+    if (f1 < f2) {
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + k * (b - a);
+      f2 = at(x2);
+    } else {
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - k * (b - a);
+      f1 = at(x1);
     }
   }
   return std::max({f1, f2, s.rayDepth(lo), s.rayDepth(hi)});
