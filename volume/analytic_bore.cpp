@@ -199,7 +199,8 @@ constexpr double kFloor = 1e-6;
 constexpr double kFloorZeta = 1e-9;
 constexpr int kAngleSamples = 64;  // rays between which the intervals' changes are bisected
 constexpr int kZetaSamples = 16;   // slices a piece between which the region's ends are bisected
-constexpr int kBisections = 45;    // 2π/64 or a sixteenth of a piece to 1e-15 of it
+constexpr double kNegligible = 1e-12;  // intervals of a piece's parameter left out
+constexpr int kBisections = 45;        // 2π/64 or a sixteenth of a piece to 1e-15 of it
 
 // Per ray: area, ∫x, ∫y, ∫x², ∫xy, ∫y² per unit ψ (about the disc's centre); the pin's
 // boundary inside B as ∫ r (cos ψ, sin ψ) and ∫ r per unit ψ.
@@ -503,7 +504,9 @@ void addTiltedPiece(Tilted& T, const ProfilePiece& p, double rMax, Totals& out) 
   };
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     const double a = cuts[i], b = cuts[i + 1];
-    if (!(b > a)) continue;
+    // an interval of 1e-12 of the piece (two breakpoints bisected to the same place from two
+    // conditions) holds at most 1e-12 of the piece's length times its largest slice
+    if (!(b - a > kNegligible * (t1 - t0))) continue;
     const PieceAt mid = pieceAt(p, 0.5 * (a + b));
     if (T.area(mid.zeta, mid.r) == 0.0) continue;  // no region: none appears within
     const double tol = T.inBand(mid.zeta, rMax) ? kBandTolerance : kTiltedTolerance;
