@@ -6,7 +6,9 @@
 // assets/scenarios/ball_roll_recovered.json; a chamfered pin on its side on a plate, a solid
 // of revolution (volume/recovered_revolution.hpp). Two meshes: the pin pressed into the
 // bundled block's bore (surface/pin_in_bore: the fast method on the polyhedra against the
-// recovered pair, by slices across the pin's axis, volume/recovered_bore.hpp).
+// recovered pair, by slices across the pin's axis, volume/recovered_bore.hpp), and the tilted
+// pin's slices alone on the true shapes (surface/pin_in_bore_tilted_slices: closed-form
+// slices against polar ones, BoreSection::polar_slices).
 
 #include <benchmark/benchmark.h>
 
@@ -20,6 +22,7 @@
 #include "geometry/surface_recognition.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
+#include "volume/analytic_bore.hpp"
 #include "volume/halfspace_clip.hpp"
 #include "volume/mesh_mesh.hpp"
 #include "volume/recovered_refinement.hpp"
@@ -161,6 +164,43 @@ void registerPinInBore(const std::string& name, double tilt) {
       });
 }
 
+// The tilted pin of registerPinInBore in its bore by slices, on the true shapes (the block's
+// bore of 5.1 mm along its z axis, its faces z = 0 and −20 mm) in the pin's frame R: the
+// slices' cost without recognition, closed forms outside the faces' bands or rays throughout.
+void registerTiltedSlices(double tilt) {
+  const double r = 0.005, e = 0.0051 - r + 1e-3 * r, c = 5e-4;
+  const vcontact::volume::RevolutionProfile pin = {
+      {vcontact::volume::ProfilePiece::Kind::kLinear, 0.0, c, r - c, r},
+      {vcontact::volume::ProfilePiece::Kind::kConstant, c, 0.03 - c, r, r},
+      {vcontact::volume::ProfilePiece::Kind::kLinear, 0.03 - c, 0.03, r, r - c}};
+  Isometry3d X_BA = Isometry3d::Identity();  // as makePinInBore
+  X_BA.translation() = Eigen::Vector3d(e * std::cos(0.3), e * std::sin(0.3), -0.025);
+  const Eigen::Vector3d side(-std::sin(0.3), std::cos(0.3), 0.0), middle(0, 0, 0.015);
+  X_BA.linear() = Eigen::AngleAxisd(tilt, side).toRotationMatrix();
+  X_BA.translation() += middle - X_BA.linear() * middle;
+  const Isometry3d X_AB = X_BA.inverse();
+  vcontact::volume::BoreSection bore;
+  bore.point_R = X_AB * Eigen::Vector3d::Zero();
+  bore.axis_R = X_AB.linear() * Eigen::Vector3d::UnitZ();
+  bore.radius = 0.0051;
+  const std::vector<vcontact::volume::BorePlane> planes = {
+      {bore.axis_R, bore.point_R}, {-bore.axis_R, X_AB * Eigen::Vector3d(0.0, 0.0, -0.02)}};
+  for (const bool polar : {false, true}) {
+    const std::string name = polar ? "polar" : "closed";
+    benchmark::RegisterBenchmark(
+        ("surface/pin_in_bore_tilted_slices/" + name).c_str(), [=](benchmark::State& s) {
+          vcontact::volume::BoreSection b = bore;
+          b.polar_slices = polar;
+          vcontact::volume::BoreContact got;
+          for (auto _ : s) {
+            got = vcontact::volume::revolutionInTiltedBore(pin, X_BA, b, planes);
+            benchmark::DoNotOptimize(got);
+          }
+          s.counters["V"] = got.cv.volume;
+        });
+  }
+}
+
 [[maybe_unused]] const bool kRegistered = [] {
   registerCase("sphere10k", [] {
     return prepare(vcontact::geometry::tessellateSphere(kRadius, 100, 50), Isometry3d::Identity());
@@ -197,6 +237,7 @@ void registerPinInBore(const std::string& name, double tilt) {
   // the same pin tilted by 0.2 mrad about its middle (in the bore's wall by 8 µm at the
   // block's top face and 2 µm at its bottom): an ellipse in each slice, polar slices
   registerPinInBore("pin_in_bore_tilted", 2e-4);
+  registerTiltedSlices(2e-4);
   return true;
 }();
 

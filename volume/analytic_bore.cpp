@@ -5,12 +5,14 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "volume/analytic_bore_slices.hpp"
 #include "volume/analytic_segment.hpp"
 #include "volume/quadrature.hpp"
 
 namespace vcontact::volume {
 namespace {
 
+using detail::InSlice;
 using detail::PieceAt;
 using detail::pieceAt;
 using detail::Segment;
@@ -36,47 +38,6 @@ constexpr int kArcSamples = 32;
 constexpr int kSize = 14;
 using SliceVector = Eigen::Matrix<double, kSize, 1>;
 
-// Moments of the slice's region in its own axes (ξ along u from the disc's edge point −r u,
-// η along v), with the bore's chord inside the disc, the width across u and δ.
-struct InSlice {
-  double A = 0.0, S1 = 0.0, S11 = 0.0, S22 = 0.0;
-  double chord = 0.0, width = 0.0, depth = 0.0;
-};
-
-Segment wholeDisc(double r) {
-  const double A = M_PI * r * r;
-  return {A, A * r, 1.25 * A * r * r, 0.25 * A * r * r};
-}
-
-// Removes the region g, whose moments are about a point δ further along u.
-void subtract(InSlice& m, const Segment& g, double delta) {
-  m.A -= g.A;
-  m.S1 -= g.S1 + delta * g.A;
-  m.S11 -= g.S11 + 2.0 * delta * g.S1 + delta * delta * g.A;
-  m.S22 -= g.S22;
-}
-
-// The disc of radius r less the disc of radius R whose centre is e away along u.
-InSlice discLessBore(double r, double R, double e) {
-  InSlice m;
-  const double delta = r + e - R;  // the circles' overlap along u
-  if (!(r > 0.0) || delta <= 0.0) return m;
-  if (e >= r + R || r >= e + R) {  // the bore misses the disc, or lies wholly inside it
-    const Segment d = wholeDisc(r);
-    m = {d.A, d.S1, d.S11, d.S22, 0.0, 2.0 * r, 2.0 * r};
-    if (r >= e + R) subtract(m, wholeDisc(R), delta);
-    return m;
-  }
-  // two segments cut by the chord through the circles' crossings (analytic_bore.hpp)
-  const double tPin = detail::segmentAngle(r, delta * (r + e + R) / (2.0 * e));
-  const double tBore = detail::segmentAngle(R, delta * (r - e + R) / (2.0 * e));
-  const Segment g = detail::shallowSegmentMoments(r, tPin);
-  const double width = tPin >= 0.5 * M_PI ? 2.0 * r : 2.0 * r * std::sin(tPin);
-  m = {g.A, g.S1, g.S11, g.S22, 2.0 * R * std::sin(tBore), width, delta};
-  subtract(m, detail::shallowSegmentMoments(R, tBore), delta);
-  return m;
-}
-
 struct Slicer {
   const BoreSection& bore;
   Vector2d o = Vector2d::Zero();  // the origin O of the moments: (o, zo)
@@ -98,7 +59,7 @@ struct Slicer {
     const Vector2d c = centre(zeta);
     const double e = c.norm();
     const Vector2d u = e > 0.0 ? Vector2d(c / e) : Vector2d::UnitX(), v(-u.y(), u.x());
-    const InSlice m = discLessBore(r, bore.radius, e);
+    const InSlice m = detail::discLessBore(r, bore.radius, e);
     depth = std::max(depth, m.depth);
     // p = O + a + ξ' u + η v + z' e_z over the slice, with a = −r u − o, z' = ζ − zo
     const Vector2d a = -r * u - o, m1 = m.A * a + m.S1 * u;
@@ -238,7 +199,8 @@ constexpr double kFloor = 1e-6;
 constexpr double kFloorZeta = 1e-9;
 constexpr int kAngleSamples = 64;  // rays between which the intervals' changes are bisected
 constexpr int kZetaSamples = 16;   // slices a piece between which the region's ends are bisected
-constexpr int kBisections = 45;    // 2π/64 or a sixteenth of a piece to 1e-15 of it
+constexpr double kNegligible = 1e-12;  // intervals of a piece's parameter left out
+constexpr int kBisections = 45;        // 2π/64 or a sixteenth of a piece to 1e-15 of it
 
 // Per ray: area, ∫x, ∫y, ∫x², ∫xy, ∫y² per unit ψ (about the disc's centre); the pin's
 // boundary inside B as ∫ r (cos ψ, sin ψ) and ∫ r per unit ψ.
@@ -252,6 +214,9 @@ struct PolarSlice {
   std::vector<std::pair<Vector2d, double>> lines;  // a plane's trace: m·(ρ d) ≤ k
   double psi0 = 0.0;  // the direction away from where the bore's axis crosses the slice
   double depth = 0.0;
+  detail::SliceEllipse ellipse;  // the bore's section
+  bool touched = false;          // whether a ray met the region
+  bool withDepth = true;         // false: the area is all that is wanted
 
   // The ray's allowed radii [lo, hi] (the disc and the planes) and the bore's (r1, r2).
   struct Ray {
@@ -299,6 +264,7 @@ struct PolarSlice {
     RayVector x = RayVector::Zero();
     const auto add = [&](double lo, double hi) {
       if (!(hi - lo > kRayNoise * r)) return;
+      touched = true;
       const double w = hi - lo, A = 0.5 * w * (hi + lo);
       const double m1 = w * (hi * hi + hi * lo + lo * lo) / 3.0;
       const double m2 = 0.25 * w * (hi + lo) * (hi * hi + lo * lo);
@@ -366,6 +332,7 @@ std::vector<double> rayChanges(const PolarSlice& sl) {
 RayVector integrateRays(PolarSlice& sl) {
   const std::vector<double> cuts = rayChanges(sl);
   const double r = sl.r;
+  sl.touched = false;
   // the area with a floor of kFloor r² a radian too: a subinterval holding only a sliver
   // (a crescent's tip cut by a line) is asked for accuracy relative to the slice, not to the
   // sliver, whose width is a difference of numbers of the size of r
@@ -385,11 +352,32 @@ RayVector integrateRays(PolarSlice& sl) {
       sum += integrateAdaptive<kRaySize>(f, cuts[i], cuts[i + 1], kInnerTolerance).value;
       range += cuts[i + 1] - cuts[i];
     }
+  if (!sl.touched) return RayVector::Zero();  // not the floor's rounding: an empty slice is 0
   sum.segment<2>(1) -= r * sum(0) * Vector2d::Ones();
   sum.segment<3>(3) -= r * r * sum(0) * Vector3d::Ones();
   sum.segment<2>(6) -= (sum(8) + floor / r * range) * Vector2d::Ones();
   sum(0) -= floor * range;
   return sum;
+}
+
+// The slice's moments as integrateRays gives them: by closed forms (analytic_bore_slices.hpp)
+// where the circle crosses the ellipse twice or lies in it, the faces' lines cutting the
+// region or not; by rays elsewhere or when `polarOnly`.
+RayVector sliceMoments(PolarSlice& sl, bool polarOnly) {
+  if (polarOnly) return integrateRays(sl);
+  bool cut = false;  // a line crosses the disc
+  for (const auto& [m, k] : sl.lines) {
+    if (k <= -sl.r * m.norm()) return RayVector::Zero();  // the disc outside B
+    cut = cut || k < sl.r * m.norm();
+  }
+  detail::EllipseSlice e;
+  const bool closed = cut ? detail::discLessEllipseCut(sl.r, sl.ellipse, sl.lines, e, sl.withDepth)
+                          : detail::discLessEllipse(sl.r, sl.ellipse, e, sl.withDepth);
+  if (!closed) return integrateRays(sl);
+  sl.depth = std::max(sl.depth, e.depth);
+  RayVector x;
+  x << e.A, e.Sx, e.Sy, e.Sxx, e.Sxy, e.Syy, e.arcX, e.arcY, e.arcLength;
+  return x;
 }
 
 struct Tilted {
@@ -408,6 +396,7 @@ struct Tilted {
     sl.R2 = bore.radius * bore.radius;
     const Vector3d c = bore.point_R + bore.axis_R * ((zeta - bore.point_R.z()) / bore.axis_R.z());
     sl.psi0 = std::atan2(-c.y(), -c.x());
+    sl.ellipse = detail::boreEllipse(bore.point_R, bore.axis_R, bore.radius, zeta);
     for (const BorePlane& p : planes)
       sl.lines.emplace_back(p.normal_R.head<2>(),
                             p.normal_R.dot(p.point_R) - p.normal_R.z() * zeta);
@@ -422,7 +411,8 @@ struct Tilted {
   }
   double area(double zeta, double r) const {
     PolarSlice sl = sliceAt(zeta, r);
-    return integrateRays(sl)(0);
+    sl.withDepth = false;
+    return sliceMoments(sl, bore.polar_slices)(0);
   }
   // The slice's moments about O and the pin's boundary inside B, per unit of the piece's
   // parameter (J = dζ/dt, drdt = dr/dt). The quadrature asks each component for its accuracy
@@ -432,7 +422,11 @@ struct Tilted {
   // boundary's length (x(13)) added, and they are taken off after (untilt).
   SliceVector slice(const PieceAt& e) {
     PolarSlice sl = sliceAt(e.zeta, e.r);
-    const RayVector q = integrateRays(sl);
+    // the ellipse holds the circle of radius R about c: no ray is deeper than r + |c| − R,
+    // and a slice that cannot beat the deepest so far is not searched
+    const double c = sl.ellipse.c.norm();
+    sl.withDepth = !(c < bore.radius && e.r + c - bore.radius <= depth);
+    const RayVector q = sliceMoments(sl, bore.polar_slices);
     depth = std::max(depth, sl.depth);
     const double A = q(0), zp = e.zeta - zo, ox = o.x(), oy = o.y();
     const double mx = q(1) - ox * A, my = q(2) - oy * A;
@@ -510,7 +504,9 @@ void addTiltedPiece(Tilted& T, const ProfilePiece& p, double rMax, Totals& out) 
   };
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     const double a = cuts[i], b = cuts[i + 1];
-    if (!(b > a)) continue;
+    // an interval of 1e-12 of the piece (two breakpoints bisected to the same place from two
+    // conditions) holds at most 1e-12 of the piece's length times its largest slice
+    if (!(b - a > kNegligible * (t1 - t0))) continue;
     const PieceAt mid = pieceAt(p, 0.5 * (a + b));
     if (T.area(mid.zeta, mid.r) == 0.0) continue;  // no region: none appears within
     const double tol = T.inBand(mid.zeta, rMax) ? kBandTolerance : kTiltedTolerance;

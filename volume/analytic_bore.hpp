@@ -36,6 +36,9 @@ struct BoreSection {
   double radius = 0.0;
   double zeta_lo = -std::numeric_limits<double>::infinity();
   double zeta_hi = std::numeric_limits<double>::infinity();
+  /// Tilted bores: every slice by the polar quadrature, none by the closed forms (the
+  /// reference the tests and benchmarks compare them with).
+  bool polar_slices = false;
 };
 
 struct BoreContact {
@@ -68,8 +71,11 @@ BoreContact revolutionInBore(const RevolutionProfile& profile, const Eigen::Isom
 /// The same for a bore whose axis is tilted from the pin's (bore.axis_R with a positive z
 /// component; zeta_lo and zeta_hi are not read): B's material is outside the bore and inside
 /// every plane of `planes` (the faces the bore opens onto). In the slice at ζ the bore's
-/// section is an ellipse and each plane's trace a line, so the region is not two segments:
-/// it is integrated in the polar angle ψ about the disc's centre, along each ray in closed
+/// section is an ellipse and each plane's trace a line. Where the circle crosses the ellipse
+/// twice (certified) the slice is a closed form: the disc's segment beyond the crossings'
+/// chord less the ellipse's, each cut by the lines (volume/analytic_bore_slices.hpp). Other
+/// slices, or all with bore.polar_slices, are integrated in the polar angle ψ about the
+/// disc's centre, along each ray in closed
 /// form (the ray leaves the ellipse at the roots of a quadratic, crosses each plane's line
 /// once), over ψ by adaptive Gauss–Kronrod between the angles where the ray's intervals
 /// change (found by bisection between 64 rays from the crescent's deepest direction), then
