@@ -107,27 +107,35 @@ Moments2 segmentAbout(double rho, const Vector2d& n, double theta) {
       (rho * rho * g.A - 2.0 * rho * g.S1 + g.S11) * n * n.transpose() + g.S22 * t * t.transpose()};
 }
 
-// The largest depth over ψ ∈ [lo, hi] by golden section (one crest: the crescent's).
-double deepestByAngle(const Side& s, double lo, double hi) {
+// The larger of f's two last golden-section points on [a, b], kGoldenSteps steps towards its
+// one crest.
+template <class F>
+double goldenMax(const F& f, double a, double b) {
   const double k = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = lo, b = hi, x1 = b - k * (b - a), x2 = a + k * (b - a);
-  double f1 = s.rayDepth(x1), f2 = s.rayDepth(x2);
+  double x1 = b - k * (b - a), x2 = a + k * (b - a);
+  double f1 = f(x1), f2 = f(x2);
   for (int i = 0; i < kGoldenSteps; ++i) {
     if (f1 < f2) {
       a = x1;
       x1 = x2;
       f1 = f2;
       x2 = a + k * (b - a);
-      f2 = s.rayDepth(x2);
+      f2 = f(x2);
     } else {
       b = x2;
       x2 = x1;
       f2 = f1;
       x1 = b - k * (b - a);
-      f1 = s.rayDepth(x1);
+      f1 = f(x1);
     }
   }
-  return std::max({f1, f2, s.rayDepth(lo), s.rayDepth(hi)});
+  return std::max(f1, f2);
+}
+
+// The largest depth over ψ ∈ [lo, hi] by golden section (one crest: the crescent's).
+double deepestByAngle(const Side& s, double lo, double hi) {
+  const double crest = goldenMax([&](double psi) { return s.rayDepth(psi); }, lo, hi);
+  return std::max({crest, s.rayDepth(lo), s.rayDepth(hi)});
 }
 
 double deepest(const Side& s, double lo, double hi) {
@@ -137,25 +145,8 @@ double deepest(const Side& s, double lo, double hi) {
   if (!(half < 0.5 * M_PI - 0.1)) return deepestByAngle(s, lo, hi);
   const Vector2d m = std::cos(mid) * s.u + std::sin(mid) * s.w, mt(-m.y(), m.x());
   const auto at = [&](double t) { return s.depthAlong((m + t * mt).normalized()); };
-  const double k = 0.5 * (std::sqrt(5.0) - 1.0), end = std::tan(half);
-  double a = -end, b = end, x1 = b - k * (b - a), x2 = a + k * (b - a);
-  double f1 = at(x1), f2 = at(x2);
-  for (int i = 0; i < kGoldenSteps; ++i) {
-    if (f1 < f2) {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + k * (b - a);
-      f2 = at(x2);
-    } else {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - k * (b - a);
-      f1 = at(x1);
-    }
-  }
-  return std::max({f1, f2, s.rayDepth(lo), s.rayDepth(hi)});
+  const double end = std::tan(half);
+  return std::max({goldenMax(at, -end, end), s.rayDepth(lo), s.rayDepth(hi)});
 }
 
 }  // namespace

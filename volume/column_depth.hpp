@@ -134,6 +134,7 @@ class ColumnDepth {
   void fileFace(int f);
   int blockOf(int r, int c, bool count = false) const;
   int vertexCell(const Seg& s) const;
+  void fileVertex(int i);  ///< segment i's vertex column into its cell, with its bound
   int blockOfCell(int c) const;
   void toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::vector<int>& start,
              std::vector<int>& items);

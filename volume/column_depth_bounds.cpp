@@ -144,6 +144,18 @@ void ColumnDepth::toCsr(std::vector<std::pair<int, int>>& pairs, int bins, std::
 int ColumnDepth::vertexCell(const Seg& s) const {
   return grid_.row(s.a.y()) * grid_.nx + grid_.col(s.a.x());
 }
+
+// Segment i's first vertex into its cell's vertex list, its height into the cell's bound.
+void ColumnDepth::fileVertex(int i) {
+  const Seg& s = segs_[static_cast<std::size_t>(i)];
+  const int c = vertexCell(s);
+  segPairs_.emplace_back(c, i);
+  CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
+  b.vertices = true;
+  b.hi = std::max(b.hi, s.ha);
+  b.lo = std::min(b.lo, s.ha);
+}
+
 int ColumnDepth::blockOfCell(int c) const {
   return blockOf(c / grid_.nx / kBlock, c % grid_.nx / kBlock);
 }
@@ -248,14 +260,7 @@ void ColumnDepth::refine(int B, double best) {
   }
   distribute(range, segBegin_, segEnd_, cellSegs_);
   for (int k = blockVertexStart_[B]; k < blockVertexStart_[B + 1]; ++k) {
-    const int i = blockVertices_[k];
-    const Seg& s = segs_[static_cast<std::size_t>(i)];
-    const int c = vertexCell(s);
-    segPairs_.emplace_back(c, i);
-    CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
-    b.vertices = true;
-    b.hi = std::max(b.hi, s.ha);
-    b.lo = std::min(b.lo, s.ha);
+    fileVertex(blockVertices_[k]);
   }
   distribute(range, vertexBegin_, vertexEnd_, cellVertices_);
   for (int r = range[0]; r <= range[1]; ++r) {
@@ -291,13 +296,7 @@ double ColumnDepth::deepestInCells() {
   };
   toLists(segBegin_, segEnd_, cellSegs_);
   for (int i = 0; i < static_cast<int>(segs_.size()); ++i) {
-    const Seg& s = segs_[static_cast<std::size_t>(i)];
-    const int c = vertexCell(s);
-    segPairs_.emplace_back(c, i);
-    CellBound& b = cellBounds_[static_cast<std::size_t>(c)];
-    b.vertices = true;
-    b.hi = std::max(b.hi, s.ha);
-    b.lo = std::min(b.lo, s.ha);
+    fileVertex(i);
   }
   toLists(vertexBegin_, vertexEnd_, cellVertices_);
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) fileFace(f);
