@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include "geometry/surface_recognition_internal.hpp"
@@ -24,11 +25,50 @@ using Traits = CGAL::Shape_detection::Efficient_RANSAC_traits<
     Kernel, PointsWithNormals, CGAL::Nth_of_tuple_property_map<0, PointWithNormal>,
     CGAL::Nth_of_tuple_property_map<1, PointWithNormal>>;
 using Ransac = CGAL::Shape_detection::Efficient_RANSAC<Traits>;
-using Plane = CGAL::Shape_detection::Plane<Traits>;
-using Sphere = CGAL::Shape_detection::Sphere<Traits>;
-using Cylinder = CGAL::Shape_detection::Cylinder<Traits>;
-using Cone = CGAL::Shape_detection::Cone<Traits>;
-using Torus = CGAL::Shape_detection::Torus<Traits>;
+
+// The largest grid of cells the parameter-space clustering may allocate (4 bytes a cell).
+constexpr double kMaxClusterCells = double(1 << 24);
+
+// A RANSAC shape whose connected-component step is safe on any candidate. CGAL 5.5 clusters a
+// candidate's points on a grid over its 2-D parameter space, sized from the parameters' range
+// without checking it: a sample on a degenerate spot of a candidate (on a cylinder's axis, at
+// a cone's apex, where the direction from the axis is a zero vector normalised) gives a NaN
+// range, the grid's size wraps to 0 and the fill writes through a null pointer (`vcontact
+// surfaces` crashed on a block with a 192-, 256- or 768-segment bore). Where the range is not
+// finite, or the grid would exceed kMaxClusterCells, this falls back to CGAL's own Euclidean
+// clustering of the points (the torus's method); elsewhere it is CGAL's grid, unchanged.
+template <class Shape>
+class GuardedShape : public Shape {
+ protected:
+  using FT = typename Traits::FT;
+  std::size_t connected_component(std::vector<std::size_t>& indices, FT cluster_epsilon) override {
+    if (!indices.empty() && this->supports_connected_component() &&
+        !gridIsSafe(indices.size(), cluster_epsilon))
+      return this->connected_component_kdTree(indices, cluster_epsilon);
+    return Shape::connected_component(indices, cluster_epsilon);
+  }
+
+ private:
+  // The parameters CGAL's grid would be built from (the same call), checked before it is.
+  bool gridIsSafe(std::size_t count, FT cluster_epsilon) const {
+    FT min[] = {0, 0}, max[] = {0, 0};
+    FT epsilon = cluster_epsilon;
+    std::vector<std::pair<FT, FT>> space(count);
+    this->parameters(this->m_indices, space, epsilon, min, max);
+    for (const auto& [u, v] : space)
+      if (!std::isfinite(u) || !std::isfinite(v)) return false;
+    const double cells_u = std::ceil((max[0] - min[0]) / epsilon) + 1.0;
+    const double cells_v = std::ceil((max[1] - min[1]) / epsilon) + 1.0;
+    return std::isfinite(cells_u) && std::isfinite(cells_v) &&
+           cells_u * cells_v <= kMaxClusterCells;
+  }
+};
+
+using Plane = GuardedShape<CGAL::Shape_detection::Plane<Traits>>;
+using Sphere = GuardedShape<CGAL::Shape_detection::Sphere<Traits>>;
+using Cylinder = GuardedShape<CGAL::Shape_detection::Cylinder<Traits>>;
+using Cone = GuardedShape<CGAL::Shape_detection::Cone<Traits>>;
+using Torus = CGAL::Shape_detection::Torus<Traits>;  // clusters by distance already
 
 Eigen::Vector3d toEigen(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 Eigen::Vector3d toEigen(const Kernel::Vector_3& v) { return {v.x(), v.y(), v.z()}; }
