@@ -203,6 +203,26 @@ std::vector<Eigen::Vector3d> positions(const TriangleMesh& mesh, const std::vect
   return p;
 }
 
+// The cylinder about a cone's axis through `points`, at their mean distance from it. RANSAC
+// proposes a cone of a tiny angle for the vertices of a cylinder as readily as the cylinder
+// (a capsule's band of one ring of faces, seen first as a cone, took every sample and failed
+// to polish: its apex runs off to infinity), so a cone that does not polish is tried as this.
+RecognisedSurface cylinderAlong(const RecognisedSurface& cone,
+                                const std::vector<Eigen::Vector3d>& points) {
+  RecognisedSurface s;
+  s.kind = SurfaceKind::kCylinder;
+  s.axis = cone.axis;
+  s.point = cone.point;
+  s.convex = cone.convex;
+  double sum = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d w = p - s.point;
+    sum += (w - w.dot(s.axis) * s.axis).norm();
+  }
+  s.radius = sum / static_cast<double>(std::max<std::size_t>(points.size(), 1));
+  return s;
+}
+
 // RANSAC's rough surface polished to its vertices, then again to those of them that lie on
 // it (RANSAC's loose distance lets in neighbours of other surfaces).
 std::optional<RecognisedSurface> polishCandidate(const detail::Candidate& c,
@@ -214,7 +234,9 @@ std::optional<RecognisedSurface> polishCandidate(const detail::Candidate& c,
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   std::vector<Eigen::Vector3d> points = positions(in.mesh, vertices);
-  const std::optional<RecognisedSurface> first = detail::polishSurface(c.surface, points);
+  std::optional<RecognisedSurface> first = detail::polishSurface(c.surface, points);
+  if (!first && c.surface.kind == SurfaceKind::kCone)
+    first = detail::polishSurface(cylinderAlong(c.surface, points), points);
   if (!first) return std::nullopt;
   const RecognisedSurface& s = *first;
   std::vector<double> d;
@@ -228,25 +250,29 @@ std::optional<RecognisedSurface> polishCandidate(const detail::Candidate& c,
   return detail::polishSurface(s, close);
 }
 
-// A sphere's vertices on two coaxial circles lie as well on the cone (or the cylinder) through
-// those circles: the axis is the direction in which the vertices spread least (the normal of
-// full or half rings), the circles are the two heights along it; the cone or cylinder through
-// them is then polished to the vertices. None unless the vertices form exactly two rings of
-// three or more about an axis through the sphere's centre and the result holds every one of
-// them within the tolerance.
-std::optional<RecognisedSurface> ruledThroughTwoRings(const RecognisedSurface& sphere,
-                                                      const std::vector<Eigen::Vector3d>& points,
-                                                      double tolerance) {
+// The direction in which `points` spread least: the axis of full or half rings of a sphere's
+// zone, whose heights differ less than their radii.
+Eigen::Vector3d leastSpread(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) mean += p;
   mean /= static_cast<double>(points.size());
   Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
   for (const Eigen::Vector3d& p : points) spread += (p - mean) * (p - mean).transpose();
-  const Eigen::Vector3d a =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+}
+
+// Vertices on two circles about the axis `a` through `centre` lie on the cone (or the
+// cylinder) through those circles: the circles are the two heights along `a`; the cone or
+// cylinder through them is then polished to the vertices. None unless the vertices form
+// exactly two rings of three or more and the result holds every one of them within the
+// tolerance.
+std::optional<RecognisedSurface> ruledThroughTwoRings(const Eigen::Vector3d& centre,
+                                                      const Eigen::Vector3d& a, bool convex,
+                                                      const std::vector<Eigen::Vector3d>& points,
+                                                      double tolerance) {
   std::vector<std::pair<double, double>> zr;  // (height along a from the centre, radius)
   for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d w = p - sphere.point;
+    const Eigen::Vector3d w = p - centre;
     zr.emplace_back(w.dot(a), (w - w.dot(a) * a).norm());
   }
   std::sort(zr.begin(), zr.end());
@@ -262,16 +288,16 @@ std::optional<RecognisedSurface> ruledThroughTwoRings(const RecognisedSurface& s
     r[k] /= static_cast<double>(end - starts[k]);
   }
   RecognisedSurface start;
-  start.convex = sphere.convex;
+  start.convex = convex;
   if (std::abs(r[1] - r[0]) <= tolerance) {
     start.kind = SurfaceKind::kCylinder;
-    start.point = sphere.point + 0.5 * (z[0] + z[1]) * a;
+    start.point = centre + 0.5 * (z[0] + z[1]) * a;
     start.axis = a;
     start.radius = 0.5 * (r[0] + r[1]);
   } else {  // r grows with z along +a when k > 0; the apex is where r reaches 0
     const double k = (r[1] - r[0]) / (z[1] - z[0]);
     start.kind = SurfaceKind::kCone;
-    start.point = sphere.point + (z[0] - r[0] / k) * a;
+    start.point = centre + (z[0] - r[0] / k) * a;
     start.axis = k > 0.0 ? a : Eigen::Vector3d(-a);
     start.angle = std::atan(std::abs(k));
   }
@@ -310,7 +336,9 @@ double edgeMidpointResidual(const RecognisedSurface& s, const TriangleMesh& mesh
 void preferRuledSurface(RecognisedSurface& s, const RecognitionInput& in,
                         const std::vector<int>& face_surface) {
   const std::vector<Eigen::Vector3d> points = positions(in.mesh, verticesOf(in.mesh, s.faces));
-  std::optional<RecognisedSurface> ruled = ruledThroughTwoRings(s, points, in.tolerance);
+  // A sphere's vertices on two coaxial circles lie as well on the cone or cylinder through them.
+  std::optional<RecognisedSurface> ruled =
+      ruledThroughTwoRings(s.point, leastSpread(points), s.convex, points, in.tolerance);
   if (!ruled) return;
   ruled->faces = facesOn(*ruled, in, face_surface);
   if (!std::includes(ruled->faces.begin(), ruled->faces.end(), s.faces.begin(), s.faces.end()))
@@ -333,6 +361,81 @@ void measure(RecognisedSurface& s, const TriangleMesh& mesh) {
     s.max_residual = std::max(s.max_residual, d);
   }
   s.rms_residual = std::sqrt(sum2 / static_cast<double>(vertices.size()));
+}
+
+// The faces the passes left free, in smooth regions joined across their edges.
+std::vector<std::vector<int>> freeRegions(const RecognitionInput& in, const MeshTopology& topology,
+                                          const std::vector<int>& face_surface) {
+  std::vector<int> parent(face_surface.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const MeshEdge& e : topology.edges())
+    if (face_surface[e.tri[0]] < 0 && face_surface[e.tri[1]] < 0 &&
+        in.normals[e.tri[0]].dot(in.normals[e.tri[1]]) >= in.cos_crease)
+      parent[detail::root(parent, e.tri[0])] = detail::root(parent, e.tri[1]);
+  std::vector<int> region_of(face_surface.size(), -1);
+  std::vector<std::vector<int>> regions;
+  for (int f = 0; f < static_cast<int>(face_surface.size()); ++f) {
+    if (face_surface[f] >= 0) continue;
+    int& r = region_of[detail::root(parent, f)];
+    if (r < 0) r = static_cast<int>(regions.size()), regions.emplace_back();
+    regions[r].push_back(f);  // ascending
+  }
+  return regions;
+}
+
+// A free region whose vertices are two coaxial rings, read as the cylinder or cone through
+// them. It is what RANSAC misses on a band of one ring of faces between two recognised
+// surfaces that it meets smoothly (a coarse capsule's cylinder between its hemispheres): the
+// band's samples are its rims' vertices, whose normals are blends with the neighbours' faces,
+// so no candidate drawn from them holds both rims. The axis is the direction the band's face
+// normals spread least about their mean (a cylinder's are perpendicular to it, a cone's at
+// one angle); the rims and the fit are ruledThroughTwoRings', and the surface must take
+// every face of the region.
+std::optional<RecognisedSurface> bandSurface(const std::vector<int>& region,
+                                             const RecognitionInput& in,
+                                             const std::vector<int>& face_surface) {
+  if (region.size() < 3) return std::nullopt;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int f : region) mean += in.normals[f];
+  mean /= static_cast<double>(region.size());
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (int f : region) spread += (in.normals[f] - mean) * (in.normals[f] - mean).transpose();
+  const Eigen::Vector3d axis =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+  const std::vector<Eigen::Vector3d> points = positions(in.mesh, verticesOf(in.mesh, region));
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) centre += p;
+  centre /= static_cast<double>(points.size());
+  double outward = 0.0;  // convex when the faces face away from the axis
+  for (int f : region) {
+    const Eigen::Vector3d w = faceCentroid(in.mesh, f) - centre;
+    outward += in.normals[f].dot(w - w.dot(axis) * axis);
+  }
+  std::optional<RecognisedSurface> ruled =
+      ruledThroughTwoRings(centre, axis, outward >= 0.0, points, in.tolerance);
+  if (!ruled) return std::nullopt;
+  ruled->faces = facesOn(*ruled, in, face_surface);
+  if (!std::includes(ruled->faces.begin(), ruled->faces.end(), region.begin(), region.end()))
+    return std::nullopt;
+  return ruled;
+}
+
+// The samples a pass may use: those of faces no surface has taken, and a vertex's sample
+// wherever a face of its side is still free. A vertex on a smooth seam (a capsule's cylinder
+// meeting its hemispheres tangentially) has one sample for all its faces, filed under one of
+// them: were that face taken, the free faces across the seam would lose the sample, and a
+// band of one ring of faces between two taken regions would have none left at all.
+std::vector<char> freeSamples(const detail::SamplePoints& samples, const MeshTopology& topology,
+                              const RecognitionInput& in, const std::vector<int>& face_surface) {
+  std::vector<char> use(samples.face.size());
+  for (std::size_t i = 0; i < use.size(); ++i) {
+    use[i] = face_surface[samples.face[i]] < 0;
+    const int v = samples.vertex[i];
+    if (use[i] || v < 0) continue;
+    for (const int* f = topology.facesBegin(v); f != topology.facesEnd(v) && !use[i]; ++f)
+      use[i] = face_surface[*f] < 0 && in.normals[*f].dot(samples.normal[i]) >= in.cos_crease;
+  }
+  return use;
 }
 
 void checkOptions(const RecognitionOptions& o) {
@@ -365,8 +468,7 @@ SurfaceRecognition recogniseSurfaces(const TriangleMesh& mesh, const Recognition
   out.face_surface.assign(static_cast<std::size_t>(mesh.triangleCount()), -1);
   std::vector<RecognisedSurface> found;
   for (unsigned kinds : kPasses) {
-    std::vector<char> use(samples.face.size());
-    for (std::size_t i = 0; i < use.size(); ++i) use[i] = out.face_surface[samples.face[i]] < 0;
+    const std::vector<char> use = freeSamples(samples, topology, in, out.face_surface);
     settings.kinds = kinds;
     for (const detail::Candidate& c : detail::detectCandidates(samples, use, settings)) {
       std::optional<RecognisedSurface> polished = polishCandidate(c, samples, in);
@@ -379,6 +481,13 @@ SurfaceRecognition recogniseSurfaces(const TriangleMesh& mesh, const Recognition
       for (int f : s.faces) out.face_surface[f] = static_cast<int>(found.size());
       found.push_back(std::move(s));
     }
+  }
+  for (const std::vector<int>& region : freeRegions(in, topology, out.face_surface)) {
+    std::optional<RecognisedSurface> band = bandSurface(region, in, out.face_surface);
+    if (!band) continue;
+    measure(*band, mesh);
+    for (int f : band->faces) out.face_surface[f] = static_cast<int>(found.size());
+    found.push_back(std::move(*band));
   }
   // Largest first; ties (by construction rare) keep RANSAC's order.
   std::vector<int> order(found.size());
