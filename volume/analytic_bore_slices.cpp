@@ -215,6 +215,15 @@ int crossings(double r, const SliceEllipse& E, Side& s, double& lo, double& hi) 
 
 }  // namespace
 
+bool circleCrossings(double r, const SliceEllipse& E, Vector2d& lo, Vector2d& hi) {
+  Side s;
+  double psiLo = 0.0, psiHi = 0.0;
+  if (crossings(r, E, s, psiLo, psiHi) != 1) return false;
+  lo = s.at(psiLo);
+  hi = s.at(psiHi);
+  return true;
+}
+
 bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out, bool withDepth) {
   Side s;
   double lo = 0.0, hi = 0.0;
