@@ -38,15 +38,16 @@ struct Band {
     return boreEllipse(bore.point_R, bore.axis_R, bore.radius, zeta);
   }
   // The events' functions at t: the line's offset k less the value of m·x at which it would
-  // touch the circle (±r|m|) or the ellipse (m·c ± R|S m|), or pass a crossing.
-  std::array<double, kEvents> at(double t) const {
+  // touch the circle (±r|m|) or the ellipse (m·c ± R|S m|), or pass a crossing (NaN where
+  // no two crossings are certified). The crossings only `withCrossings`.
+  std::array<double, kEvents> at(double t, bool withCrossings = true) const {
     const PieceAt e = pieceAt(p, t);
     const SliceEllipse E = ellipse(e.zeta);
     const double k = nDotP - nz * e.zeta, mc = m.dot(E.c), reach = E.R * smNorm;
     std::array<double, kEvents> g = {k + e.r * mNorm, k - e.r * mNorm, k - mc + reach,
                                      k - mc - reach,  kNone,           kNone};
     Vector2d lo, hi;
-    if (circleCrossings(e.r, E, lo, hi)) {
+    if (withCrossings && circleCrossings(e.r, E, lo, hi)) {
       g[kCrossLo] = k - m.dot(lo);
       g[kCrossHi] = k - m.dot(hi);
     }
@@ -138,7 +139,8 @@ void bandBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
       if (j == kBandSamples) break;
       const double ga = g[j][i], gb = g[j + 1][i];
       if (!(ga < 0.0 && gb > 0.0) && !(ga > 0.0 && gb < 0.0)) continue;  // NaN: no crossings
-      keep(i, falsi([&](double x) { return band.at(x)[i]; }, t[j], t[j + 1], ga, gb));
+      const bool crossing = i == kCrossLo || i == kCrossHi;
+      keep(i, falsi([&](double x) { return band.at(x, crossing)[i]; }, t[j], t[j + 1], ga, gb));
     }
 }
 

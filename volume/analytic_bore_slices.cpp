@@ -51,20 +51,20 @@ struct Side {
     const double y = (Sinv * (at(psi) - c)).norm();
     return (y - R) * (y + R);
   }
-  double df(double psi) const {
-    const Vector2d y = Sinv * (at(psi) - c);
-    const Vector2d dx = r * (-std::sin(psi) * u + std::cos(psi) * w);
-    return 2.0 * y.dot(Sinv * dx);
+  // f and f′ at ψ from one sine and cosine.
+  std::pair<double, double> fdf(double psi) const {
+    const double cs = std::cos(psi), sn = std::sin(psi);
+    const Vector2d y = Sinv * (r * (cs * u + sn * w) - c);
+    const double n = y.norm();
+    return {(n - R) * (n + R), 2.0 * y.dot(Sinv * (r * (-sn * u + cs * w)))};
   }
-  // The root of f in (a, b), where f changes sign once, from the guess x: Newton kept in the
-  // bracket, bisection where it leaves it.
-  double root(double a, double b, double x) const {
-    const bool posA = f(a) > 0.0;
+  // The root of f in (a, b), where f changes sign once (positive at a if posA), from the
+  // guess x: Newton kept in the bracket, bisection where it leaves it.
+  double root(double a, double b, double x, bool posA) const {
     for (int i = 0; i < kNewtonSteps; ++i) {
-      const double fx = f(x);
+      const auto [fx, d] = fdf(x);
       if (fx == 0.0) return x;
       ((fx > 0.0) == posA ? a : b) = x;
-      const double d = df(x);
       double next = d != 0.0 ? x - fx / d : 0.5 * (a + b);
       if (!(next > a && next < b)) next = 0.5 * (a + b);
       if (std::abs(next - x) <= 4.0 * kEps * std::max(1.0, std::abs(x)) || !(b - a > 0.0))
@@ -208,8 +208,8 @@ int crossings(double r, const SliceEllipse& E, Side& s, double& lo, double& hi) 
   s = Side{r, u, Vector2d(-u.y(), u.x()), E.c, Sinv, E.R};
   if (!(s.f(0.0) > 0.0 && s.f(M_PI) < 0.0)) return -1;
   const double guess = std::acos(std::clamp(-A0 / rho1, -1.0, 1.0));
-  hi = s.root(0.0, M_PI, guess);
-  lo = s.root(-M_PI, 0.0, -guess);
+  hi = s.root(0.0, M_PI, guess, true);  // f(0) > 0 > f(±π), checked above
+  lo = s.root(-M_PI, 0.0, -guess, false);
   return 1;
 }
 
