@@ -200,14 +200,7 @@ constexpr double kRayNoise = 1e-13;
 constexpr double kFloor = 1e-6;
 constexpr double kFloorZeta = 1e-9;
 constexpr int kAngleSamples = 64;  // rays between which the intervals' changes are bisected
-constexpr int kZetaSamples = 16;   // slices a piece between which the region's ends are bisected
-constexpr double kNegligible = 1e-12;  // intervals of a piece's parameter left out
-constexpr int kBisections = 45;        // 2π/64 or a sixteenth of a piece to 1e-15 of it
-// A region vanishing at a line's event (analytic_bore_bands.hpp) is a sliver near it, whose
-// area the closed form gives as rounding (±1e-20 m² for a 5 mm pin): bisection on its sign
-// ends anywhere within ~1e-11 of the piece. Within 1e-9 of the piece the two are taken for
-// one: the sliver there is at most that length times areas of 1e-14 m² (1e-15 of V).
-constexpr double kSnap = 1e-9;
+constexpr int kBisections = 45;    // 2π/64 to 1e-15 of it
 
 // Per ray: area, ∫x, ∫y, ∫x², ∫xy, ∫y² per unit ψ (about the disc's centre); the pin's
 // boundary inside B as ∫ r (cos ψ, sin ψ) and ∫ r per unit ψ.
@@ -459,61 +452,13 @@ struct Tilted {
   }
 };
 
-// Breakpoints of piece p in (t0, t1), ascending: where a plane's line changes the slice's
-// form (analytic_bore_bands.hpp), and where the region appears or vanishes (singular). A
-// bisected appearance within kSnap of a line's event is that event (the bisection ends on
-// the rounding of a vanishing area); points within kNegligible of the piece are one (two
-// conditions at the same place), singular if either is.
-std::vector<Breakpoint> tiltedChanges(const Tilted& T, const ProfilePiece& p, double t0, double t1,
-                                      double rMax) {
-  std::vector<Breakpoint> found;
-  for (const BorePlane& pl : T.planes) detail::bandBreakpoints(p, t0, t1, rMax, T.bore, pl, found);
-  const std::size_t events = found.size();
-  const auto present = [&](double t) {
-    const PieceAt e = pieceAt(p, t);
-    return T.area(e.zeta, e.r) > 0.0;
-  };
-  const auto snap = [&](double t) {  // marks the event at t singular, if there is one
-    for (std::size_t i = 0; i < events; ++i)
-      if (std::abs(found[i].t - t) <= kSnap * (t1 - t0)) {
-        found[i].singular = true;
-        return true;
-      }
-    return false;
-  };
-  bool prev = present(t0);
-  for (int i = 1; i <= kZetaSamples; ++i) {
-    double a = t0 + (t1 - t0) * (i - 1) / kZetaSamples, b = t0 + (t1 - t0) * i / kZetaSamples;
-    const bool next = present(b);
-    if (next == prev) continue;
-    for (int k = 0; k < kBisections; ++k) {
-      const double m = 0.5 * (a + b);
-      if (!(m > a && m < b)) break;
-      if (present(m) == prev) {
-        a = m;
-      } else {
-        b = m;
-      }
-    }
-    if (!snap(0.5 * (a + b))) found.push_back({0.5 * (a + b), true});
-    prev = next;
-  }
-  std::sort(found.begin(), found.end(),
-            [](const Breakpoint& x, const Breakpoint& y) { return x.t < y.t; });
-  std::vector<Breakpoint> cuts;
-  for (const Breakpoint& b : found) {
-    if (!cuts.empty() && !(b.t - cuts.back().t > kNegligible * (t1 - t0))) {
-      cuts.back().singular = cuts.back().singular || b.singular;
-      continue;
-    }
-    cuts.push_back(b);
-  }
-  return cuts;
-}
-
 void addTiltedPiece(Tilted& T, const ProfilePiece& p, double rMax, Totals& out) {
   const double t0 = detail::parameterOf(p, p.z0), t1 = detail::parameterOf(p, p.z1);
-  std::vector<Breakpoint> cuts = tiltedChanges(T, p, t0, t1, rMax);
+  std::vector<Breakpoint> cuts =
+      detail::pieceBreakpoints(p, t0, t1, rMax, T.bore, T.planes, [&](double t) {
+        const PieceAt e = pieceAt(p, t);
+        return T.area(e.zeta, e.r) > 0.0;
+      });
   cuts.insert(cuts.begin(), {t0, false});
   cuts.push_back({t1, false});
   const auto at = [&](double anchor, double offset) -> SliceVector {
@@ -523,7 +468,7 @@ void addTiltedPiece(Tilted& T, const ProfilePiece& p, double rMax, Totals& out) 
     const double a = cuts[i].t, b = cuts[i + 1].t;
     // an interval of 1e-12 of the piece (a breakpoint at the piece's end) holds at most 1e-12
     // of the piece's length times its largest slice
-    if (!(b - a > kNegligible * (t1 - t0))) continue;
+    if (!(b - a > detail::kNegligible * (t1 - t0))) continue;
     const PieceAt mid = pieceAt(p, 0.5 * (a + b));
     if (T.area(mid.zeta, mid.r) == 0.0) continue;  // no region: none appears within
     const double tol = T.inBand(mid.zeta, rMax) ? kBandTolerance : kTiltedTolerance;

@@ -20,7 +20,14 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // is close to linear over the band and changes sign once; 8 intervals separate two changes
 // unless a crescent's tips pass the line closer together than an eighth of the band.
 constexpr int kBandSamples = 8;
-constexpr int kFalsiSteps = 80;  // Illinois steps; each at least halves the bracket's far side
+constexpr int kFalsiSteps = 80;   // Illinois steps; each at least halves the bracket's far side
+constexpr int kZetaSamples = 16;  // slices a piece between which the region's ends are sought
+constexpr int kBisections = 45;   // a sixteenth of a piece to 1e-15 of it
+// A region vanishing at a line's event is a sliver near it, whose area the closed form gives
+// as rounding (±1e-20 m² for a 5 mm pin): bisection on its sign ends anywhere within ~1e-11
+// of the piece. Within 1e-9 of the piece the two are taken for one: the sliver there is at
+// most that length times areas of 1e-14 m² (1e-15 of V).
+constexpr double kSnap = 1e-9;
 
 // The events of the header, each a function of the slice whose sign changes at it.
 enum Event { kCircleBelow, kCircleAbove, kEllipseBelow, kEllipseAbove, kCrossLo, kCrossHi };
@@ -142,6 +149,88 @@ void bandBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
       const bool crossing = i == kCrossLo || i == kCrossHi;
       keep(i, falsi([&](double x) { return band.at(x, crossing)[i]; }, t[j], t[j + 1], ga, gb));
     }
+}
+
+namespace {
+
+// The presence changes of a piece's slices, around the lines' events (pieceBreakpoints).
+struct PresenceScan {
+  const std::function<bool(double)>& present;
+  std::vector<Breakpoint> events;  // ascending
+  double snapWidth = 0.0;
+  std::vector<Breakpoint> changes;
+
+  // The change in (a, b), present(a) = from ≠ present(b), by bisection; an event within
+  // snapWidth stands for it.
+  void bisect(double a, double b, bool from) {
+    for (int k = 0; k < kBisections; ++k) {
+      const double m = 0.5 * (a + b);
+      if (!(m > a && m < b)) break;
+      (present(m) == from ? a : b) = m;
+    }
+    const double t = 0.5 * (a + b);
+    for (Breakpoint& e : events)
+      if (std::abs(e.t - t) <= snapWidth) {
+        e.singular = true;
+        return;
+      }
+    changes.push_back({t, true});
+  }
+  // The changes in the sample interval (a, b), present(a) = from ≠ present(b) = to.
+  void scan(double a, double b, bool from, bool to) {
+    std::vector<double> at = {a};
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < events.size(); ++i)
+      if (events[i].t > a && events[i].t < b) {
+        at.push_back(events[i].t);
+        which.push_back(i);
+      }
+    at.push_back(b);
+    bool last = from;
+    double lastMid = a;
+    for (std::size_t i = 0; i + 1 < at.size(); ++i) {
+      const double mid = 0.5 * (at[i] + at[i + 1]);
+      const bool here = at.size() == 2 ? to : present(mid);
+      if (here != last && i == 0) bisect(a, at.size() == 2 ? b : mid, from);
+      if (here != last && i > 0) events[which[i - 1]].singular = true;
+      last = here;
+      lastMid = mid;
+    }
+    if (last != to) bisect(lastMid, b, last);
+  }
+};
+
+bool byParameter(const Breakpoint& x, const Breakpoint& y) { return x.t < y.t; }
+
+}  // namespace
+
+std::vector<Breakpoint> pieceBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
+                                         const BoreSection& bore,
+                                         const std::vector<BorePlane>& planes,
+                                         const std::function<bool(double)>& present) {
+  PresenceScan scan{present, {}, kSnap * (t1 - t0), {}};
+  for (const BorePlane& pl : planes) bandBreakpoints(p, t0, t1, rMax, bore, pl, scan.events);
+  std::sort(scan.events.begin(), scan.events.end(), byParameter);
+  bool prev = present(t0);
+  for (int i = 1; i <= kZetaSamples; ++i) {
+    const double a = t0 + (t1 - t0) * (i - 1) / kZetaSamples;
+    const double b = i == kZetaSamples ? t1 : t0 + (t1 - t0) * i / kZetaSamples;
+    const bool next = present(b);
+    if (next != prev) scan.scan(a, b, prev, next);
+    prev = next;
+  }
+  std::vector<Breakpoint> found = scan.events;
+  found.insert(found.end(), scan.changes.begin(), scan.changes.end());
+  std::sort(found.begin(), found.end(), byParameter);
+  std::vector<Breakpoint> cuts;
+  for (const Breakpoint& b : found) {  // points within kNegligible of the piece are one
+    if (!cuts.empty() && !(b.t - cuts.back().t > kNegligible * (t1 - t0))) {
+      cuts.back().singular = cuts.back().singular || b.singular;
+      continue;
+    }
+    cuts.push_back(b);
+  }
+  return cuts;
 }
 
 }  // namespace vcontact::volume::detail

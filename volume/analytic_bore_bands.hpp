@@ -13,6 +13,7 @@
 // Between these points the moments are smooth in ζ, and a Kronrod rule converges on each
 // piece without bisecting towards them.
 
+#include <functional>
 #include <vector>
 
 #include "volume/analytic_bore.hpp"
@@ -26,10 +27,26 @@ struct Breakpoint {
   bool singular = false;
 };
 
+/// Intervals of a piece's parameter shorter than this share of the piece are left out, and
+/// breakpoints closer are one: such an interval holds at most 1e-12 of the piece's length
+/// times its largest slice.
+inline constexpr double kNegligible = 1e-12;
+
 /// Appends to `out` the parameters in (t0, t1) of piece p (ascending ζ) where the line of
 /// `plane` changes the form of the slice of the pin in `bore` (the header's list). `rMax`
 /// bounds the pin's radius: the band is sought where the line crosses a disc that wide.
 void bandBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
                      const BoreSection& bore, const BorePlane& plane, std::vector<Breakpoint>& out);
+
+/// The breakpoints of piece p in (t0, t1), ascending: the events of bandBreakpoints for each
+/// plane, and where the region appears or vanishes (singular), bisected on `present(t)`
+/// (whether the slice at t has a region) between 16 samples of the piece. Within a sample
+/// interval that holds lines' events, presence is tested once between each two: a change
+/// there is the event's (a region goes or comes with a line's touching or crossing), and
+/// only a change between an end and the nearest event is bisected.
+std::vector<Breakpoint> pieceBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
+                                         const BoreSection& bore,
+                                         const std::vector<BorePlane>& planes,
+                                         const std::function<bool(double)>& present);
 
 }  // namespace vcontact::volume::detail
