@@ -161,7 +161,8 @@ struct PresenceScan {
   std::vector<Breakpoint> changes;
 
   // The change in (a, b), present(a) = from ≠ present(b), by bisection; an event within
-  // snapWidth stands for it.
+  // snapWidth stands for it, singular or not as its kind is (a region going at a crossing
+  // goes as the square of the distance, its two corners' triangles).
   void bisect(double a, double b, bool from) {
     for (int k = 0; k < kBisections; ++k) {
       const double m = 0.5 * (a + b);
@@ -169,34 +170,23 @@ struct PresenceScan {
       (present(m) == from ? a : b) = m;
     }
     const double t = 0.5 * (a + b);
-    for (Breakpoint& e : events)
-      if (std::abs(e.t - t) <= snapWidth) {
-        e.singular = true;
-        return;
-      }
+    for (const Breakpoint& e : events)
+      if (std::abs(e.t - t) <= snapWidth) return;
     changes.push_back({t, true});
   }
-  // The changes in the sample interval (a, b), present(a) = from ≠ present(b) = to.
+  // The changes in the sample interval (a, b), present(a) = from ≠ present(b) = to: between
+  // the first and the last event inside, the events'; before and after them, bisected.
   void scan(double a, double b, bool from, bool to) {
-    std::vector<double> at = {a};
-    std::vector<std::size_t> which;
-    for (std::size_t i = 0; i < events.size(); ++i)
-      if (events[i].t > a && events[i].t < b) {
-        at.push_back(events[i].t);
-        which.push_back(i);
+    double first = b, last = a;
+    for (const Breakpoint& e : events)
+      if (e.t > a && e.t < b) {
+        first = std::min(first, e.t);
+        last = std::max(last, e.t);
       }
-    at.push_back(b);
-    bool last = from;
-    double lastMid = a;
-    for (std::size_t i = 0; i + 1 < at.size(); ++i) {
-      const double mid = 0.5 * (at[i] + at[i + 1]);
-      const bool here = at.size() == 2 ? to : present(mid);
-      if (here != last && i == 0) bisect(a, at.size() == 2 ? b : mid, from);
-      if (here != last && i > 0) events[which[i - 1]].singular = true;
-      last = here;
-      lastMid = mid;
-    }
-    if (last != to) bisect(lastMid, b, last);
+    if (!(first < b)) return bisect(a, b, from);
+    const double before = 0.5 * (a + first), after = 0.5 * (last + b);
+    if (present(before) != from) bisect(a, before, from);
+    if (present(after) != to) bisect(after, b, !to);
   }
 };
 
