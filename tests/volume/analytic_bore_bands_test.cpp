@@ -34,8 +34,10 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Simpson's rule in ψ about the disc's centre (inside the ellipse): on the ray at ψ the region
 // is ρ_E(ψ) ≤ ρ ≤ r cut to the line's side (a single interval), closed in ρ. Over ψ the
 // integrand changes form only where the circle crosses the ellipse (crossingAngles) or the line
-// crosses the circle or the ellipse (closed forms); Simpson's rule with 4000 intervals between each
-// two such angles leaves ~1e-14 of the slice. The circle's arcs in the region are closed forms
+// crosses the circle or the ellipse (closed forms); Simpson's rule with 2000 intervals between each
+// two such angles leaves ~2e-14 of the slice (4000 and 8000 agree to 1.3e-15 of the uncut
+// crescent on the cases below, the error going as the fourth power). The circle's arcs in the
+// region are closed forms
 // between the same angles. In long double: r − ρ_E carries ε R of rounding in double, 2e-10 of a
 // crescent 1e-6 r deep.
 struct Polar {
@@ -94,7 +96,7 @@ Polar polarCut(double r, const detail::SliceEllipse& E, const Vector2d& m, doubl
   }
   std::sort(cuts.begin(), cuts.end());
   Polar p;
-  const int steps = 4000;
+  const int steps = 2000;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     const LD w = (cuts[i + 1] - cuts[i]) / steps;
     for (int j = 0; j <= steps; ++j) {
