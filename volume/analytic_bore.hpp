@@ -81,7 +81,8 @@ BoreContact revolutionInBore(const RevolutionProfile& profile, const Eigen::Isom
 /// change (found by bisection between 64 rays from the crescent's deepest direction), then
 /// over ζ as above, with breakpoints
 /// where the slice's region appears or vanishes (bisection on its area between 16 samples a
-/// piece) and where a plane's line enters or leaves the largest disc. `cv.relative_error` is
+/// piece) and where a plane's line touches the circle or the ellipse or passes their
+/// crossings (volume/analytic_bore_bands.hpp). `cv.relative_error` is
 /// the outer quadrature's estimate (the inner one asked 1e-12). n ∝ −∫ n_A dS over the pin's
 /// boundary inside B (its side, and its end faces), the same as ∫ n_B dS over B's inside the
 /// pin for a closed region (MODEL.md §1); area |∫ n_A dS|, the shadow along n where n_A·n keeps

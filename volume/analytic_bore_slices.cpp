@@ -21,8 +21,9 @@ constexpr double kHarmonicRatio = 5.0;
 // Below −kEmptyMargin R² the largest value of the side (bounded through its harmonics) leaves
 // no doubt that the ellipse holds the disc; the harmonics carry a few ε R² of rounding.
 constexpr double kEmptyMargin = 64.0 * kEps;
-constexpr int kNewtonSteps = 100;  // Newton, else bisection: at most ~60 halvings of π
-constexpr int kGoldenSteps = 40;   // the deepest ray, to 4e-9 of the arc (its depth to ~1e-17)
+constexpr int kNewtonSteps = 100;    // Newton, else bisection: at most ~60 halvings of π
+constexpr double kSmallTurn = 1e-3;  // Newton steps turned by series (turn)
+constexpr int kGoldenSteps = 40;     // the deepest ray, to 4e-9 of the arc (its depth to ~1e-17)
 
 Segment wholeDisc(double r) {
   const double A = M_PI * r * r;
@@ -37,6 +38,23 @@ void subtract(InSlice& m, const Segment& g, double delta) {
   m.S22 -= g.S22;
 }
 
+// (cs, sn) = (cos, sin) of `from` becomes that of `to`: for a small turn δ = to − from by cos δ
+// to its δ⁶ term and sin δ to its δ⁵ (the next terms, δ⁸/8! and δ⁷/7!, below 2e-25 for
+// |δ| < kSmallTurn), else by new sines.
+void turn(double& cs, double& sn, double from, double to) {
+  const double d = to - from, d2 = d * d;
+  if (!(std::abs(d) < kSmallTurn)) {
+    cs = std::cos(to);
+    sn = std::sin(to);
+    return;
+  }
+  const double cd = 1.0 - 0.5 * d2 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
+  const double sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
+  const double c2 = cs * cd - sn * sd;
+  sn = sn * cd + cs * sd;
+  cs = c2;
+}
+
 // The circle's point at ψ from its direction u (x = r (cos ψ u + sin ψ u⊥)) against the
 // ellipse: f(ψ) = |S⁻¹(x − c)|² − R², positive outside.
 struct Side {
@@ -47,28 +65,25 @@ struct Side {
   double R = 0.0;
 
   Vector2d at(double psi) const { return r * (std::cos(psi) * u + std::sin(psi) * w); }
-  double f(double psi) const {
-    const double y = (Sinv * (at(psi) - c)).norm();
-    return (y - R) * (y + R);
+  // f and f′ at the circle's point whose direction from u has cosine cs and sine sn.
+  std::pair<double, double> fdf(double cs, double sn) const {
+    const Vector2d y = Sinv * (r * (cs * u + sn * w) - c);
+    const double n = y.norm();
+    return {(n - R) * (n + R), 2.0 * y.dot(Sinv * (r * (-sn * u + cs * w)))};
   }
-  double df(double psi) const {
-    const Vector2d y = Sinv * (at(psi) - c);
-    const Vector2d dx = r * (-std::sin(psi) * u + std::cos(psi) * w);
-    return 2.0 * y.dot(Sinv * dx);
-  }
-  // The root of f in (a, b), where f changes sign once, from the guess x: Newton kept in the
-  // bracket, bisection where it leaves it.
-  double root(double a, double b, double x) const {
-    const bool posA = f(a) > 0.0;
+  // The root of f in (a, b), where f changes sign once (positive at a if posA), from the
+  // guess x (cosine cs, sine sn): Newton kept in the bracket, bisection where it leaves it.
+  // A step δ below kSmallTurn turns (cos, sin) by the rotation's series instead of new sines.
+  double root(double a, double b, double x, double cs, double sn, bool posA) const {
     for (int i = 0; i < kNewtonSteps; ++i) {
-      const double fx = f(x);
+      const auto [fx, d] = fdf(cs, sn);
       if (fx == 0.0) return x;
       ((fx > 0.0) == posA ? a : b) = x;
-      const double d = df(x);
       double next = d != 0.0 ? x - fx / d : 0.5 * (a + b);
       if (!(next > a && next < b)) next = 0.5 * (a + b);
       if (std::abs(next - x) <= 4.0 * kEps * std::max(1.0, std::abs(x)) || !(b - a > 0.0))
         return next;
+      turn(cs, sn, x, next);
       x = next;
     }
     return x;
@@ -206,14 +221,24 @@ int crossings(double r, const SliceEllipse& E, Side& s, double& lo, double& hi) 
   if (A0 - rho1 - rho2 > 0.0) return -1;  // no crossing: the disc holds the ellipse, or misses it
   const Vector2d u = -Pc / Pc.norm();
   s = Side{r, u, Vector2d(-u.y(), u.x()), E.c, Sinv, E.R};
-  if (!(s.f(0.0) > 0.0 && s.f(M_PI) < 0.0)) return -1;
-  const double guess = std::acos(std::clamp(-A0 / rho1, -1.0, 1.0));
-  hi = s.root(0.0, M_PI, guess);
-  lo = s.root(-M_PI, 0.0, -guess);
+  if (!(s.fdf(1.0, 0.0).first > 0.0 && s.fdf(-1.0, 0.0).first < 0.0)) return -1;  // f(0), f(π)
+  const double cs = std::clamp(-A0 / rho1, -1.0, 1.0), sn = std::sqrt((1.0 - cs) * (1.0 + cs));
+  const double guess = std::acos(cs);
+  hi = s.root(0.0, M_PI, guess, cs, sn, true);  // f(0) > 0 > f(±π), checked above
+  lo = s.root(-M_PI, 0.0, -guess, cs, -sn, false);
   return 1;
 }
 
 }  // namespace
+
+bool circleCrossings(double r, const SliceEllipse& E, Vector2d& lo, Vector2d& hi) {
+  Side s;
+  double psiLo = 0.0, psiHi = 0.0;
+  if (crossings(r, E, s, psiLo, psiHi) != 1) return false;
+  lo = s.at(psiLo);
+  hi = s.at(psiHi);
+  return true;
+}
 
 bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out, bool withDepth) {
   Side s;

@@ -56,6 +56,12 @@ struct EllipseSlice {
 /// the cost).
 bool discLessEllipse(double r, const SliceEllipse& E, EllipseSlice& out, bool withDepth = true);
 
+/// The two points where the circle of radius r about the origin crosses the ellipse, when
+/// certified as in discLessEllipse: `lo` and `hi` counter-clockwise about the disc's arc
+/// outside the ellipse. False, leaving them alone, otherwise (the ellipse holding the disc
+/// included).
+bool circleCrossings(double r, const SliceEllipse& E, Eigen::Vector2d& lo, Eigen::Vector2d& hi);
+
 /// Half-planes a·x ≤ b.
 using HalfPlanes = std::vector<std::pair<Eigen::Vector2d, double>>;
 
