@@ -126,6 +126,7 @@ class ColumnDepth {
   /// Cells of kBlock × kBlock cells: the bins of the faces and the first filing (deepest()).
   static constexpr int kBlock = 4;
   struct CellBound;
+  void groupByFace();
   void project(const Eigen::Vector3d& n, const Eigen::Vector3d& o);
   void buildGrid();
   template <class Emit>
@@ -170,12 +171,8 @@ class ColumnDepth {
   double evaluateCell(int c, double best);
 
   std::vector<Input> input_;
-  struct Run {  ///< inputs first .. first + count − 1, all of one face
-    std::uint64_t key;
-    int first, count;
-  };
-  std::vector<Run> runs_;
   std::vector<int> order_;  ///< input indices by face, then in the order added
+  std::vector<std::pair<std::uint64_t, int>> keyed_, keyedSpare_;  ///< (key, input) radix sort
   std::vector<Seg> segs_;
   std::vector<Face> faces_;
   Grid grid_;
