@@ -186,15 +186,19 @@ double ColumnDepth::height(const Face& F, const Vector2d& x) {
 }
 
 /// A bound of columnSpanAt(x, h) without its exact tests: the ranges of the edges whose box
-/// holds x and the heights of the faces whose box does (rounding is monotonic).
+/// holds x (each the least of its whole range and, with the cell's trend, its detrended range
+/// about x: segmentHigh, segmentLow) and the heights of the faces whose box does (rounding is
+/// monotonic).
 double ColumnDepth::columnBound(const Vector2d& x, double h, int cell, int block) const {
   const double g = kBoxGrowth * tau_;
+  const bool trend = trend_.valid && cellOfTrend_ == cell;
+  const double gx = trend ? trend_.g.dot(x) : 0.0;
   double hi = h, lo = h;
   for (int k = segBegin_[cell]; k < segEnd_[cell]; ++k) {
-    const Seg& s = segs_[static_cast<std::size_t>(cellSegs_[k])];
+    const Seg& s = cellSeg(k);
     if (misses(s, x, g)) continue;
-    hi = std::max(hi, s.hmax);
-    lo = std::min(lo, s.hmin);
+    hi = std::max(hi, trend ? segmentHigh(k, gx) : s.hmax);
+    lo = std::min(lo, trend ? segmentLow(k, gx) : s.hmin);
   }
   for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
     const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];
@@ -318,8 +322,10 @@ double ColumnDepth::crossingDepth(const Seg& s, const Seg& t) const {
   return s.side > 0 ? hs - ht : ht - hs;
 }
 
-/// The candidates of cell c (its vertex columns, its top/bottom crossings) that can raise best.
+/// The candidates of cell c (its vertex columns, its top/bottom crossings) that can raise best;
+/// none where the cell's detrended bound shows that none can.
 double ColumnDepth::evaluateCell(int c, double best) {
+  if (detrendedBound(c) <= best) return best;  // column_depth_trend.cpp
   // Equal first ends (the same computed point, filed by several faces) are one column,
   // evaluated once.
   const auto key = [this](int i) {
