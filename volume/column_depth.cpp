@@ -187,18 +187,24 @@ double ColumnDepth::height(const Face& F, const Vector2d& x) {
 
 /// A bound of columnSpanAt(x, h) without its exact tests: the ranges of the edges whose box
 /// holds x (each the least of its whole range and, with the cell's trend, its detrended range
-/// about x: segmentHigh, segmentLow) and the heights of the faces whose box does (rounding is
+/// about x, column_depth_trend.cpp) and the heights of the faces whose box does (rounding is
 /// monotonic).
 double ColumnDepth::columnBound(const Vector2d& x, double h, int cell, int block) const {
   const double g = kBoxGrowth * tau_;
   const bool trend = trend_.valid && cellOfTrend_ == cell;
-  const double gx = trend ? trend_.g.dot(x) : 0.0;
+  const double gx = trend ? trend_.g.dot(x) : 0.0, margin = trend ? trendMargin(gx) : 0.0;
   double hi = h, lo = h;
   for (int k = segBegin_[cell]; k < segEnd_[cell]; ++k) {
     const Seg& s = cellSeg(k);
     if (misses(s, x, g)) continue;
-    hi = std::max(hi, trend ? segmentHigh(k, gx) : s.hmax);
-    lo = std::min(lo, trend ? segmentLow(k, gx) : s.hmin);
+    if (trend) {
+      const auto& [dlo, dhi] = trendRange_[static_cast<std::size_t>(k - segBegin_[cell])];
+      hi = std::max(hi, std::min(s.hmax, dhi + gx + margin));
+      lo = std::min(lo, std::max(s.hmin, dlo + gx - margin));
+    } else {
+      hi = std::max(hi, s.hmax);
+      lo = std::min(lo, s.hmin);
+    }
   }
   for (int k = faceStart_[block]; k < faceStart_[block + 1]; ++k) {
     const Face& F = faces_[static_cast<std::size_t>(cellFaces_[k])];

@@ -178,6 +178,7 @@ class ColumnDepth {
     Eigen::Vector2d g = Eigen::Vector2d::Zero();  ///< subtracted gradient of the heights
     double gAbs = 0.0;                            ///< |g|₁
     double err = 0.0;    ///< largest rounding allowed for on a detrended height
+    double dAbs = 0.0;   ///< largest |h − g·y| of the cell's segments' ends
     bool valid = false;  ///< g is set (the cell has a top or bottom segment)
   };
   bool detrend(int c);
@@ -185,8 +186,7 @@ class ColumnDepth {
   void detrendedFace(const Face& F, const Eigen::Vector2d& blo, const Eigen::Vector2d& bhi,
                      double& lo, double& hi);
   double detrendedBound(int c);
-  double segmentHigh(int k, double gx) const;
-  double segmentLow(int k, double gx) const;
+  double trendMargin(double gx) const;
 
   std::vector<Input> input_;
   std::vector<int> order_;  ///< input indices by face, then in the order added

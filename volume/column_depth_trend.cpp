@@ -70,6 +70,7 @@ bool ColumnDepth::detrend(int c) {
     const double da = detrended(s.a, s.ha), db = detrended(s.b, s.hb);
     trend_.err = std::max(trend_.err, s.slack);
     trendRange_.emplace_back(std::min(da, db), std::max(da, db));
+    trend_.dAbs = std::max({trend_.dAbs, std::abs(da), std::abs(db)});
   }
   trend_.valid = true;
   return true;
@@ -135,26 +136,12 @@ double ColumnDepth::detrendedBound(int c) {
   return value + 2.0 * (trend_.err + kNear * trend_.gAbs * tau_) + rounding;
 }
 
-/// The upper bound columnBound takes for the heights of the k-th segment of cell cellOfTrend_
-/// near the column through x (g·x given as gx): the least of its own range and its detrended range
-/// about gx, widened by τ|g|₁ and the rounding.
-double ColumnDepth::segmentHigh(int k, double gx) const {
-  const Seg& s = cellSeg(k);
-  if (!trend_.valid) return s.hmax;
-  const double dhi = trendRange_[static_cast<std::size_t>(k - segBegin_[cellOfTrend_])].second;
-  const double margin =
-      2.0 * trend_.err + kNear * trend_.gAbs * tau_ + kEps4 * (std::abs(dhi) + std::abs(gx));
-  return std::min(s.hmax, dhi + gx + margin);
-}
-
-/// The lower counterpart of segmentHigh.
-double ColumnDepth::segmentLow(int k, double gx) const {
-  const Seg& s = cellSeg(k);
-  if (!trend_.valid) return s.hmin;
-  const double dlo = trendRange_[static_cast<std::size_t>(k - segBegin_[cellOfTrend_])].first;
-  const double margin =
-      2.0 * trend_.err + kNear * trend_.gAbs * tau_ + kEps4 * (std::abs(dlo) + std::abs(gx));
-  return std::max(s.hmin, dlo + gx - margin);
+/// The margin of a segment's detrended range about a column of cell cellOfTrend_ (g·x = gx):
+/// a segment's heights near the column, at points y within kNear τ of it, are h = (h − g·y) +
+/// g·y ≤ its detrended high + gx + τ|g|₁, with the rounding of h (Seg::slack) and of its
+/// detrended range (each within err), and of the two additions (4ε of their operands).
+double ColumnDepth::trendMargin(double gx) const {
+  return 2.0 * trend_.err + kNear * trend_.gAbs * tau_ + kEps4 * (trend_.dAbs + std::abs(gx));
 }
 
 }  // namespace vcontact::volume
