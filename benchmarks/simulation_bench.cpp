@@ -6,7 +6,9 @@
 // suffix _implicit, left to the plain step (§5); the suffix _general runs the same steps
 // without the per-step shortcuts (Simulator::setStepShortcuts(false), the same numbers), the
 // "before" of §4.4 in the same run. The discrete runs sleep by default (§7);
-// discrete_1ms_implicit_nosleep is that run with "sleep": false. Counters: real_time_factor
+// discrete_1ms_implicit_nosleep is that run with "sleep": false, and
+// cad_tray_drop/discrete_1ms_implicit_prebuilt that run with each Simulator built outside the
+// timed region. Counters: real_time_factor
 // (simulated seconds per CPU second), steps, contact evaluations (Jacobians' included) and
 // Jacobians per run, output samples, and the final height of the last body (m) as a sanity
 // figure beside the time; the discrete runs add skipped_queries (sleep's), asleep_at_end
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -77,8 +80,10 @@ double largestSpeed(const Snapshot& s) {
 // resolved_steps, impacts and first_restitution (of the run's first impact, 0 without one).
 // Without `with_reference` (bin_of_ten, whose Dormand–Prince run takes many minutes) neither
 // rest_diff_m nor ref_speed_m_s.
+// With `prebuilt`, each iteration's Simulator is built and destroyed outside the timed region
+// (state.PauseTiming): the run alone, without the per-scenario setup.
 void discrete(benchmark::State& state, const std::string& name, double h, bool with_reference,
-              ImpactMode mode, bool sleep, bool shortcuts) {
+              ImpactMode mode, bool sleep, bool shortcuts, bool prebuilt) {
   vcontact::formats::ScenarioFile file = vcontact::formats::readScenarioFile(scenarioPath(name));
   file.scenario.settings.integrator = Integrator::kDiscrete;
   file.scenario.settings.step = h;
@@ -88,10 +93,17 @@ void discrete(benchmark::State& state, const std::string& name, double h, bool w
   long steps = 0, contacts = 0, resolved = 0, impacts = 0, skipped = 0, asleep = 0;
   Snapshot last;
   for (auto _ : state) {
-    Simulator sim(file.scenario);
-    sim.setStepShortcuts(shortcuts);
+    if (prebuilt) state.PauseTiming();
+    auto sim = std::make_unique<Simulator>(file.scenario);
+    sim->setStepShortcuts(shortcuts);
+    if (prebuilt) state.ResumeTiming();
     SimulationSummary summary;
-    sim.run([&](const Snapshot& s) { last = s; }, [](double) {}, summary);
+    sim->run([&](const Snapshot& s) { last = s; }, [](double) {}, summary);
+    if (prebuilt) {
+      state.PauseTiming();
+      sim.reset();
+      state.ResumeTiming();
+    }
     simulated += summary.simulated_time;
     steps = summary.steps;
     contacts = summary.contact_evaluations;
@@ -176,18 +188,26 @@ void registerScenario(const std::string& name) {
            {std::pair{"", ImpactMode::kResolve}, std::pair{"_implicit", ImpactMode::kImplicit}}) {
         const std::string full = "simulate/" + std::string(name) + "/discrete_" + suffix;
         benchmark::RegisterBenchmark((full + mode_suffix).c_str(), discrete, std::string(name), h,
-                                     with_reference, mode, true, true)
+                                     with_reference, mode, true, true, false)
             ->Unit(benchmark::kMillisecond);
         if (std::string(name) != "ball_drop" && std::string(name) != "tippe_top") continue;
         benchmark::RegisterBenchmark((full + mode_suffix + "_general").c_str(), discrete,
-                                     std::string(name), h, with_reference, mode, true, false)
+                                     std::string(name), h, with_reference, mode, true, false, false)
             ->Unit(benchmark::kMillisecond);
       }
+    }
+    // the setup (trees, topology, the Simulator's own) outside the timed region: the cost per
+    // simulated second alone (issue 18; docs/DISCRETE.md §4.2)
+    if (std::string(name) == "cad_tray_drop") {
+      benchmark::RegisterBenchmark("simulate/cad_tray_drop/discrete_1ms_implicit_prebuilt",
+                                   discrete, std::string(name), 1e-3, with_reference,
+                                   ImpactMode::kImplicit, true, true, true)
+          ->Unit(benchmark::kMillisecond);
     }
     // the same run awake throughout: the reference of sleep's gain (docs/SLEEP.md)
     benchmark::RegisterBenchmark(
         ("simulate/" + std::string(name) + "/discrete_1ms_implicit_nosleep").c_str(), discrete,
-        std::string(name), 1e-3, with_reference, ImpactMode::kImplicit, false, true)
+        std::string(name), 1e-3, with_reference, ImpactMode::kImplicit, false, true, false)
         ->Unit(benchmark::kMillisecond);
   }
   // Two meshes, fast method, 2 kHz output: the issue's CAD-part target (>= 1x at 1 kHz).

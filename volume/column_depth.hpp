@@ -126,6 +126,7 @@ class ColumnDepth {
   /// Cells of kBlock × kBlock cells: the bins of the faces and the first filing (deepest()).
   static constexpr int kBlock = 4;
   struct CellBound;
+  void groupByFace();
   void project(const Eigen::Vector3d& n, const Eigen::Vector3d& o);
   void buildGrid();
   template <class Emit>
@@ -168,14 +169,28 @@ class ColumnDepth {
   double deepestInCells();
   double branchAndBound();
   double evaluateCell(int c, double best);
+  /// The segment of cell list position k (cellSegs_).
+  const Seg& cellSeg(int k) const {
+    return segs_[static_cast<std::size_t>(cellSegs_[static_cast<std::size_t>(k)])];
+  }
+  // The detrended bounds (column_depth_trend.cpp).
+  struct Trend {
+    Eigen::Vector2d g = Eigen::Vector2d::Zero();  ///< subtracted gradient of the heights
+    double gAbs = 0.0;                            ///< |g|₁
+    double err = 0.0;    ///< largest rounding allowed for on a detrended height
+    double dAbs = 0.0;   ///< largest |h − g·y| of the cell's segments' ends
+    bool valid = false;  ///< g is set (the cell has a top or bottom segment)
+  };
+  bool detrend(int c);
+  double detrended(const Eigen::Vector2d& y, double h);
+  void detrendedFace(const Face& F, const Eigen::Vector2d& blo, const Eigen::Vector2d& bhi,
+                     double& lo, double& hi);
+  double detrendedBound(int c);
+  double trendMargin(double gx) const;
 
   std::vector<Input> input_;
-  struct Run {  ///< inputs first .. first + count − 1, all of one face
-    std::uint64_t key;
-    int first, count;
-  };
-  std::vector<Run> runs_;
   std::vector<int> order_;  ///< input indices by face, then in the order added
+  std::vector<std::pair<std::uint64_t, int>> keyed_, keyedSpare_;  ///< (key, input) radix sort
   std::vector<Seg> segs_;
   std::vector<Face> faces_;
   Grid grid_;
@@ -195,6 +210,9 @@ class ColumnDepth {
   std::vector<int> vertexBegin_, vertexEnd_, cellVertices_;
   std::vector<int> cellScratch_;               ///< a cell's vertices, sorted (evaluateCell)
   std::vector<std::pair<double, int>> queue_;  ///< heap of (bound, cell or −1 − block)
+  Trend trend_;                                ///< of cell cellOfTrend_ (detrend)
+  int cellOfTrend_ = -1;
+  std::vector<std::pair<double, double>> trendRange_;  ///< its segments' detrended [lo, hi]
   Arguments last_;
 };
 

@@ -5,10 +5,14 @@
 // columns once). Cases: cad_tray_drop's tray resting flat on its fixture and the upper tray on
 // the tray's rim (thin, wide regions: the case the speed-ups are for), moved by small random
 // motions, and two spheres whose lens has its poles in the region; bin_of_ten's resting pairs and
-// the peg of peg_jam in its bore, at their poses and moved at random.
+// the peg of peg_jam in its bore, at their poses and moved at random; synthetic thin conical
+// shells, steep along the columns (the detrended bounds' case).
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <random>
@@ -201,6 +205,65 @@ TEST(DepthPass, EqualsTheReferenceOnALens) {
     expectSameDepth(s, jitter(rng, overlap / 4) * X_WA, s, Isometry3d::Identity(),
                     "turned, overlap " + std::to_string(overlap));
   }
+}
+
+/// The boundary of a thin shell on a cone, as the depth pass takes it: bottom faces on
+/// z = slope (r − r0) and top faces d(r, θ) above them, over r in [r0, r0 + 0.6 mm] and a sector
+/// of 1.5 rad, each triangle's three edges with its outward unit normal (up for the top faces,
+/// down for the bottom ones). Seen along z tilted by `tilt` the heights over one grid cell vary
+/// by the slope times its width, several times the depth (the pins of cad_tray_drop in their
+/// chamfers): the case of the detrended bounds (volume/column_depth_trend.cpp).
+template <class Pass>
+void addConicalShell(Pass& pass, double slope, int rings, int sectors) {
+  const double r0 = 2.4e-3, width = 6e-4, sector = 1.5;
+  const auto point = [&](int i, int j, bool top) {
+    const double r = r0 + width * i / rings, th = sector * j / sectors;
+    // a depth of about 50 µm varying across the sector and the width, so the deepest column
+    // is not everywhere at once (and not at a vertex of the grid of rings and sectors)
+    const double d = top ? 5e-5 * (1.0 + 0.2 * std::sin(3.1 * th + 0.4) * (r - r0) / width) : 0.0;
+    return Vector3d(r * std::cos(th), r * std::sin(th), slope * (r - r0) + d);
+  };
+  std::uint64_t face = 0;
+  for (const bool top : {true, false}) {
+    for (int i = 0; i < rings; ++i) {
+      for (int j = 0; j < sectors; ++j) {
+        const Vector3d p00 = point(i, j, top), p10 = point(i + 1, j, top);
+        const Vector3d p01 = point(i, j + 1, top), p11 = point(i + 1, j + 1, top);
+        for (const auto& tri :
+             {std::array<Vector3d, 3>{p00, p10, p11}, std::array<Vector3d, 3>{p00, p11, p01}}) {
+          Vector3d n_f = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalized();
+          if ((n_f.z() > 0) != top) n_f = -n_f;
+          const std::uint64_t key = (std::uint64_t{top ? 1u : 0u} << 32) | face++;
+          for (int k = 0; k < 3; ++k) pass.add(key, n_f, tri[k], tri[(k + 1) % 3]);
+        }
+      }
+    }
+  }
+}
+
+// Thin conical shells of slopes 0.5 to 3 seen along z and along a direction tilted by 0.3 rad,
+// coarsely and finely tessellated (the fine ones take the blocks of column_depth_bounds.cpp).
+TEST(DepthPass, EqualsTheReferenceOnSteepThinShells) {
+  int cases = 0;
+  for (const double slope : {0.5, 1.0, 3.0}) {
+    for (const double tilt : {0.0, 0.3}) {
+      for (const auto& [rings, sectors] : {std::pair{6, 30}, std::pair{14, 60}}) {
+        SCOPED_TRACE("slope " + std::to_string(slope) + ", tilt " + std::to_string(tilt) +
+                     ", rings " + std::to_string(rings));
+        test::ReferenceColumnDepth reference;
+        ColumnDepth pass;
+        addConicalShell(reference, slope, rings, sectors);
+        addConicalShell(pass, slope, rings, sectors);
+        const Vector3d n(std::sin(tilt), 0.0, std::cos(tilt)), o(2.4e-3, 1e-3, 0.0);
+        const double expected = reference.deepest(n, o, 4e-3);
+        // the shell's thickness along n: about 50 µm, more where the columns run obliquely
+        EXPECT_GT(expected, 4e-5);
+        EXPECT_EQ(pass.deepest(n, o, 4e-3), expected);
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 12);
 }
 
 struct PartPose {
