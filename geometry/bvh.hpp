@@ -61,4 +61,26 @@ class MeshBvh {
   std::vector<BvhNode> nodes_;
 };
 
+/// Calls `visit(f)` for each triangle f in the leaves whose boxes overlap `box` (in M), until
+/// it returns true; returns whether it did. The triangles' own boxes are the caller's to test.
+template <class Visit>
+bool visitTrianglesNear(const MeshBvh& tree, const Aabb& box, Visit&& visit) {
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const BvhNode& node = tree.nodes()[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    if (((node.center - node.halfExtent).array() > box.max.array()).any() ||
+        ((node.center + node.halfExtent).array() < box.min.array()).any())
+      continue;
+    if (!node.isLeaf()) {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+      continue;
+    }
+    for (int i = node.first; i < node.first + node.count; ++i)
+      if (visit(tree.order()[static_cast<std::size_t>(i)])) return true;
+  }
+  return false;
+}
+
 }  // namespace vcontact::geometry

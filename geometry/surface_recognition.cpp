@@ -39,18 +39,23 @@ int root(std::vector<int>& parent, int i) {
   return i;
 }
 
-// The smooth regions of the mesh: faces joined across every edge that is not a crease.
+}  // namespace
+
 std::vector<int> smoothRegions(const TriangleMesh& mesh, const MeshTopology& topology,
-                               const std::vector<Eigen::Vector3d>& face_normals,
-                               double cos_crease) {
+                               const std::vector<Eigen::Vector3d>& face_normals, double cos_crease,
+                               const std::vector<int>* taken) {
   std::vector<int> parent(static_cast<std::size_t>(mesh.triangleCount()));
   std::iota(parent.begin(), parent.end(), 0);
+  const auto free = [&](int f) { return taken == nullptr || (*taken)[f] < 0; };
   for (const MeshEdge& e : topology.edges())
-    if (face_normals[e.tri[0]].dot(face_normals[e.tri[1]]) >= cos_crease)
+    if (free(e.tri[0]) && free(e.tri[1]) &&
+        face_normals[e.tri[0]].dot(face_normals[e.tri[1]]) >= cos_crease)
       parent[root(parent, e.tri[0])] = root(parent, e.tri[1]);
   for (std::size_t f = 0; f < parent.size(); ++f) parent[f] = root(parent, static_cast<int>(f));
   return parent;
 }
+
+namespace {
 
 // Four samples inside each face of a smooth region with fewer than kFewSamples corner
 // samples (a box face has 4; CGAL accepts no shape of fewer than 10 points): the centroid and
@@ -363,22 +368,18 @@ void measure(RecognisedSurface& s, const TriangleMesh& mesh) {
   s.rms_residual = std::sqrt(sum2 / static_cast<double>(vertices.size()));
 }
 
-// The faces the passes left free, in smooth regions joined across their edges.
+// The faces the passes left free, in smooth regions joined across their edges (ascending).
 std::vector<std::vector<int>> freeRegions(const RecognitionInput& in, const MeshTopology& topology,
                                           const std::vector<int>& face_surface) {
-  std::vector<int> parent(face_surface.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const MeshEdge& e : topology.edges())
-    if (face_surface[e.tri[0]] < 0 && face_surface[e.tri[1]] < 0 &&
-        in.normals[e.tri[0]].dot(in.normals[e.tri[1]]) >= in.cos_crease)
-      parent[detail::root(parent, e.tri[0])] = detail::root(parent, e.tri[1]);
+  const std::vector<int> label =
+      detail::smoothRegions(in.mesh, topology, in.normals, in.cos_crease, &face_surface);
   std::vector<int> region_of(face_surface.size(), -1);
   std::vector<std::vector<int>> regions;
   for (int f = 0; f < static_cast<int>(face_surface.size()); ++f) {
     if (face_surface[f] >= 0) continue;
-    int& r = region_of[detail::root(parent, f)];
+    int& r = region_of[label[f]];
     if (r < 0) r = static_cast<int>(regions.size()), regions.emplace_back();
-    regions[r].push_back(f);  // ascending
+    regions[r].push_back(f);
   }
   return regions;
 }
@@ -395,13 +396,9 @@ std::optional<RecognisedSurface> bandSurface(const std::vector<int>& region,
                                              const RecognitionInput& in,
                                              const std::vector<int>& face_surface) {
   if (region.size() < 3) return std::nullopt;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int f : region) mean += in.normals[f];
-  mean /= static_cast<double>(region.size());
-  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-  for (int f : region) spread += (in.normals[f] - mean) * (in.normals[f] - mean).transpose();
-  const Eigen::Vector3d axis =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+  std::vector<Eigen::Vector3d> normals;
+  for (int f : region) normals.push_back(in.normals[f]);
+  const Eigen::Vector3d axis = leastSpread(normals);
   const std::vector<Eigen::Vector3d> points = positions(in.mesh, verticesOf(in.mesh, region));
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) centre += p;

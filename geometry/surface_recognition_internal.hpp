@@ -27,6 +27,13 @@ struct SamplePoints {
 /// Unit face normals (zero for a face of no area).
 std::vector<Eigen::Vector3d> faceNormals(const TriangleMesh& mesh);
 
+/// The smooth regions of the mesh (faces joined across every edge whose faces' normals agree
+/// within cos_crease), each face labelled by one face of its region; with `taken`, a face f
+/// with taken[f] >= 0 joins no region but its own.
+std::vector<int> smoothRegions(const TriangleMesh& mesh, const MeshTopology& topology,
+                               const std::vector<Eigen::Vector3d>& face_normals, double cos_crease,
+                               const std::vector<int>* taken = nullptr);
+
 SamplePoints samplePoints(const TriangleMesh& mesh, const MeshTopology& topology,
                           const std::vector<Eigen::Vector3d>& face_normals, double crease_angle);
 

@@ -24,33 +24,19 @@ constexpr double kParallel = 1e-9;
 // The bore's ends and the pin's range are compared within this many vertex tolerances.
 constexpr double kTolerances = 10.0;
 
-// The faces of `block` whose boxes overlap `box` (in the block's frame).
+// The surfaces of `block` holding a face whose box overlaps `box` (in the block's frame).
 std::set<int> surfacesWithin(const RecoveredBody& block, const geometry::Aabb& box) {
-  const geometry::MeshBvh& tree = block.bvh();
-  const auto overlaps = [&](const Vector3d& lo, const Vector3d& hi) {
-    return (lo.array() <= box.max.array()).all() && (hi.array() >= box.min.array()).all();
-  };
   std::set<int> touched;
-  std::vector<int> stack{0};
-  while (!stack.empty()) {
-    const geometry::BvhNode& node = tree.nodes()[static_cast<std::size_t>(stack.back())];
-    stack.pop_back();
-    if (!overlaps(node.center - node.halfExtent, node.center + node.halfExtent)) continue;
-    if (!node.isLeaf()) {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
-      continue;
+  geometry::visitTrianglesNear(block.bvh(), box, [&](int f) {
+    Vector3d lo = block.mesh().corner(f, 0), hi = lo;
+    for (int c = 1; c < 3; ++c) {
+      lo = lo.cwiseMin(block.mesh().corner(f, c));
+      hi = hi.cwiseMax(block.mesh().corner(f, c));
     }
-    for (int i = node.first; i < node.first + node.count; ++i) {
-      const int f = tree.order()[static_cast<std::size_t>(i)];
-      Vector3d lo = block.mesh().corner(f, 0), hi = lo;
-      for (int c = 1; c < 3; ++c) {
-        lo = lo.cwiseMin(block.mesh().corner(f, c));
-        hi = hi.cwiseMax(block.mesh().corner(f, c));
-      }
-      if (overlaps(lo, hi)) touched.insert(block.recognition().face_surface[f]);
-    }
-  }
+    if ((lo.array() <= box.max.array()).all() && (hi.array() >= box.min.array()).all())
+      touched.insert(block.recognition().face_surface[f]);
+    return false;
+  });
   return touched;
 }
 

@@ -195,23 +195,10 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
   std::vector<int> faces;
   for (int f = 0; f < static_cast<int>(a.mesh().triangleCount()); ++f) {
     const geometry::Aabb box = faceBox(a.mesh(), f, X_BA, grow);
-    std::vector<int> stack{0};
-    bool hit = false;
-    while (!stack.empty() && !hit) {
-      const geometry::BvhNode& node = tree.nodes()[static_cast<std::size_t>(stack.back())];
-      stack.pop_back();
-      if (!overlaps(box, node.center, node.halfExtent)) continue;
-      if (!node.isLeaf()) {
-        stack.push_back(node.left);
-        stack.push_back(node.right);
-        continue;
-      }
-      for (int i = node.first; i < node.first + node.count && !hit; ++i) {
-        const geometry::Aabb g = faceBox(b.mesh(), tree.order()[static_cast<std::size_t>(i)],
-                                         Eigen::Isometry3d::Identity(), 0.0);
-        hit = overlaps(box, 0.5 * (g.min + g.max), 0.5 * (g.max - g.min));
-      }
-    }
+    const bool hit = geometry::visitTrianglesNear(tree, box, [&](int g) {
+      const geometry::Aabb other = faceBox(b.mesh(), g, Eigen::Isometry3d::Identity(), 0.0);
+      return overlaps(box, 0.5 * (other.min + other.max), 0.5 * (other.max - other.min));
+    });
     if (hit) faces.push_back(f);
   }
   return faces;

@@ -27,12 +27,10 @@ const std::string kAssets = VCONTACT_ASSETS_DIR;
 
 // `args` run in a child whose files may not exceed `limitKiB` (0: no limit).
 CommandResult vcontact(const std::string& args, const fs::path& dir, int limitKiB = 0) {
-  std::string command = inQuotes(kBinary) + " " + args;
-  if (limitKiB > 0) {
-    // single quotes around the whole: the arguments use double quotes only
-    command = "bash -c 'ulimit -f " + std::to_string(limitKiB) + "; exec " + command + "'";
-  }
-  return vcontact::test::runCommand(command, dir / "stderr.txt");
+  // the arguments use double quotes only, as withFileSizeLimit needs
+  return vcontact::test::runCommand(
+      vcontact::test::withFileSizeLimit(inQuotes(kBinary) + " " + args, limitKiB),
+      dir / "stderr.txt");
 }
 
 // Every file under `dir` but the test's own (stderr.txt, the inputs named in `keep`).

@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using vcontact::test::CommandResult;
 using vcontact::test::inQuotes;
+using vcontact::test::readAll;
 using vcontact::test::ScratchDir;
 
 const std::string kBinary = VCONTACT_BINARY;
@@ -29,13 +30,6 @@ const std::string kAssets = VCONTACT_ASSETS_DIR;
 
 CommandResult vcontact(const std::string& args, const fs::path& dir) {
   return vcontact::test::runCommand('"' + kBinary + "\" " + args, dir / "stderr.txt");
-}
-
-std::string readAll(const fs::path& p) {
-  std::ifstream f(p);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 // The names in `dir`, but the test's own stderr.txt and inputs (*.json given as `keep`).
@@ -75,9 +69,10 @@ TEST(OutputGuarantees, WriteToDevFullExitsTwoNamingTheFile) {
 TEST(OutputGuarantees, SizeLimitedSimulationExitsTwoAndLeavesNoFiles) {
   const ScratchDir scratch{"output_fsize"};
   const fs::path& dir = scratch.path();
-  const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary + "\" simulate \"" +
-                              kAssets + "/scenarios/ball_drop.json\" --out \"" +
-                              (dir / "out").string() + "\"'";
+  const std::string command = vcontact::test::withFileSizeLimit(
+      inQuotes(kBinary) + " simulate " + inQuotes(kAssets + "/scenarios/ball_drop.json") +
+          " --out " + inQuotes(dir / "out"),
+      16);
   const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
@@ -90,8 +85,8 @@ TEST(OutputGuarantees, SizeLimitedMeshWriteLeavesNoFile) {
   const ScratchDir scratch{"output_fsize_mesh"};
   const fs::path& dir = scratch.path();
   const fs::path out = dir / "ball.stl";
-  const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary +
-                              "\" tessellate sphere:0.01 --out \"" + out.string() + "\"'";
+  const std::string command = vcontact::test::withFileSizeLimit(
+      inQuotes(kBinary) + " tessellate sphere:0.01 --out " + inQuotes(out), 16);
   const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
   expectBadOutput(r, out.string(), "File too large");
   EXPECT_EQ(leftovers(dir, {}), std::vector<std::string>{});
@@ -103,8 +98,8 @@ TEST(OutputGuarantees, FailedWriteKeepsThePreviousFile) {
   const fs::path& dir = scratch.path();
   const fs::path out = dir / "ball.stl";
   std::ofstream(out) << "previous";
-  const std::string command = "bash -c 'ulimit -f 16; exec \"" + kBinary +
-                              "\" tessellate sphere:0.01 --out \"" + out.string() + "\"'";
+  const std::string command = vcontact::test::withFileSizeLimit(
+      inQuotes(kBinary) + " tessellate sphere:0.01 --out " + inQuotes(out), 16);
   const CommandResult r = vcontact::test::runCommand(command, dir / "stderr.txt");
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(readAll(out), "previous");

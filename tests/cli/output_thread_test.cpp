@@ -21,18 +21,12 @@ namespace {
 namespace fs = std::filesystem;
 using vcontact::test::CommandResult;
 using vcontact::test::inQuotes;
+using vcontact::test::readAll;
 using vcontact::test::ScratchDir;
 
 const std::string kBinary = VCONTACT_BINARY;
 const std::string kAssets = VCONTACT_ASSETS_DIR;
 const char* const kModes[] = {"on", "off"};
-
-std::string readAll(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 // What a run left: each file under the folder `out` (links not followed) and its bytes.
 using Files = std::map<std::string, std::string>;
@@ -65,10 +59,10 @@ struct SimulateRun {
 SimulateRun simulate(const std::string& scenario, const fs::path& dir, const std::string& mode,
                      int limitKiB = 0) {
   const fs::path out = dir / ("out-" + mode);
-  std::string command = inQuotes(kBinary) + " simulate " + inQuotes(scenario) + " --out " +
-                        inQuotes(out) + " --quiet --output-thread " + mode;
-  if (limitKiB > 0)
-    command = "bash -c 'ulimit -f " + std::to_string(limitKiB) + "; exec " + command + "'";
+  const std::string command = vcontact::test::withFileSizeLimit(
+      inQuotes(kBinary) + " simulate " + inQuotes(scenario) + " --out " + inQuotes(out) +
+          " --quiet --output-thread " + mode,
+      limitKiB);
   SimulateRun run{vcontact::test::runCommand(command, dir / ("stderr-" + mode + ".txt")), {}};
   run.files = filesUnder(out);
   return run;

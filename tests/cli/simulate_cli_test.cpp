@@ -13,22 +13,18 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_dir.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
+using vcontact::test::readAll;
 
 int runCli(const std::string& args, const fs::path& err) {
   std::ostringstream cmd;
   cmd << '"' << VCONTACT_BINARY << "\" " << args << " 2> \"" << err.string() << '"';
   const int status = std::system(cmd.str().c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string readAll(const fs::path& p) {
-  std::ifstream f(p);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 long lineCount(const fs::path& p) {

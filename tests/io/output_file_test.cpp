@@ -10,12 +10,14 @@
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using vcontact::InputError;
 using vcontact::io::OutputFile;
+using vcontact::test::readAll;
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() /
@@ -23,13 +25,6 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string readAll(const fs::path& p) {
-  std::ifstream f(p);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 std::size_t entries(const fs::path& dir) {

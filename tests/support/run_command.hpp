@@ -21,6 +21,13 @@ struct CommandResult {
 /// `p` in double quotes, as one word of a shell command (the tests' paths hold no '"', '$' or '`').
 inline std::string inQuotes(const std::filesystem::path& p) { return '"' + p.string() + '"'; }
 
+/// `command` run by bash with the files it writes limited to `limitKiB` KiB (`ulimit -f`, so
+/// a write past it fails with EFBIG); `command` as it is for 0. `command` holds no single quote.
+inline std::string withFileSizeLimit(const std::string& command, int limitKiB) {
+  if (limitKiB <= 0) return command;
+  return "bash -c 'ulimit -f " + std::to_string(limitKiB) + "; exec " + command + "'";
+}
+
 inline CommandResult runCommand(const std::string& command, const std::filesystem::path& errFile) {
   CommandResult r;
   FILE* pipe = popen((command + " 2>" + errFile.string()).c_str(), "r");

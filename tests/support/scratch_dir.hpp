@@ -7,9 +7,19 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace vcontact::test {
+
+/// The bytes of the file `p` ("" if it cannot be read).
+inline std::string readAll(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
 
 class ScratchDir {
  public:
