@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Set up (scripts/setup.sh), then run the main job on bundled examples:
+# Set up (scripts/setup.sh, building only the vcontact program), then run the main job on bundled examples:
 #  1. a simulation: a steel ball dropped on an aluminium plate (assets/scenarios/ball_drop.json),
 #  2. the contact volume of the same ball as a CAD mesh and as the exact sphere, so that the
 #     faceting error of the mesh is in plain view.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh vcontact
 build="${VCONTACT_BUILD_DIR:-build}"
 vcontact="$build/bin/vcontact"
 echo

@@ -4,6 +4,8 @@
 # configures and builds in Release. Safe to run again: it installs nothing and rebuilds
 # nothing that is already up to date.
 #
+# Usage: setup.sh [TARGET ...]   build only these CMake targets (the demo builds only the
+#                                `vcontact` program); with none, everything (tests included).
 # Environment: VCONTACT_BUILD_DIR (default: build), VCONTACT_JOBS (default: nproc).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -25,6 +27,11 @@ PACKAGES=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   # three.js, inlined into the page `vcontact view` writes (docs/VIEWER.md).
   libjs-three
+  # Derivative-free global search for fits whose loss is not smooth (trajectories, docs/DATASET.md).
+  libnlopt-cxx-dev
+  # Studies (docs/STUDY.md): Dask distributed runs them, SciPy's qmc samples the designs,
+  # h5py writes the large tables.
+  python3-dask python3-distributed python3-scipy python3-h5py
 )
 # The libFuzzer harnesses (tests/fuzz, -DVCONTACT_FUZZ=ON) need clang and its fuzzer and
 # sanitizer runtimes; a normal build does not.
@@ -53,5 +60,7 @@ jobs="${VCONTACT_JOBS:-$(nproc)}"
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
-echo "vcontact setup: building in $build with $jobs jobs"
-cmake --build "$build" -j"$jobs"
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
+echo "vcontact setup: building ${*:-everything} in $build with $jobs jobs"
+cmake --build "$build" -j"$jobs" "${targets[@]}"
