@@ -25,8 +25,9 @@ PACKAGES=(
   chromium clang-format
   # The Python package (python/, docs/PYTHON.md): bindings, NumPy arrays, its pytest suite.
   pybind11-dev python3-dev python3-numpy python3-pytest
-  # three.js, inlined into the page `vcontact view` writes (docs/VIEWER.md).
-  libjs-three
+  # three.js, inlined into the page `vcontact view` writes (docs/VIEWER.md); node parses the
+  # page's own script, report/view.js, in the CTest checks/view_script_parses.
+  libjs-three nodejs
   # Derivative-free global search for fits whose loss is not smooth (trajectories, docs/DATASET.md).
   libnlopt-cxx-dev
   # Studies (docs/STUDY.md): Dask distributed runs them, SciPy's qmc samples the designs,

@@ -1,11 +1,6 @@
-// The viewer page's own script (after the inlined three.js); docs/VIEWER.md says what it does.
-
-#include "report/view_html_script.hpp"
-
-namespace vcontact::report {
-
-const char* viewScript() {
-  return R"JS(
+// The viewer page's own script, inlined after three.js by report/view_html.cpp (docs/VIEWER.md
+// says what it does). The build embeds this file as it is (report/embed_text.cmake); a CTest
+// parses it (report/view_script_parse).
 (function () {
   'use strict';
   const status = { errors: [] };
@@ -323,7 +318,3 @@ const char* viewScript() {
   publish();
   requestAnimationFrame(tick);
 })();
-)JS";
-}
-
-}  // namespace vcontact::report
