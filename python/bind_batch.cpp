@@ -220,27 +220,23 @@ py::dict bodyDict(const BodyFigures& f) {
   return d;
 }
 
-// The impacts as columns: start_s, duration_s, normal_impulse_Ns, approach_speed_m_s,
-// separation_speed_m_s, restitution (summary.json's keys), one row per impact.
+// The impacts as columns named by summary.json's keys, one row per impact.
+constexpr std::pair<const char*, double dynamics::ImpactRecord::*> kImpactColumns[] = {
+    {"start_s", &dynamics::ImpactRecord::start},
+    {"duration_s", &dynamics::ImpactRecord::duration},
+    {"normal_impulse_Ns", &dynamics::ImpactRecord::impulse},
+    {"approach_speed_m_s", &dynamics::ImpactRecord::approach_speed},
+    {"separation_speed_m_s", &dynamics::ImpactRecord::separation_speed},
+    {"restitution", &dynamics::ImpactRecord::restitution}};
+
 py::dict impactColumns(const std::vector<dynamics::ImpactRecord>& impacts) {
-  const auto n = static_cast<py::ssize_t>(impacts.size());
-  py::array_t<double> start(n), duration(n), impulse(n), approach(n), separation(n), e(n);
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const auto& r = impacts[static_cast<std::size_t>(i)];
-    start.mutable_at(i) = r.start;
-    duration.mutable_at(i) = r.duration;
-    impulse.mutable_at(i) = r.impulse;
-    approach.mutable_at(i) = r.approach_speed;
-    separation.mutable_at(i) = r.separation_speed;
-    e.mutable_at(i) = r.restitution;
-  }
   py::dict d;
-  d["start_s"] = start;
-  d["duration_s"] = duration;
-  d["normal_impulse_Ns"] = impulse;
-  d["approach_speed_m_s"] = approach;
-  d["separation_speed_m_s"] = separation;
-  d["restitution"] = e;
+  for (const auto& [name, member] : kImpactColumns) {
+    py::array_t<double> column(static_cast<py::ssize_t>(impacts.size()));
+    for (std::size_t i = 0; i < impacts.size(); ++i)
+      column.mutable_at(static_cast<py::ssize_t>(i)) = impacts[i].*member;
+    d[name] = column;
+  }
   return d;
 }
 

@@ -12,6 +12,7 @@ refused, never mixed.
 """
 
 import csv
+import itertools
 import json
 import os
 import sys
@@ -180,7 +181,7 @@ def _run_dask(study, folder, todo, progress, done, failed, client):
                              key=f"vcontact-chunk-{study.identity[:16]}-{c}", pure=True,
                              retries=2)
 
-    running = as_completed([submit(c) for c, _ in zip(pending, range(window))])
+    running = as_completed([submit(c) for c in itertools.islice(pending, window)])
     for future in running:
         result = future.result()
         future.release()
