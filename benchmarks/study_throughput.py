@@ -7,7 +7,8 @@ reference measured in the same run:
 2. runs per second of a study on a LocalCluster of 1 and 2 workers, and in one process
    (--workers 0, 1 thread), for runs of about RUN_MS;
 3. the study machinery's overhead per run: (study wall time × workers − the runs' own wall
-   time) / the runs' wall time, with 1 worker;
+   time) / runs, the cluster's start (a fixed cost) left out and given apart; as a share of a
+   50 ms run;
 4. the scheduler's cost per chunk: no-op tasks through the same client, per task.
 
 Usage: PYTHONPATH=build/python /usr/bin/python3 benchmarks/study_throughput.py [--runs N]
@@ -81,15 +82,43 @@ def study_rate(folder, scenario, runs, duration, workers, threads=1):
         json.dump(study_doc(scenario, runs, duration), f)
     study = Study(path)
     out = path + ".out"
+    client = cluster = None
+    startup = 0.0
+    if workers:
+        t0 = time.perf_counter()
+        client, cluster = connect(None, workers)
+        client.wait_for_workers(workers)
+        startup = time.perf_counter() - t0
+    workers_cpu0 = sum(client.run(time.process_time).values()) if client else 0.0
+    cpu0 = time.process_time()
     t0 = time.perf_counter()
-    run_study(study, out, workers=workers, quiet=True, threads=threads, log=lambda s: None)
+    try:
+        workers_cpu = 0.0
+        run_study(study, out, workers=workers, quiet=True, threads=threads, log=lambda s: None,
+                  client=client)
+        cpu = time.process_time() - cpu0
+        if client:
+            workers_cpu = sum(client.run(time.process_time).values()) - workers_cpu0
+    finally:
+        if client is not None:
+            client.close()
+            cluster.close()
     wall = time.perf_counter() - t0
-    own = 0.0
+    own = own_cpu = 0.0
     for name in os.listdir(os.path.join(out, "chunks")):
         with open(os.path.join(out, "chunks", name), encoding="utf-8") as f:
-            own += sum(r["wall_time"] for r in json.load(f)["rows"])
-    return {"workers": workers, "runs": runs, "wall_s": wall, "runs_per_s": runs / wall,
-            "run_ms": 1e3 * own / runs, "own_s": own}
+            rows = json.load(f)["rows"]
+        own += sum(r["wall_time"] for r in rows)
+        own_cpu += sum(r["cpu_time"] for r in rows)
+    # CPU seconds of everything but the runs themselves (client, scheduler, workers' Python,
+    # merge, report) over the runs' own CPU: independent of what else loads the machine.
+    machinery_cpu = cpu + workers_cpu - own_cpu
+    return {"workers": workers, "runs": runs, "cluster_start_s": startup, "wall_s": wall,
+            "runs_per_s": runs / wall, "run_ms": 1e3 * own / runs, "own_s": own,
+            "overhead_ms_per_run": 1e3 * (wall * max(1, workers) - own) / runs,
+            "run_cpu_ms": 1e3 * own_cpu / runs,
+            "machinery_cpu_ms_per_run": 1e3 * machinery_cpu / runs,
+            "machinery_cpu_share": machinery_cpu / own_cpu}
 
 
 def scheduler_cost(tasks):
@@ -107,9 +136,9 @@ def scheduler_cost(tasks):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--runs", type=int, default=200)
-    ap.add_argument("--duration", type=float, default=3.0,
-                    help="simulated s of a run: ball_drop, 3 s is ~50 ms of wall time here")
+    ap.add_argument("--runs", type=int, default=120)
+    ap.add_argument("--duration", type=float, default=1.5,
+                    help="simulated s of a run: ball_drop, 1.5 s is ~50 ms of wall time here")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory(prefix="vcontact-bench-") as folder:
         scenario = inline_ball_drop(folder)
@@ -119,6 +148,7 @@ def main():
         for w in (1, 2):
             r = study_rate(folder, scenario, args.runs, args.duration, w)
             r["overhead_per_run"] = (r["wall_s"] * w - r["own_s"]) / r["own_s"]
+            r["overhead_for_50ms_runs"] = r["overhead_ms_per_run"] / 50.0
             print(json.dumps({"local_cluster": r}), flush=True)
         print(json.dumps({"scheduler": scheduler_cost(500)}), flush=True)
 

@@ -354,3 +354,14 @@ def test_a_changed_study_is_refused_on_resume(tmp_path, inline_ball_drop):
     assert f"{out}: holds the results of another study" in r.stderr
     assert "refusing to mix" in r.stderr
     assert (out / "results.csv").read_text() == before
+
+
+def test_the_command_documents_its_options():
+    from conftest import BINARY
+    r = subprocess.run([BINARY, "study", "--help"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0
+    for option in ("--out", "--workers", "--scheduler", "--chunk-size", "--run", "--h5",
+                   "docs/STUDY.md"):
+        assert option in r.stdout
+    r = subprocess.run([BINARY, "study", "x.json"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and "--out is required" in r.stderr

@@ -135,6 +135,6 @@ def run_chunk(spec, chunk, first, rows, threads=1):
             result["message"] = errors[k]
         values = dict(zip(names, map(float, row)))
         out.append({"run": first + k, "status": result["status"], "message": result["message"],
-                    "wall_time": result["wall_time"],
+                    "wall_time": result["wall_time"], "cpu_time": result["cpu_time"],
                     "outputs": outputs_of(spec, values, result, compiled)})
     return {"identity": spec["identity"], "chunk": chunk, "rows": out}

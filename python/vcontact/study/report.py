@@ -13,6 +13,7 @@ import numpy as np
 BINS = 8           # quantile bins of a parameter for the probability curves and the influence
 Z95 = 1.959963985  # the standard normal's 97.5 % quantile: two-sided 95 % intervals
 SLOWEST = 10
+MAX_DOTS = 2000    # runs drawn per scatter
 
 
 def wilson(k, n, z=Z95):
@@ -90,7 +91,10 @@ def _axes(xlabel, ylabel, xr, yr):
 
 
 def scatter_svg(x, y, bad, xlabel, ylabel):
-    """y against x; runs that did not complete in red."""
+    """y against x; runs that did not complete in red. Beyond MAX_DOTS runs, every k-th run
+    (k = ceil(n / MAX_DOTS)), so that a page of a million runs stays a few megabytes."""
+    stride = max(1, math.ceil(len(x) / MAX_DOTS))
+    x, y, bad = x[::stride], y[::stride], bad[::stride]
     ok = np.isfinite(x) & np.isfinite(y)
     if not np.any(ok):
         return f"<p>{html.escape(ylabel)}: no finite value</p>"
@@ -194,8 +198,9 @@ def write_report(study, table, path, out):
                  "output by the correlation ratio over 8 quantile bins of the parameter, "
                  "bias-corrected (docs/STUDY.md, \"Report\"); largest first.</p>")
     parts.append(_influence_table(study, table, outputs))
+    shown = "" if n <= MAX_DOTS else f" Every {math.ceil(n / MAX_DOTS)}th run is drawn."
     parts.append("<h2>Outputs against each parameter</h2><p>Blue: completed runs; red: "
-                 "stopped or failed.</p>")
+                 f"stopped or failed.{shown}</p>")
     for o in numeric:
         parts.append(f"<h3>{html.escape(o)}</h3><div>")
         for p in study.names:

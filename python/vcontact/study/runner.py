@@ -146,6 +146,11 @@ def _run_here(study, folder, todo, progress, done, failed, threads):
     return done, failed
 
 
+def _package_dir():
+    """The folder holding the package vcontact (build/python in a build tree)."""
+    return os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
 def connect(scheduler, workers):
     """A Dask client: to a running scheduler (its address), or to a LocalCluster of `workers`
     processes of one thread each. The local workers import vcontact from where this process
@@ -157,8 +162,12 @@ def connect(scheduler, workers):
         except (OSError, TimeoutError) as e:
             raise StudyError(f"--scheduler {scheduler}: no Dask scheduler answered within "
                              f"{CONNECT_TIMEOUT_S:g} s ({type(e).__name__}: {e})") from None
-    package_dir = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    paths = [package_dir] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
+    import dask
+    # Dask's statistical profiler samples every worker thread each 10 ms: 1.5 % of a core per
+    # idle worker measured here, a third of the machinery's cost per run (docs/STUDY.md,
+    # "Measurements"); a study has no use for it. The local workers inherit the setting.
+    dask.config.set({"distributed.worker.profile.enabled": False})
+    paths = [_package_dir()] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
     os.environ["PYTHONPATH"] = os.pathsep.join(dict.fromkeys(paths))
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=40)
@@ -178,12 +187,17 @@ def _run_dask(study, folder, todo, progress, done, failed, client):
 
     def submit(c):
         return client.submit(run_chunk, spec, *_chunk_args(study, c), threads=1,
-                             key=f"vcontact-chunk-{study.identity[:16]}-{c}", pure=True,
-                             retries=2)
+                             key=f"vcontact-chunk-{study.identity[:16]}-{c}", pure=True)
 
     running = as_completed([submit(c) for c in itertools.islice(pending, window)])
     for future in running:
-        result = future.result()
+        try:
+            result = future.result()
+        except Exception as e:  # the task itself failed: not a run (runs fail as rows)
+            raise StudyError(
+                f"chunk {future.key.rpartition('-')[2]} failed on the cluster: "
+                f"{type(e).__name__}: {e} (do its workers import this vcontact? start them "
+                f"with PYTHONPATH={_package_dir()})") from None
         future.release()
         folder.write_chunk(result)
         done += len(result["rows"])
@@ -196,9 +210,10 @@ def _run_dask(study, folder, todo, progress, done, failed, client):
 
 
 def run_study(study, out, workers=None, scheduler=None, quiet=False, h5=False,
-              threads=0, log=None):
+              threads=0, log=None, client=None):
     """Runs (or resumes) the study into `out`, then merges the table and writes the report.
-    workers 0: no Dask, the chunks one after another in this process on `threads` TBB threads.
+    workers 0: no Dask, the chunks one after another in this process on `threads` TBB threads;
+    `client`: a Dask client of the caller's (kept open).
     Returns the merged table's summary {runs, completed, stopped, error, resumed_chunks}."""
     log = log or (lambda text: print(f"vcontact: {text}", file=sys.stderr))
     folder = Folder(out, study)
@@ -209,17 +224,19 @@ def run_study(study, out, workers=None, scheduler=None, quiet=False, h5=False,
         log(f"resuming {out}: {len(finished)} of {study.chunks} chunks already finished, "
             f"{len(todo)} to run")
     progress = Progress(study.runs, quiet)
-    client = cluster = None
+    own, cluster = client is None, None
     start = time.monotonic()
     try:
-        if todo and workers == 0 and not scheduler:
+        if todo and client is not None:
+            _run_dask(study, folder, todo, progress, done, 0, client)
+        elif todo and workers == 0 and not scheduler:
             _run_here(study, folder, todo, progress, done, 0, threads)
         elif todo:
             client, cluster = connect(scheduler, workers or os.cpu_count() or 1)
             _run_dask(study, folder, todo, progress, done, 0, client)
     finally:
         progress.finish()
-        if client is not None:
+        if own and client is not None:
             client.close()
         if cluster is not None:
             cluster.close()

@@ -37,6 +37,15 @@ RUN_FIGURES = ("simulated_time", "steps", "rejected_steps", "contact_evaluations
 AXES = {"x": 0, "y": 1, "z": 2}
 
 
+def _standard(kind, d, xs):
+    """Values as standard normal deviates of a normal (mean, std) or log-normal (median,
+    sigma of the log) distribution; ±inf pass through, and x <= 0 is −inf for a log-normal."""
+    if kind == "normal":
+        return [(x - d["mean"]) / d["std"] for x in xs]
+    return [-math.inf if x <= 0 else (math.log(x) - math.log(d["median"])) / d["sigma"]
+            if math.isfinite(x) else x for x in xs]
+
+
 class StudyError(ValueError):
     """A study file that cannot be run as written; the message names the file and place."""
 
@@ -232,13 +241,10 @@ class Study:
 
     @staticmethod
     def _mass(kind, v, low, high):
+        """The probability the distribution puts in [low, high]."""
         from scipy import stats
-        z = ((np.log([low, high]) - math.log(v["median"])) / v["sigma"] if kind == "lognormal"
-             else (np.array([low, high]) - v["mean"]) / v["std"]) if low > -math.inf or \
-            high < math.inf else np.array([-math.inf, math.inf])
-        if kind == "lognormal" and low == -math.inf:
-            z[0] = -math.inf
-        return float(stats.norm.cdf(z[1]) - stats.norm.cdf(z[0]))
+        a, b = stats.norm.cdf(_standard(kind, v, [low, high]))
+        return float(b - a)
 
     def _read_derived(self):
         derived = self.doc.get("derived", [])
@@ -268,19 +274,19 @@ class Study:
 
     @staticmethod
     def _quantile(p, u):
+        """The distribution's quantiles at u in (0, 1): uniform by its range; normal and
+        log-normal by the inverse CDF of the standard normal on the truncated range
+        [Φ(z_low), Φ(z_high)], so that a truncated distribution keeps the design's balance."""
         from scipy import stats
         d = p["distribution"]
         if p["kind"] == "uniform":
             return d["low"] + (d["high"] - d["low"]) * u
-        lo, hi = d.get("low", -math.inf), d.get("high", math.inf)
+        a, b = stats.norm.cdf(_standard(p["kind"], d, [d.get("low", -math.inf),
+                                                       d.get("high", math.inf)]))
+        z = stats.norm.ppf(a + (b - a) * u)
         if p["kind"] == "normal":
-            a, b = stats.norm.cdf([(lo - d["mean"]) / d["std"], (hi - d["mean"]) / d["std"]])
-            return d["mean"] + d["std"] * stats.norm.ppf(a + (b - a) * u)
-        logs = [math.log(x) if x > 0 else -math.inf for x in (lo, hi)] if lo > -math.inf else [
-            -math.inf, math.log(hi) if hi < math.inf else math.inf]
-        mu = math.log(d["median"])
-        a, b = stats.norm.cdf([(logs[0] - mu) / d["sigma"], (logs[1] - mu) / d["sigma"]])
-        return np.exp(mu + d["sigma"] * stats.norm.ppf(a + (b - a) * u))
+            return d["mean"] + d["std"] * z
+        return np.exp(math.log(d["median"]) + d["sigma"] * z)
 
     def _make_design(self):
         """Runs = count × the product of the grids' and lists' sizes: the factorial of the
