@@ -164,8 +164,8 @@ def connect(scheduler, workers):
                              f"{CONNECT_TIMEOUT_S:g} s ({type(e).__name__}: {e})") from None
     import dask
     # Dask's statistical profiler samples every worker thread each 10 ms: 1.5 % of a core per
-    # idle worker measured here, a third of the machinery's cost per run (docs/STUDY.md,
-    # "Measurements"); a study has no use for it. The local workers inherit the setting.
+    # idle worker measured here (3.6 % with it, 2.1 % without; docs/STUDY.md, "Measurements");
+    # a study has no use for it. The local workers inherit the setting.
     dask.config.set({"distributed.worker.profile.enabled": False})
     paths = [_package_dir()] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
     os.environ["PYTHONPATH"] = os.pathsep.join(dict.fromkeys(paths))
