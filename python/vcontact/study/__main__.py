@@ -39,6 +39,8 @@ def _parser():
 
 
 def _stop(signum, frame):
+    from .runner import INTERRUPT
+    INTERRUPT.set()
     raise KeyboardInterrupt
 
 
@@ -46,7 +48,9 @@ def main(argv=None):
     args = _parser().parse_args(argv)
     from . import StudyError, Study, run_one, run_study
     from .expr import ExpressionError
-    signal.signal(signal.SIGTERM, _stop)  # a batch system's kill ends as an interrupt does
+    # A batch system's kill ends as an interrupt does; both are remembered (runner.INTERRUPT).
+    signal.signal(signal.SIGTERM, _stop)
+    signal.signal(signal.SIGINT, _stop)
     try:
         if args.workers is not None and args.workers < 0:
             raise StudyError("--workers: expected 0 (no Dask) or a number of processes")

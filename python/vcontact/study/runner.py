@@ -16,6 +16,7 @@ import itertools
 import json
 import os
 import sys
+import threading
 import time
 
 import numpy as np
@@ -26,6 +27,9 @@ from .spec import StudyError
 MANIFEST_FORMAT = "vcontact.study-run/1"
 H5_AUTO_RUNS = 10_000  # results.h5 is written without --h5 from this many runs on
 CONNECT_TIMEOUT_S = 5.0
+# Set by the command's SIGINT/SIGTERM handler (__main__.py): an interrupt that arrives while
+# Dask starts its cluster is caught inside Dask; the flag makes it count all the same.
+INTERRUPT = threading.Event()
 
 
 def _write_atomic(path, text):
@@ -233,6 +237,8 @@ def run_study(study, out, workers=None, scheduler=None, quiet=False, h5=False,
             _run_here(study, folder, todo, progress, done, 0, threads)
         elif todo:
             client, cluster = connect(scheduler, workers or os.cpu_count() or 1)
+            if INTERRUPT.is_set():  # came while Dask started, which swallows KeyboardInterrupt
+                raise KeyboardInterrupt
             _run_dask(study, folder, todo, progress, done, 0, client)
     finally:
         progress.finish()
