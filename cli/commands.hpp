@@ -22,6 +22,8 @@ void addValidationCommands(CLI::App& app);
 void addFrictionMapCommand(CLI::App& app);
 /// view: a 3D playback page of a simulation output folder (issue 19).
 void addViewCommand(CLI::App& app);
+/// study: many runs of a scenario on Dask, by the Python package (docs/STUDY.md, issue 35).
+void addStudyCommand(CLI::App& app);
 
 /// Prints warnings to standard error, one per line, prefixed "vcontact: warning: ".
 void printWarnings(const std::vector<std::string>& warnings);

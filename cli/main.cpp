@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   vcontact::cli::addValidationCommands(app);
   vcontact::cli::addFrictionMapCommand(app);
   vcontact::cli::addViewCommand(app);
+  vcontact::cli::addStudyCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

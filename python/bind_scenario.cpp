@@ -60,14 +60,6 @@ Columns loadColumns() {
   return {{"t", {{}, 1}}, {"p", {{}, 3}}, {"force", {{}, 3}}, {"torque", {{}, 3}}};
 }
 
-// The scenario's loads, then its springs: the order of Snapshot::loads.
-std::vector<std::string> loadNames(const dynamics::Scenario& scenario) {
-  std::vector<std::string> names;
-  for (const auto& l : scenario.loads) names.push_back(l.name);
-  for (const auto& s : scenario.springs) names.push_back(s.name);
-  return names;
-}
-
 void record(const dynamics::Snapshot& s, std::vector<Columns>& bodies, std::vector<Columns>& pairs,
             std::vector<Columns>& loads) {
   const Eigen::Matrix<double, 1, 1> t(s.t);
@@ -150,6 +142,19 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
 
 LoadedScenario load(const std::string& path) { return {formats::readScenarioFile(path), path}; }
 
+// A scenario from its JSON text; `source` names it in messages, relative paths are resolved
+// against `base_dir` (a study's run: the base scenario's folder).
+LoadedScenario fromJson(const std::string& text, const std::string& source,
+                        const std::string& base_dir) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(source, std::string("not JSON: ") + e.what());
+  }
+  return {formats::scenarioFromJson(j, source, base_dir), source};
+}
+
 std::vector<std::string> view(const std::string& outDir, const std::string& html,
                               const std::string& scenario) {
   std::vector<std::string> warnings;
@@ -162,9 +167,17 @@ std::vector<std::string> view(const std::string& outDir, const std::string& html
 
 }  // namespace
 
+std::vector<std::string> loadNames(const dynamics::Scenario& scenario) {
+  std::vector<std::string> names;
+  for (const auto& l : scenario.loads) names.push_back(l.name);
+  for (const auto& s : scenario.springs) names.push_back(s.name);
+  return names;
+}
+
 void bindScenario(py::module_& m) {
   py::class_<LoadedScenario>(m, "Scenario", "A scenario file (dynamics/SCENARIO.md), loaded.")
       .def_static("load", &load, py::arg("path"))
+      .def_static("from_json", &fromJson, py::arg("text"), py::arg("source"), py::arg("base_dir"))
       .def_readonly("path", &LoadedScenario::path)
       .def_property_readonly("warnings", [](const LoadedScenario& s) { return s.file.warnings; })
       .def_property_readonly("bodies",

@@ -1,6 +1,10 @@
 #pragma once
 // The binding files of the extension module (module.cpp defines it).
 
+#include <string>
+#include <vector>
+
+#include "dynamics/scenario.hpp"
 #include "python/convert.hpp"
 
 namespace vcontact::python {
@@ -11,5 +15,10 @@ void bindModel(py::module_& m);
 void bindScenario(py::module_& m);
 /// Dataset: load, columns; compare, fit and diagnose returning their JSON files' content.
 void bindDataset(py::module_& m);
+/// run_batch: many scenarios on a TBB pool with the GIL released, reduced to per-run figures.
+void bindBatch(py::module_& m);
+
+/// The scenario's loads, then its springs: the order of Snapshot::loads.
+std::vector<std::string> loadNames(const dynamics::Scenario& scenario);
 
 }  // namespace vcontact::python

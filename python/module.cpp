@@ -127,4 +127,5 @@ PYBIND11_MODULE(_vcontact, m) {
   vp::bindModel(m);
   vp::bindScenario(m);
   vp::bindDataset(m);
+  vp::bindBatch(m);
 }

@@ -132,3 +132,22 @@ CASES = [
                                       "--samples", "200", "--out", "d.json"],
         ["d.json", "is a folder"], folders=["d.json"], outputs=["d.csv"]),
 ]
+
+# vcontact study (docs/STUDY.md): the study file is checked before a folder is made or a run
+# starts. (Bad parameters, outputs and schedulers: python/tests/study, CTest python/study.)
+def study(name, text, expect):
+    return cli("study_" + name, ["study", "s.json", "--out", "o", "--workers", "0"], expect,
+               outputs=["o"], files={"s.json": text})
+
+
+CASES += [
+    cli("study_missing", ["study", "nothing.json", "--out", "o"],
+        ["nothing.json", "cannot read"], outputs=["o"]),
+    study("not_json", "{", ["s.json", "line 1", "not JSON"]),
+    study("unknown_key", '{"format": "vcontact.study/1", "runs": 3}',
+          ["s.json", "runs", "unknown key"]),
+    study("no_scenario", '{"format": "vcontact.study/1", "scenario": "none.json"}',
+          ["s.json", "scenario", "none.json", "cannot read"]),
+    cli("study_negative_workers", ["study", "s.json", "--out", "o", "--workers", "-1"],
+        ["--workers"], outputs=["o"], files={"s.json": "{}"}),
+]
