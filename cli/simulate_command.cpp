@@ -33,6 +33,15 @@ void printSummary(const dynamics::SimulationSummary& s) {
             << " contact evaluations";
   if (s.jacobian_evaluations > 0) std::cerr << ", " << s.jacobian_evaluations << " Jacobians";
   std::cerr << '\n';
+  if (s.patches_without_slot > 0) {
+    std::cerr << "vcontact: warning: " << s.patches_without_slot
+              << " contact patches (summed over the output times; up to " << s.patches_max
+              << " of one pair at once) had no state slot of their own (they read the friction "
+                 "states of the nearest patch's slot, or were lumped into a one-slot pair's "
+                 "single region); raise the pairs' max_patches (up to 16), "
+                 "or set it to 1 to lump each pair's patches into one region "
+                 "(dynamics/SCENARIO.md, Contact patches; summary.json patches.without_slot)\n";
+  }
   for (const dynamics::SurfacePairUse& p : s.surface_pairs) {
     std::cerr << "vcontact: pair '" << p.pair << "': ";
     if (!p.polyhedral_reason.empty()) {

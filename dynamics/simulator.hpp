@@ -207,6 +207,7 @@ class Simulator {
   double impactDuration(std::size_t k, const volume::ContactVolume& cv, double f_n) const;
   bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
                    double h) const;
+  bool linearisationMissed(double h) const;
   void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
   // A Dormand–Prince attempt of dt from (x, t) for runDopri5 and resolveInterval: a rejection is
   // counted, leaves the smaller step in dt and throws when it falls below min_step.
@@ -217,6 +218,7 @@ class Simulator {
   void afterDopri5Step(State& x, State& dxdt, double t);
   void stepImpulses(double h);
   void sleepBeforeStep(State& x, double t);
+  void contactBalance(std::vector<char>& balanced) const;
   bool lacksDepth(std::size_t k) const;
   void assembleLoads(double t, double h);
   void loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
@@ -334,7 +336,7 @@ class Simulator {
   // Sleeping islands (simulator_sleep.cpp): the tracker, its per-pair inputs, and the queries
   // a frozen pair's kept contact replaced.
   SleepTracker sleep_;
-  std::vector<char> sleep_contact_, sleep_near_;
+  std::vector<char> sleep_contact_, sleep_near_, sleep_balanced_;
   long sleep_skipped_ = 0;
   long rhs_count_ = 0;
   long contact_count_ = 0;

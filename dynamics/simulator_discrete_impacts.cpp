@@ -17,7 +17,9 @@
 // lands a resting body (g h): resting contact and its hop (§5) stay on the fixed step. Outputs
 // stay on the fixed grid; the Dormand–Prince steps inside are not output.
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "dynamics/dopri5_control.hpp"
@@ -36,6 +38,14 @@ constexpr double kResolvedSteps = 250.0;
 constexpr double kMinImpactSpeed = 1e-3;
 // A Dormand–Prince step that ends within this fraction of the interval of its end lands on it.
 constexpr double kEndSlack = 1e-9;
+// A plain step missed its linearisation when a pair's normal force queried at the step's end
+// differs from the force the step applied (h n·f⁺, stepImpulses) by more than this fraction of
+// the larger of the two, and by more than a quarter of the weight of the pair's lighter free
+// body: a step that rests or slides on a contact the linearisation describes well lands within
+// a few percent; one that fell into the contact from apart (the hop of docs/DISCRETE.md §5), or
+// whose tilt stiffness or missing cross terms (§2.2) are off by more than two, does not.
+constexpr double kMissedForceFraction = 0.5;
+constexpr double kMissedWeightFraction = 0.25;
 
 }  // namespace
 
@@ -91,6 +101,33 @@ bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool a
   return false;
 }
 
+// Whether the plain step just taken applied, to some pair in contact at its end, a normal
+// force far from the one queried there (kMissedForceFraction): the linearised contact did not
+// describe the step. Backward Euler with h² k/m ≫ 1 moves a body to where the linearised force
+// balances the others in one step, so a stiffness off by more than twice overshoots further
+// than it started, and a resting part rocks or hops in a cycle about its rest (a 5,400-triangle
+// housing on its rim: 3 to 19 times its weight at the queries, docs/DISCRETE.md §5).
+bool Simulator::linearisationMissed(double h) const {
+  const double g = scenario_.gravity_W.norm();
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const PairOutput& out = last_pairs_[k];
+    if (!out.cv.inContact() || sleep_.frozen(k)) continue;  // a frozen pair was not stepped
+    const ContactPair& pair = scenario_.pairs[k];
+    double lighter = std::numeric_limits<double>::infinity();
+    for (const std::size_t b : {pair.a, pair.b}) {
+      if (offset_[b] >= 0) lighter = std::min(lighter, scenario_.bodies[b].mass);
+    }
+    if (!std::isfinite(lighter)) continue;
+    const double applied = step_impulse_[k] / h, queried = out.result.f_n;
+    const double miss = std::abs(queried - applied);
+    if (miss > kMissedForceFraction * std::max(std::abs(applied), std::abs(queried)) &&
+        miss > kMissedWeightFraction * lighter * g) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // The interval [t, t1] of one step, plain or resolved; x, dxdt and the contacts at t on entry,
 // at t1 (checked, settled, observed by the impact tracker) on return.
 void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, double t1, bool lands,
@@ -117,7 +154,7 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   rhs(x, dxdt, t);
   query_depths_ = false;
   keep_contexts_ = false;
-  if (resolve && impactAhead(start_kin_, true, h)) {
+  if (resolve && (impactAhead(start_kin_, true, h) || linearisationMissed(h))) {
     x = start_x_;
     dxdt = start_dxdt_;
     t = t0;

@@ -126,14 +126,16 @@ void SleepTracker::refreeze() {
 const std::vector<std::size_t>& SleepTracker::update(double t,
                                                      const std::vector<BodyKinematics>& kin,
                                                      const std::vector<char>& contact,
-                                                     const std::vector<char>& near) {
+                                                     const std::vector<char>& near,
+                                                     const std::vector<char>& balanced) {
   fell_.clear();
   if (!enabled_) return fell_;
   const std::vector<RigidBody>& bodies = scenario_->bodies;
   wake(t, contact, near);
   was_near_ = near;
   formIslands(contact);
-  // Quiet times; an island whose root sees a body not yet quiet long enough stays awake.
+  // Quiet times; an island whose root sees a body not yet quiet long enough, or not balanced
+  // on its contacts, stays awake.
   std::vector<char>& ready = blocked_;  // reused: 1 = may not sleep now
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].motion != BodyMotion::kFree || asleep_[i]) continue;
@@ -145,7 +147,7 @@ const std::vector<std::size_t>& SleepTracker::update(double t,
       anchor_R_[i] = R;
       spell_[i] = t;
     }
-    if (t - spell_[i] < time_) ready[root(i)] = 1;
+    if (t - spell_[i] < time_ || !balanced[i]) ready[root(i)] = 1;
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].motion != BodyMotion::kFree || asleep_[i] || ready[root(i)]) continue;

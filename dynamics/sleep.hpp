@@ -11,13 +11,16 @@
 // over the spell is below `speed`. A displacement, not the instantaneous speed: a body resting
 // on a very stiff contact hops at up to g h every step (docs/DISCRETE.md §5) about a fixed
 // pose, while a creeping or sliding one moves on. An island falls asleep once every body of
-// it has been quiet for SleepSettings::time; never while a body of it carries a load or a
-// spring, or touches a prescribed body. A sleeping body keeps its pose, has zero velocity and
-// is not integrated; a pair whose bodies are each asleep or fixed keeps its latest contact
-// instead of a query. A sleeping island wakes whole when the pair of an awake free body (or a
-// prescribed one) with one of its bodies comes to pass the broad phase (their boxes overlap
-// now and did not at the previous step), or is in contact (that pair is still queried).
-// Everything is decided from the state and in index order: a run is as deterministic with
+// it has been quiet for SleepSettings::time and every body of it is balanced: in contact, with
+// the contact forces and torques of the latest query holding its weight (within
+// kBalanceFraction of m |g|, and of m |g| r_max for the torque about its centre of mass), so
+// that the contact a sleeping body keeps is one of rest, never a pose in mid-air or mid-rock;
+// never while a body of it carries a load or a spring, or touches a prescribed body. A sleeping
+// body keeps its pose, has zero velocity and is not integrated; a pair whose bodies are each asleep
+// or fixed keeps its latest contact instead of a query. A sleeping island wakes whole when the pair
+// of an awake free body (or a prescribed one) with one of its bodies comes to pass the broad phase
+// (their boxes overlap now and did not at the previous step), or is in contact (that pair is still
+// queried). Everything is decided from the state and in index order: a run is as deterministic with
 // sleep as without.
 
 #include <cstddef>
@@ -38,6 +41,12 @@ struct SleepEvent {
 
 class SleepTracker {
  public:
+  /// A body is balanced when the net contact force on it, plus its weight, is within this
+  /// fraction of its weight (and the torque about its centre of mass within this fraction of
+  /// m |g| r_max). Resting parts of the bundled scenarios balance to 1e-3 and better at rest;
+  /// a part in a hop or rock cycle of the fixed step is 1 to 20 weights off at most queries.
+  static constexpr double kBalanceFraction = 0.25;
+
   /// Per body of s: r_max from its shape's bounds about its centre of mass; which bodies may
   /// never sleep (loads, springs). On for the discrete integrator with sleep enabled only.
   void reset(const Scenario& s);
@@ -48,12 +57,18 @@ class SleepTracker {
   bool frozen(std::size_t k) const { return enabled_ && frozen_[k] != 0; }
 
   /// Before a step from t, with the bodies at `kin` and per pair whether it is in
-  /// contact (`contact`) and whether its boxes overlap (`near`): wakes the sleeping islands an
-  /// awake free body or a prescribed one reaches, advances the quiet times and puts quiet islands
-  /// to sleep. Returns the bodies that fell asleep now (the caller zeroes their velocities).
+  /// contact (`contact`) and whether its boxes overlap (`near`), and per body whether it is
+  /// balanced on its contacts (`balanced`, kBalanceFraction): wakes the sleeping islands an
+  /// awake free body or a prescribed one reaches, advances the quiet times and puts quiet,
+  /// balanced islands to sleep. Returns the bodies that fell asleep now (the caller zeroes
+  /// their velocities).
   const std::vector<std::size_t>& update(double t, const std::vector<BodyKinematics>& kin,
                                          const std::vector<char>& contact,
-                                         const std::vector<char>& near);
+                                         const std::vector<char>& near,
+                                         const std::vector<char>& balanced);
+
+  /// r_max of body i (the farthest point of its shape's box from its centre of mass), m.
+  double reach(std::size_t i) const { return r_max_[i]; }
 
   const std::vector<SleepEvent>& events() const { return events_; }
 
