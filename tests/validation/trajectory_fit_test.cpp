@@ -1,0 +1,120 @@
+// One model fitted to many engine-made tosses (validation/trajectory_fit.hpp): the truth is
+// known, so the fitted parameters are held to their standard errors.
+#include "validation/trajectory_fit.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "toss_fixtures.hpp"
+
+namespace vcontact::validation {
+namespace {
+
+using testing::TossSpec;
+
+dynamics::Model truth() {
+  dynamics::Model m = dynamics::Model::withEffects({"stiffness", "damping", "coulomb"});
+  m.setParameter("stiffness.kv", 2e6);
+  m.setParameter("damping.a", 3.0);
+  m.setParameter("coulomb.mu", 0.3);
+  return m;
+}
+
+// Four tosses that land sliding in different directions and spins.
+std::vector<Trial> tosses(const dynamics::Model& model, double offset, double sigma) {
+  std::vector<Trial> out;
+  for (int k = 0; k < 4; ++k) {
+    TossSpec spec;
+    const double a = 0.7 * k;
+    spec.X0.translation() = Eigen::Vector3d(0, 0, 0.09 + 0.01 * k);
+    spec.X0.linear() = Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    spec.v0 = Eigen::Vector3d(0.8 * std::cos(a), 0.8 * std::sin(a), -0.2);
+    spec.w0 = Eigen::Vector3d(0, 0, 1.0 + k);
+    spec.duration = 0.5;
+    out.push_back(testing::makeToss(spec, model, offset, sigma, 10 * sigma, 11 + k,
+                                    "toss" + std::to_string(k)));
+  }
+  return out;
+}
+
+TrajectoryFitOptions quickOptions() {
+  TrajectoryFitOptions o;
+  o.globalEvaluations = 30;
+  o.localEvaluations = 40;
+  o.starts = 1;
+  o.folds = 0;
+  return o;
+}
+
+const TrajectoryParameter& named(const TrajectoryFitResult& r, const std::string& name) {
+  for (const auto& p : r.parameters)
+    if (p.name == name) return p;
+  throw std::runtime_error("no parameter " + name);
+}
+
+// μ and a hidden plate offset (the board 1.5 mm below the record's zero), from a start 50 % off
+// in μ and at zero offset; noise of 0.2 mm and 2 mrad. Each is held to 3 standard errors
+// (and the error itself to a fraction of the value, so that a huge error cannot pass).
+TEST(TrajectoryFit, RecoversFrictionAndAHiddenPlateOffsetWithinTheirStandardErrors) {
+  const double offset = -0.0015;
+  const std::vector<Trial> trials = tosses(truth(), offset, 2e-4);
+  dynamics::Model start = truth();
+  start.setParameter("coulomb.mu", 0.45);
+  start.setFixed({"stiffness.kv", "damping.a", "coulomb.v_s"});
+  const TrajectoryFitResult r = fitTrajectories(trials, start, quickOptions());
+  const auto& mu = named(r, "coulomb.mu");
+  const auto& dz = named(r, "plate.offset");
+  ASSERT_TRUE(std::isfinite(mu.stdError) && std::isfinite(dz.stdError));
+  EXPECT_LT(std::abs(mu.value - 0.3), 3 * mu.stdError + 1e-3) << mu.value << " ± " << mu.stdError;
+  EXPECT_LT(mu.stdError, 0.05);
+  EXPECT_LT(std::abs(dz.value - offset), 3 * dz.stdError + 1e-5)
+      << dz.value << " ± " << dz.stdError;
+  EXPECT_LT(dz.stdError, 5e-4);
+  EXPECT_LT(r.meanFitted, 0.2 * r.meanStart);
+}
+
+// The sum over trials is taken in trial order: one thread and many give the same bits.
+TEST(TrajectoryFit, ResultDoesNotDependOnTheThreadCount) {
+  const std::vector<Trial> trials = tosses(truth(), 0.0, 1e-4);
+  dynamics::Model start = truth();
+  start.setParameter("coulomb.mu", 0.4);
+  start.setFixed({"stiffness.kv", "damping.a", "coulomb.v_s"});
+  TrajectoryFitOptions o = quickOptions();
+  o.globalEvaluations = 8;
+  o.localEvaluations = 6;
+  o.fitPlateOffset = false;
+  TrajectoryFitResult one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = fitTrajectories(trials, start, o);
+  }
+  const TrajectoryFitResult many = fitTrajectories(trials, start, o);
+  EXPECT_EQ(one.meanFitted, many.meanFitted);
+  EXPECT_EQ(one.parameters[0].value, many.parameters[0].value);
+}
+
+// k-fold by trial: every trial is scored by a model that did not see it.
+TEST(TrajectoryFit, CrossValidationScoresEachTrialByAModelFittedWithoutIt) {
+  const std::vector<Trial> trials = tosses(truth(), 0.0, 1e-4);
+  dynamics::Model start = truth();
+  start.setParameter("coulomb.mu", 0.4);
+  start.setFixed({"stiffness.kv", "damping.a", "coulomb.v_s"});
+  TrajectoryFitOptions o = quickOptions();
+  o.globalEvaluations = 10;
+  o.localEvaluations = 10;
+  o.fitPlateOffset = false;
+  o.folds = 2;
+  const TrajectoryFitResult r = fitTrajectories(trials, start, o);
+  ASSERT_EQ(r.trials.size(), trials.size());
+  for (std::size_t i = 0; i < r.trials.size(); ++i) {
+    EXPECT_EQ(r.trials[i].fold, static_cast<int>(i % 2));
+    EXPECT_TRUE(std::isfinite(r.trials[i].e_q_heldOut));
+  }
+  EXPECT_TRUE(std::isfinite(r.meanHeldOut));
+  EXPECT_LT(r.meanHeldOut, r.meanStart);
+}
+
+}  // namespace
+}  // namespace vcontact::validation
