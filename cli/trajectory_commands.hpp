@@ -13,7 +13,7 @@ namespace vcontact::cli {
 
 struct TrajectoryOptions {
   double h = 0.0;  ///< m, e_q's length; 0: half the payload's smallest extent
-  std::string integrator = "dopri5";
+  std::string integrator = "discrete";
   int folds = 5;
   int globalEvaluations = 48;
   int localEvaluations = 32;

@@ -29,8 +29,20 @@ bool inContact(const Dataset& d, const Eigen::Isometry3d& X_BA, double margin) {
   return volume::computeContact(d.payload, X_BA, d.plate, d.X_BP).aggregate.inContact();
 }
 
-// The fastest point of the payload's bounding sphere moves at |v| + |ω| r.
-double pointSpeed(const Sample& s, double radius) { return s.v_BA.norm() + s.w_BA.norm() * radius; }
+// The mean speed of the payload's fastest point over the kRestWindow around sample i, |v̄| +
+// |ω̄| r with v̄ and ω̄ from the poses at the window's ends: the velocity columns of a resting
+// body hold its ringing on the contact and the noise of differentiated markers, not its motion.
+double pointSpeed(const Dataset& d, std::size_t i, double radius) {
+  const auto& s = d.samples;
+  std::size_t a = i, b = i;
+  while (a > 0 && s[i].t - s[a].t < 0.5 * kRestWindow) --a;
+  while (b + 1 < s.size() && s[b].t - s[i].t < 0.5 * kRestWindow) ++b;
+  if (a == b) return s[i].v_BA.norm() + s[i].w_BA.norm() * radius;
+  const double dt = s[b].t - s[a].t;
+  const double v = (s[b].X_BA.translation() - s[a].X_BA.translation()).norm() / dt;
+  const double w = angleBetween(s[b].X_BA.linear(), s[a].X_BA.linear()) / dt;
+  return v + w * radius;
+}
 
 // The simulator's outputs, at k / rate s after the first sample.
 struct Outputs {
@@ -97,8 +109,7 @@ std::vector<Phase> recordPhases(const Dataset& d) {
   std::vector<Phase> phases(d.size(), Phase::kFlight);
   int sinceFlight = kImpactSamples;  // a record that starts in contact starts with no impact
   for (std::size_t i = 0; i < d.size(); ++i) {
-    const Sample& s = d.samples[i];
-    if (!inContact(d, s.X_BA, margin)) {
+    if (!inContact(d, d.samples[i].X_BA, margin)) {
       phases[i] = Phase::kFlight;
       sinceFlight = 0;
       continue;
@@ -112,7 +123,7 @@ std::vector<Phase> recordPhases(const Dataset& d) {
     // hysteresis: a payload at rest stays so until it moves at twice the rest speed, so that
     // the noise of a slowing slide does not flicker between the two
     const double limit = (i > 0 && phases[i - 1] == Phase::kRest ? 2.0 : 1.0) * kRestSpeed;
-    phases[i] = pointSpeed(s, 0.5 * size) < limit ? Phase::kRest : Phase::kSliding;
+    phases[i] = pointSpeed(d, i, 0.5 * size) < limit ? Phase::kRest : Phase::kSliding;
   }
   return phases;
 }

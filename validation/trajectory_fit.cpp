@@ -48,7 +48,8 @@ std::vector<Dimension> searchSpace(const dynamics::Model& model, bool fitOffset)
     }
     dims.push_back(d);
   }
-  if (fitOffset) dims.push_back({"plate.offset", "m", 0.0, -kPlateOffsetRange, kPlateOffsetRange});
+  if (fitOffset)
+    dims.push_back({"plate.offset", "m", 0.0, -kPlateOffsetRange, kPlateOffsetRange, false, true});
   return dims;
 }
 
