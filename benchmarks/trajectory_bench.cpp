@@ -24,7 +24,8 @@ validation::Trial toss(double height) {
   spec.size = Eigen::Vector3d::Constant(0.1048);
   spec.inertia = Eigen::Vector3d::Constant(0.00081);
   spec.X0.translation() = Eigen::Vector3d(0, 0, height);
-  spec.X0.linear() = Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix();
+  spec.X0.linear() =
+      Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix();
   spec.v0 = Eigen::Vector3d(-1.0, -0.8, -0.6);
   spec.w0 = Eigen::Vector3d(4.3, -3.0, 0.1);
   spec.duration = 0.7;

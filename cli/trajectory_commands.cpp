@@ -66,13 +66,11 @@ void addTrajectoryOptions(CLI::App* cmd, TrajectoryOptions& o, bool fits) {
       ->capture_default_str();
   cmd->add_option("--integrator", o.integrator, "dynamic datasets: dopri5 | bdf | discrete")
       ->capture_default_str();
-  if (!fits) {
-    cmd->add_option("--plate-offset", o.plateOffset,
-                    "dynamic datasets: the plate's surface this far along its normal, m (a "
-                    "trajectory fit's plate.offset)")
-        ->capture_default_str();
-    return;
-  }
+  cmd->add_option("--plate-offset", o.plateOffset,
+                  "dynamic datasets: the plate's surface this far along its normal, m (a "
+                  "trajectory fit's plate.offset; fit: its start, or its value with --fix-plate)")
+      ->capture_default_str();
+  if (!fits) return;
   cmd->add_option("--folds", o.folds,
                   "dynamic datasets: k of the k-fold cross-validation by trial (0: none)")
       ->capture_default_str();

@@ -30,7 +30,8 @@ struct Dimension {
   bool offset = false;  // the plate offset, not a model parameter
 };
 
-std::vector<Dimension> searchSpace(const dynamics::Model& model, bool fitOffset) {
+std::vector<Dimension> searchSpace(const dynamics::Model& model, bool fitOffset,
+                                   double startOffset) {
   std::vector<Dimension> dims;
   const auto& fixed = model.fixed();
   for (const auto& spec : model.parameterSpecs()) {
@@ -49,7 +50,8 @@ std::vector<Dimension> searchSpace(const dynamics::Model& model, bool fitOffset)
     dims.push_back(d);
   }
   if (fitOffset)
-    dims.push_back({"plate.offset", "m", 0.0, -kPlateOffsetRange, kPlateOffsetRange, false, true});
+    dims.push_back(
+        {"plate.offset", "m", startOffset, -kPlateOffsetRange, kPlateOffsetRange, false, true});
   return dims;
 }
 
@@ -260,7 +262,7 @@ TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dyna
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpuNow();
   TrajectoryFitResult result;
-  const std::vector<Dimension> dims = searchSpace(start, options.fitPlateOffset);
+  const std::vector<Dimension> dims = searchSpace(start, options.fitPlateOffset, options.settings.plateOffset);
   std::vector<double> u0(dims.size());
   for (std::size_t k = 0; k < dims.size(); ++k) u0[k] = toUnit(dims[k], dims[k].start);
 

@@ -14,8 +14,8 @@
 // The search box, per free parameter p with starting value p0 and bounds [lo, hi] (the
 // effect's tables, MODEL.md §3): for p0 > 0 and lo ≥ 0 the logarithm of p over
 // [p0 / kSearchFactor, p0 · kSearchFactor] ∩ [lo, hi]; otherwise p itself over
-// [p0 − 1, p0 + 1] ∩ [lo, hi]. The plate offset (TrajectorySettings::plateOffset) is one more
-// parameter over ±kPlateOffsetRange.
+// [p0 − 1, p0 + 1] ∩ [lo, hi]. The plate offset (TrajectorySettings::plateOffset, the start
+// and, with fitPlateOffset false, the value held) is one more parameter over ±kPlateOffsetRange.
 //
 // Trials are independent: each evaluation simulates them in parallel (TBB) and sums their
 // losses in trial order, so the result does not depend on the thread count.

@@ -25,13 +25,7 @@ TrajectorySettings tight() {
   return s;
 }
 
-dynamics::Model contactModel() {
-  dynamics::Model m = dynamics::Model::withEffects({"stiffness", "damping", "coulomb"});
-  m.setParameter("stiffness.kv", 2e6);
-  m.setParameter("damping.a", 3.0);
-  m.setParameter("coulomb.mu", 0.3);
-  return m;
-}
+dynamics::Model contactModel() { return testing::tossModel(); }
 
 // A toss far above the plate: never in contact over its duration.
 TossSpec highFlight() {

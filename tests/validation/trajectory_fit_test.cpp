@@ -14,13 +14,7 @@ namespace {
 
 using testing::TossSpec;
 
-dynamics::Model truth() {
-  dynamics::Model m = dynamics::Model::withEffects({"stiffness", "damping", "coulomb"});
-  m.setParameter("stiffness.kv", 2e6);
-  m.setParameter("damping.a", 3.0);
-  m.setParameter("coulomb.mu", 0.3);
-  return m;
-}
+dynamics::Model truth() { return testing::tossModel(); }
 
 // Four tosses that land sliding in different directions and spins.
 std::vector<Trial> tosses(const dynamics::Model& model, double offset, double sigma) {
