@@ -137,9 +137,7 @@ TEST(TrajectoryCompare, TheTrueModelMeetsItsOwnRecord) {
   spec.X0.translation() = Eigen::Vector3d(0, 0, 0.09);
   spec.v0 = Eigen::Vector3d(0.6, 0, 0);
   const Trial t = testing::makeToss(spec, contactModel(), 0.0, 0.0, 0.0, 1, "self");
-  TrajectorySettings s;
-  s.absTol = 1e-9;
-  s.relTol = 1e-7;
+  const TrajectorySettings s;  // the settings the record was made with
   const TrialEvaluation same = evaluateTrial(contactModel(), t, s);
   EXPECT_LT(same.loss, 1e-12);
   dynamics::Model other = contactModel();
