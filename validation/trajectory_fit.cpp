@@ -262,7 +262,8 @@ TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dyna
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpuNow();
   TrajectoryFitResult result;
-  const std::vector<Dimension> dims = searchSpace(start, options.fitPlateOffset, options.settings.plateOffset);
+  const std::vector<Dimension> dims =
+      searchSpace(start, options.fitPlateOffset, options.settings.plateOffset);
   std::vector<double> u0(dims.size());
   for (std::size_t k = 0; k < dims.size(); ++k) u0[k] = toUnit(dims[k], dims[k].start);
 
