@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/trajectory_commands.hpp"
 #include "formats/candidates_file.hpp"
 #include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
@@ -33,6 +34,8 @@ namespace fs = std::filesystem;
 
 struct ValidationOptions {
   std::string dataset, model, out;
+  std::vector<std::string> datasets;  ///< fit and diagnose: every DATASET argument
+  TrajectoryOptions trajectory;       ///< dynamic datasets
   std::string loss = "none";
   std::string candidates;  ///< diagnose: candidates file, empty for the library
   int maxIterations = 100;
@@ -119,6 +122,8 @@ validation::FitResult asGiven(validation::Replayer& replayer, const validation::
 void runCompare(const ValidationOptions& o) {
   const Inputs in = readInputs(o);
   const validation::Dataset& d = in.data.dataset;
+  if (d.mode == validation::DatasetMode::kDynamic)
+    return runTrajectoryCompare(in.data, in.model, o.model, o.trajectory, o.out);
   const auto noise = validation::noiseLevels(d);
   validation::Replayer replayer(d);
   const validation::FitResult r = asGiven(replayer, noise, in.model);
@@ -137,7 +142,21 @@ void runCompare(const ValidationOptions& o) {
   files.commit();
 }
 
-void runFit(const ValidationOptions& o) {
+// Several datasets, a folder or a list, or one dynamic dataset: the trajectory fit.
+bool trajectoryFit(ValidationOptions& o) {
+  const std::vector<std::string> all = expandDatasets(o.datasets);
+  o.dataset = all.front();
+  if (all.size() == 1 &&
+      formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kKinematic)
+    return false;
+  if (fs::exists(o.out) && !fs::is_directory(o.out))
+    throw InputError("--out", o.out + " exists and is not a directory");
+  runTrajectoryFit(all, formats::readModelFile(o.model), o.trajectory, o.out);
+  return true;
+}
+
+void runFit(ValidationOptions o) {
+  if (trajectoryFit(o)) return;
   const Inputs in = readInputs(o);
   const validation::Dataset& d = in.data.dataset;
   const auto noise = validation::noiseLevels(d);
@@ -207,8 +226,14 @@ void printStage(const validation::DiagnosisStage& s) {
     std::cout << "    |residual| vs " << name << ": r = " << r << '\n';
 }
 
-void runDiagnose(const ValidationOptions& o) {
+void runDiagnose(ValidationOptions o) {
+  const std::vector<std::string> all = expandDatasets(o.datasets);
+  if (all.size() != 1) throw InputError("DATASET", "diagnose takes one dataset");
+  o.dataset = all.front();
   const Inputs in = readInputs(o);
+  if (in.data.dataset.mode == validation::DatasetMode::kDynamic)
+    throw InputError(o.dataset,
+                     "diagnose reads kinematic datasets; fit a dynamic one with `vcontact fit`");
   validation::DiagnoseOptions options{fitOptions(o, in.loss), o.iterate};
   if (!o.candidates.empty()) options.candidates = formats::readCandidatesFile(o.candidates);
   const validation::Dataset& d = in.data.dataset;
@@ -334,9 +359,17 @@ void runSynth(const SynthOptions& o) {
 }
 
 void addValidationOptions(CLI::App* cmd, const std::shared_ptr<ValidationOptions>& o, bool fits) {
-  cmd->add_option("DATASET", o->dataset, "dataset sidecar NAME.json (DATASET.md)")->required();
+  if (fits) {
+    cmd->add_option("DATASET", o->datasets,
+                    "dataset sidecars NAME.json (DATASET.md); several, a folder of them or a "
+                    "list file (.txt, one per line) fit one model to many dynamic trials")
+        ->required();
+  } else {
+    cmd->add_option("DATASET", o->dataset, "dataset sidecar NAME.json (DATASET.md)")->required();
+  }
   cmd->add_option("--model", o->model, "model file (vcontact.model/1)")->required();
   cmd->add_option("--out", o->out, "output directory")->required();
+  addTrajectoryOptions(cmd, o->trajectory, fits);
   if (!fits) return;
   cmd->add_option("--loss", o->loss, "none | huber | cauchy (robust loss on residual/sigma)")
       ->capture_default_str();

@@ -11,12 +11,15 @@
 #include <set>
 #include <sstream>
 
+#include "dynamics/rigid_body.hpp"
 #include "geometry/error.hpp"
 #include "io/csv_table.hpp"
 #include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
 #include "io/shape_json.hpp"
+#include "io/shape_spec.hpp"
+#include "validation/free_flight.hpp"
 #include "volume/recovered_surface.hpp"
 
 namespace vcontact::formats {
@@ -216,6 +219,97 @@ Eigen::Matrix3d readInertiaMatrix(const json& v, const std::string& where) {
   return I;
 }
 
+// "payload_inertia": {"density": kg/m³}: the mass properties of the payload's shape.
+validation::PayloadInertia inertiaFromDensity(const json& e, const std::string& where,
+                                              const geometry::Shape& payload) {
+  const json& rho = e.at("density");
+  if (e.size() != 1 || !rho.is_number() || !(rho.get<double>() > 0.0) ||
+      !std::isfinite(rho.get<double>())) {
+    throw InputError(where,
+                     "payload_inertia: {\"density\": kg/m^3} must stand alone with a positive "
+                     "number, got " +
+                         e.dump());
+  }
+  dynamics::RigidBody body;
+  body.shape = payload;
+  dynamics::setMassFromDensity(body, rho.get<double>());
+  return {body.mass, body.I_BBcm_B, body.p_BBcm};
+}
+
+// outputs ⊂ {position, attitude}, noise {output: σ} in m and rad.
+void readTrajectoryOutputs(const json& j, const std::string& where, validation::Dataset& d) {
+  const auto& names = validation::kTrajectoryOutputs;
+  const auto known = [&](const std::string& o) {
+    return std::find(names.begin(), names.end(), o) != names.end();
+  };
+  if (!j.contains("outputs") || !j.at("outputs").is_array() || j.at("outputs").empty()) {
+    throw InputError(where, "\"outputs\" must be a non-empty list of \"position\", \"attitude\"");
+  }
+  for (const auto& o : j.at("outputs")) {
+    if (!o.is_string() || !known(o.get<std::string>()))
+      throw InputError(where, "outputs: " + o.dump() + " is not \"position\" or \"attitude\"");
+    if (std::find(d.outputs.begin(), d.outputs.end(), o.get<std::string>()) != d.outputs.end())
+      throw InputError(where, "outputs: " + o.dump() + " is listed twice");
+    d.outputs.push_back(o.get<std::string>());
+  }
+  if (!j.contains("noise")) return;
+  if (!j.at("noise").is_object())
+    throw InputError(where, "\"noise\" must be an object {\"position\": m, \"attitude\": rad}");
+  for (const auto& [key, value] : j.at("noise").items()) {
+    if (std::find(d.outputs.begin(), d.outputs.end(), key) == d.outputs.end())
+      throw InputError(where, "noise: \"" + key + "\" is not one of the outputs");
+    if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>()))
+      throw InputError(where,
+                       "noise: \"" + key + "\" must be a positive number, got " + value.dump());
+    d.noise[key] = value.get<double>();
+  }
+}
+
+// A pose as the scenario files write it: "x,y,z[,roll,pitch,yaw | ,qw,qx,qy,qz]" or an array.
+Eigen::Isometry3d readPose(const json& v, const std::string& where) {
+  if (v.is_string()) return io::parsePose(v.get<std::string>(), where);
+  if (!v.is_array()) throw InputError(where, "expected a pose \"x,y,z[,r,p,y]\" or an array");
+  std::string text;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (!v[k].is_number()) throw InputError(where, "expected numbers, got " + v.dump());
+    std::ostringstream os;
+    os.precision(17);
+    os << v[k].get<double>();
+    text += (k ? "," : "") + os.str();
+  }
+  return io::parsePose(text, where);
+}
+
+Eigen::Vector3d readGravity(const json& v, const std::string& where) {
+  Eigen::Vector3d g;
+  if (!v.is_array() || v.size() != 3)
+    throw InputError(where, "gravity must be [gx, gy, gz] in m/s^2, got " + v.dump());
+  for (int k = 0; k < 3; ++k) {
+    if (!v[k].is_number() || !std::isfinite(v[k].get<double>()) ||
+        std::abs(v[k].get<double>()) > 1e3)
+      throw InputError(where,
+                       "gravity must be three finite numbers within 1000 m/s^2, got " + v.dump());
+    g[k] = v[k].get<double>();
+  }
+  return g;
+}
+
+// Without velocity columns the initial state is estimated from the free flight before the
+// first contact (validation/free_flight.hpp); a record that starts in contact has none.
+void requireInitialState(const validation::Dataset& d) {
+  if (!d.velocityFromPositions && !d.omegaFromAttitude) return;
+  const std::size_t first = validation::firstContact(d);
+  if (first >= validation::kMinFreeFlightSamples) return;
+  std::ostringstream os;
+  os << "the payload touches the plate at sample " << first + 1
+     << " (t = " << d.samples[std::min(first, d.size() - 1)].t << " s); without "
+     << (d.velocityFromPositions ? "vx, vy, vz" : "wx, wy, wz")
+     << " columns the initial state is estimated from the free flight before the first contact, "
+        "which needs "
+     << validation::kMinFreeFlightSamples << " samples; give the velocities at the first sample";
+  throw InputError(d.dataPath, os.str());
+}
+
 // The payload's optional "surface": "mesh" (default) or "recovered", recognised here once
 // (docs/DATASET.md, docs/SURFACES.md).
 void readPayloadSurface(const json& payload, const std::string& where, validation::Dataset& d) {
@@ -245,6 +339,10 @@ void readPayloadSurface(const json& payload, const std::string& where, validatio
 void readPayloadInertia(const json& j, const std::string& where, validation::Dataset& d) {
   if (!j.contains("payload_inertia")) return;
   const json& e = j.at("payload_inertia");
+  if (e.is_object() && e.contains("density")) {
+    d.inertia = inertiaFromDensity(e, where, d.payload);
+    return;
+  }
   if (!e.is_object() || !e.contains("mass") || !e.contains("inertia")) {
     throw InputError(where,
                      "payload_inertia must be an object with \"mass\" and \"inertia\" "
@@ -267,6 +365,23 @@ void readPayloadInertia(const json& j, const std::string& where, validation::Dat
   d.inertia = p;
 }
 
+// The dynamic sidecar's own keys (docs/DATASET.md, "Dynamic datasets"): outputs position and
+// attitude, their noise, the payload's mass properties (required), the plate's pose and
+// gravity; then whether the record can give an initial state.
+void readDynamic(const json& j, const std::string& where, validation::Dataset& d) {
+  readTrajectoryOutputs(j, where, d);
+  readPayloadInertia(j, where, d);
+  if (!d.inertia) {
+    throw InputError(where,
+                     "a dynamic dataset's payload is free and needs its mass: "
+                     "\"payload_inertia\": {\"mass\": kg, \"inertia\": [Ixx, Iyy, Izz]} or "
+                     "{\"density\": kg/m^3}");
+  }
+  if (j.contains("plate_pose")) d.X_BP = readPose(j.at("plate_pose"), where + ": plate_pose");
+  if (j.contains("gravity")) d.gravity_B = readGravity(j.at("gravity"), where);
+  requireInitialState(d);
+}
+
 json payloadInertiaJson(const validation::PayloadInertia& p) {
   json rows = json::array();
   for (int r = 0; r < 3; ++r) rows.push_back({p.inertia(r, 0), p.inertia(r, 1), p.inertia(r, 2)});
@@ -285,16 +400,14 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
                      "format must be \"" + std::string(kFormat) + "\", got \"" + format + "\"");
   }
   const std::string mode = requireString(j, "mode", where);
-  if (mode == "dynamic") {
-    throw InputError(where,
-                     "mode \"dynamic\" is reserved for a later version of the format; "
-                     "this engine replays \"kinematic\" datasets");
+  if (mode != "kinematic" && mode != "dynamic") {
+    throw InputError(where, "mode must be \"kinematic\" or \"dynamic\", got \"" + mode + "\"");
   }
-  if (mode != "kinematic")
-    throw InputError(where, "mode must be \"kinematic\", got \"" + mode + "\"");
 
   DatasetReadResult result;
   validation::Dataset& d = result.dataset;
+  const bool dynamic = mode == "dynamic";
+  if (dynamic) d.mode = validation::DatasetMode::kDynamic;
   d.sidecarPath = sidecarPath;
   const fs::path base = fs::path(sidecarPath).parent_path();
   d.name =
@@ -321,9 +434,13 @@ DatasetReadResult readDataset(const std::string& sidecarPath) {
                               "against a half-space plate only; against this " +
                               geometry::shapeKind(d.plate) + " the polyhedra are used");
   }
-  fillSamples(readTable(d.dataPath), d.dataPath, d);
-  readOutputsAndNoise(j, where, d.dataPath, d);
-  readPayloadInertia(j, where, d);
+  fillSamples(readTable(d.dataPath), d.dataPath, d, /*needWrench=*/!dynamic);
+  if (dynamic) {
+    readDynamic(j, where, d);
+  } else {
+    readOutputsAndNoise(j, where, d.dataPath, d);
+    readPayloadInertia(j, where, d);
+  }
   if (d.velocityFromPositions) {
     result.warnings.push_back(d.dataPath +
                               ": no vx, vy, vz columns; velocities differentiated from x, y, z");
@@ -362,6 +479,13 @@ MotionReadResult readMotionCsv(const std::string& path) {
 
 namespace {
 
+// x, y, z, qw, qx, qy, qz as the reader's plate_pose takes it.
+json poseJson(const Eigen::Isometry3d& X) {
+  const Eigen::Quaterniond q(X.linear());
+  const Eigen::Vector3d p = X.translation();
+  return {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z()};
+}
+
 // The dataset's columns `names` as CSV, a header line first, every number in round-trip form.
 void putTable(const validation::Dataset& d, const std::vector<std::string>& names,
               std::ostream& out) {
@@ -381,10 +505,11 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
                   const nlohmann::json* payloadEntry) {
   const fs::path sidecar(sidecarPath);
   const fs::path csv = fs::path(sidecar).replace_extension(".csv");
+  const bool dynamic = d.mode == validation::DatasetMode::kDynamic;
   json j = {{"format", kFormat},
             {"name", d.name},
             {"data", csv.filename().string()},
-            {"mode", "kinematic"},
+            {"mode", dynamic ? "dynamic" : "kinematic"},
             {"payload", payloadEntry ? *payloadEntry : io::shapeJson(d.payload, "payload")},
             {"plate", io::shapeJson(d.plate, "plate")},
             {"outputs", d.outputs},
@@ -393,7 +518,12 @@ void writeDataset(const validation::Dataset& d, const std::string& sidecarPath,
   if (d.inertia) j["payload_inertia"] = payloadInertiaJson(*d.inertia);
   std::vector<std::string> names = {"t",  "x",  "y",  "z",  "qw", "qx", "qy",
                                     "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
-  for (const auto& o : d.outputs) names.push_back(o);
+  if (dynamic) {
+    j["plate_pose"] = poseJson(d.X_BP);
+    j["gravity"] = {d.gravity_B.x(), d.gravity_B.y(), d.gravity_B.z()};
+  } else {
+    for (const auto& o : d.outputs) names.push_back(o);
+  }
   for (const auto& n : names) {
     if (!d.columns.count(n)) throw InputError(sidecarPath, "dataset has no column '" + n + "'");
   }

@@ -29,6 +29,14 @@ namespace vcontact::validation {
 /// The wrench columns a dataset may hold, in the order of WrenchVector.
 inline const std::array<std::string, 6> kWrenchColumns = {"fx", "fy", "fz", "tx", "ty", "tz"};
 
+/// The outputs of a dynamic dataset (docs/DATASET.md, "Dynamic datasets"): the payload's
+/// recorded position (m) and attitude (rad), set against the simulated ones.
+inline const std::array<std::string, 2> kTrajectoryOutputs = {"position", "attitude"};
+
+/// "kinematic": the record dictates the payload's path and the wrench is compared;
+/// "dynamic": the payload is free from a recorded initial state and its path is compared.
+enum class DatasetMode { kKinematic, kDynamic };
+
 struct Sample {
   double t = 0.0;  ///< s
   Eigen::Isometry3d X_BA = Eigen::Isometry3d::Identity();
@@ -46,6 +54,7 @@ struct PayloadInertia {
 };
 
 struct Dataset {
+  DatasetMode mode = DatasetMode::kKinematic;
   std::string name;
   std::string notes;
   std::string sidecarPath;  ///< the .json the user named
@@ -58,7 +67,11 @@ struct Dataset {
   std::shared_ptr<const volume::RecoveredSurface> payload_surface;
   std::vector<std::string> outputs;       ///< wrench columns to compare, e.g. {"fx", "tz"}
   std::map<std::string, double> noise;    ///< 1-σ per output where the sidecar gives it
-  std::optional<PayloadInertia> inertia;  ///< where the sidecar gives it
+  std::optional<PayloadInertia> inertia;  ///< where the sidecar gives it (dynamic: always)
+  /// Dynamic datasets: the pose of the plate's shape in the plate frame ("plate_pose"; the
+  /// identity by default) and gravity in the plate frame ("gravity", m/s²).
+  Eigen::Isometry3d X_BP = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d gravity_B = Eigen::Vector3d(0.0, 0.0, -9.81);
 
   std::vector<Sample> samples;
   /// Every CSV column by name, kinematic, wrench and extra ones alike (never dropped).

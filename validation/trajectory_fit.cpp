@@ -1,0 +1,338 @@
+#include "validation/trajectory_fit.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <nlopt.hpp>
+
+#include "geometry/error.hpp"
+
+namespace vcontact::validation {
+namespace {
+
+// The loss of a parameter vector the model refuses (a broken relation): worse than any toss.
+constexpr double kRefusedLoss = 1e3;
+// Points of the global phase closer than this (unit box) start one polish, not two.
+constexpr double kDistinctStarts = 0.05;
+// Subplex's first step in the unit box, and the finite-difference step of the Jacobian.
+constexpr double kLocalStep = 0.05;
+constexpr double kJacobianStep = 0.01;
+
+struct Dimension {
+  std::string name, unit;
+  double start, lower, upper;
+  bool log = false;
+  bool offset = false;  // the plate offset, not a model parameter
+};
+
+std::vector<Dimension> searchSpace(const dynamics::Model& model, bool fitOffset,
+                                   double startOffset) {
+  std::vector<Dimension> dims;
+  const auto& fixed = model.fixed();
+  for (const auto& spec : model.parameterSpecs()) {
+    if (std::find(fixed.begin(), fixed.end(), spec.name) != fixed.end()) continue;
+    const double p0 = model.parameter(spec.name);
+    Dimension d{spec.name, spec.unit, p0, spec.lower, spec.upper};
+    if (p0 > 0.0 && spec.lower >= 0.0) {
+      d.log = true;
+      d.lower = std::max(spec.lower, p0 / kSearchFactor);
+      d.upper = std::min(spec.upper, p0 * kSearchFactor);
+      if (d.lower <= 0.0) d.lower = p0 / kSearchFactor;
+    } else {
+      d.lower = std::max(spec.lower, p0 - 1.0);
+      d.upper = std::min(spec.upper, p0 + 1.0);
+    }
+    dims.push_back(d);
+  }
+  if (fitOffset)
+    dims.push_back(
+        {"plate.offset", "m", startOffset, -kPlateOffsetRange, kPlateOffsetRange, false, true});
+  return dims;
+}
+
+double fromUnit(const Dimension& d, double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  if (d.log) return std::exp(std::log(d.lower) + u * (std::log(d.upper) - std::log(d.lower)));
+  return d.lower + u * (d.upper - d.lower);
+}
+
+double toUnit(const Dimension& d, double p) {
+  if (d.upper <= d.lower) return 0.5;
+  if (d.log) return (std::log(p) - std::log(d.lower)) / (std::log(d.upper) - std::log(d.lower));
+  return (p - d.lower) / (d.upper - d.lower);
+}
+
+// The model and settings of a point u of the unit box.
+struct Point {
+  dynamics::Model model;
+  TrajectorySettings settings;
+};
+
+Point place(const std::vector<Dimension>& dims, const std::vector<double>& u,
+            const dynamics::Model& start, const TrajectorySettings& settings) {
+  Point p{start, settings};
+  for (std::size_t k = 0; k < dims.size(); ++k) {
+    const double v = fromUnit(dims[k], u[k]);
+    if (dims[k].offset)
+      p.settings.plateOffset = v;
+    else
+      p.model.setParameter(dims[k].name, v);
+  }
+  p.model.validate();
+  return p;
+}
+
+std::vector<std::size_t> allTrials(std::size_t n) {
+  std::vector<std::size_t> all(n);
+  for (std::size_t i = 0; i < n; ++i) all[i] = i;
+  return all;
+}
+
+struct Evaluator {
+  const std::vector<Trial>& trials;
+  std::vector<std::size_t> subset;
+  const std::vector<Dimension>& dims;
+  const dynamics::Model& start;
+  const TrajectoryFitOptions& options;
+  TrajectoryFitResult& result;
+  std::string stage;
+  int total = 0;
+  int done = 0;
+  std::vector<std::pair<std::vector<double>, double>> seen;  // every point and its loss
+
+  double operator()(const std::vector<double>& u) {
+    double loss = kRefusedLoss;
+    try {
+      const Point p = place(dims, u, start, options.settings);
+      loss = meanTrialLoss(trials, subset, p.model, p.settings);
+    } catch (const InputError&) {
+    }
+    ++result.evaluations;
+    result.trialSimulations += static_cast<long>(subset.size());
+    seen.emplace_back(u, loss);
+    if (options.progress) options.progress(stage, ++done, total);
+    return loss;
+  }
+};
+
+double callback(unsigned n, const double* x, double* grad, void* data) {
+  (void)grad;  // derivative-free algorithms only
+  return (*static_cast<Evaluator*>(data))(std::vector<double>(x, x + n));
+}
+
+// Global DIRECT-L over the unit box, then Subplex from the best distinct points; the best u.
+std::vector<double> optimise(Evaluator& eval, const std::vector<double>& u0) {
+  const unsigned n = static_cast<unsigned>(eval.dims.size());
+  const auto& o = eval.options;
+  eval.total = o.globalEvaluations + o.starts * o.localEvaluations + 1;
+  eval(u0);  // the start itself is a candidate
+  if (n == 0) return u0;
+  nlopt::opt global(nlopt::GN_DIRECT_L, n);
+  global.set_lower_bounds(std::vector<double>(n, 0.0));
+  global.set_upper_bounds(std::vector<double>(n, 1.0));
+  global.set_min_objective(callback, &eval);
+  global.set_maxeval(o.globalEvaluations);
+  std::vector<double> x(n, 0.5);
+  double f = 0.0;
+  try {
+    global.optimize(x, f);
+  } catch (const nlopt::roundoff_limited&) {
+  }
+  auto ranked = eval.seen;
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::vector<std::vector<double>> starts;
+  for (const auto& [u, loss] : ranked) {
+    if (static_cast<int>(starts.size()) >= o.starts) break;
+    const bool distinct = std::all_of(starts.begin(), starts.end(), [&](const auto& s) {
+      double d2 = 0.0;
+      for (unsigned k = 0; k < n; ++k) d2 += (s[k] - u[k]) * (s[k] - u[k]);
+      return std::sqrt(d2) > kDistinctStarts;
+    });
+    if (distinct) starts.push_back(u);
+  }
+  for (auto s : starts) {
+    nlopt::opt local(nlopt::LN_SBPLX, n);
+    local.set_lower_bounds(std::vector<double>(n, 0.0));
+    local.set_upper_bounds(std::vector<double>(n, 1.0));
+    local.set_min_objective(callback, &eval);
+    local.set_maxeval(o.localEvaluations);
+    local.set_initial_step(kLocalStep);
+    local.set_xtol_abs(1e-4);
+    try {
+      local.optimize(s, f);
+    } catch (const nlopt::roundoff_limited&) {
+    }
+  }
+  const auto best =
+      std::min_element(eval.seen.begin(), eval.seen.end(),
+                       [](const auto& a, const auto& b) { return a.second < b.second; });
+  return best->first;
+}
+
+// All trials' residuals at u, concatenated in trial order.
+Eigen::VectorXd residualsAt(const std::vector<Trial>& trials, const Point& p) {
+  std::vector<Eigen::VectorXd> r(trials.size());
+  tbb::parallel_for(std::size_t{0}, trials.size(), [&](std::size_t i) {
+    r[i] = evaluateTrial(p.model, trials[i], p.settings).residuals;
+  });
+  Eigen::Index n = 0;
+  for (const auto& v : r) n += v.size();
+  Eigen::VectorXd all(n);
+  Eigen::Index at = 0;
+  for (const auto& v : r) {
+    all.segment(at, v.size()) = v;
+    at += v.size();
+  }
+  return all;
+}
+
+// Gauss–Newton standard errors in the parameters' own units (chain rule through the box map).
+void standardErrors(const std::vector<Trial>& trials, const std::vector<Dimension>& dims,
+                    const std::vector<double>& u, const dynamics::Model& start,
+                    const TrajectorySettings& settings, std::vector<TrajectoryParameter>& out) {
+  const auto n = static_cast<Eigen::Index>(dims.size());
+  const Eigen::VectorXd r0 = residualsAt(trials, place(dims, u, start, settings));
+  Eigen::MatrixXd J(r0.size(), n);
+  Eigen::VectorXd dpdu(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    std::vector<double> up = u, um = u;
+    up[static_cast<std::size_t>(k)] = std::min(1.0, u[static_cast<std::size_t>(k)] + kJacobianStep);
+    um[static_cast<std::size_t>(k)] = std::max(0.0, u[static_cast<std::size_t>(k)] - kJacobianStep);
+    const double du = up[static_cast<std::size_t>(k)] - um[static_cast<std::size_t>(k)];
+    try {
+      J.col(k) = (residualsAt(trials, place(dims, up, start, settings)) -
+                  residualsAt(trials, place(dims, um, start, settings))) /
+                 du;
+    } catch (const InputError&) {
+      J.col(k).setZero();
+    }
+    const auto& d = dims[static_cast<std::size_t>(k)];
+    dpdu[k] = (fromUnit(d, up[static_cast<std::size_t>(k)]) -
+               fromUnit(d, um[static_cast<std::size_t>(k)])) /
+              du;
+  }
+  const double dof = std::max<double>(1.0, static_cast<double>(r0.size() - n));
+  const double sigma2 = r0.squaredNorm() / dof;
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    out[static_cast<std::size_t>(k)].stdError =
+        lu.isInvertible() ? std::sqrt(sigma2 * lu.inverse()(k, k)) * std::abs(dpdu[k])
+                          : std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+std::string worstPhase(const TrajectoryErrors& e) {
+  std::string name;
+  double worst = -1.0;
+  for (const auto& p : e.phases) {
+    const double share = p.e_q * static_cast<double>(p.samples);
+    if (share > worst) {
+      worst = share;
+      name = phaseName(p.phase);
+    }
+  }
+  return name;
+}
+
+double cpuNow() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+}  // namespace
+
+double meanTrialLoss(const std::vector<Trial>& trials, const std::vector<std::size_t>& subset,
+                     const dynamics::Model& model, TrajectorySettings settings) {
+  const std::vector<std::size_t> which = subset.empty() ? allTrials(trials.size()) : subset;
+  std::vector<double> loss(which.size());
+  tbb::parallel_for(std::size_t{0}, which.size(), [&](std::size_t k) {
+    loss[k] = evaluateTrial(model, trials[which[k]], settings).loss;
+  });
+  double sum = 0.0;
+  for (double l : loss) sum += l;  // in trial order: the same sum on any thread count
+  return which.empty() ? 0.0 : sum / static_cast<double>(which.size());
+}
+
+TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dynamics::Model& start,
+                                    const TrajectoryFitOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpuNow();
+  TrajectoryFitResult result;
+  const std::vector<Dimension> dims =
+      searchSpace(start, options.fitPlateOffset, options.settings.plateOffset);
+  std::vector<double> u0(dims.size());
+  for (std::size_t k = 0; k < dims.size(); ++k) u0[k] = toUnit(dims[k], dims[k].start);
+
+  Evaluator all{trials, allTrials(trials.size()), dims, start, options, result, "fit", 0, 0, {}};
+  const std::vector<double> best = optimise(all, u0);
+  const Point fitted = place(dims, best, start, options.settings);
+  result.model = fitted.model;
+  result.plateOffset = fitted.settings.plateOffset;
+  for (std::size_t k = 0; k < dims.size(); ++k) {
+    const auto& d = dims[k];
+    result.parameters.push_back(
+        {d.name, d.unit, d.start, fromUnit(d, best[k]), d.lower, d.upper, 0.0, d.log});
+    const double u = best[k];
+    if (u < 1e-3 || u > 1 - 1e-3)
+      result.warnings.push_back(d.name + " ended at the edge of its search box [" +
+                                std::to_string(d.lower) + ", " + std::to_string(d.upper) + "]");
+  }
+  standardErrors(trials, dims, best, start, options.settings, result.parameters);
+
+  result.trials.resize(trials.size());
+  TrajectorySettings startSettings = options.settings;
+  tbb::parallel_for(std::size_t{0}, trials.size(), [&](std::size_t i) {
+    TrialScore& s = result.trials[i];
+    s.name = trials[i].data.name;
+    s.e_q_start = evaluateTrial(start, trials[i], startSettings).loss;
+    const TrialEvaluation e = evaluateTrial(fitted.model, trials[i], fitted.settings);
+    s.e_q_fitted = e.loss;
+    s.errors = e.errors;
+    s.worstPhase = worstPhase(e.errors);
+    s.e_q_heldOut = std::numeric_limits<double>::quiet_NaN();
+  });
+  for (const auto& s : result.trials) {
+    result.meanStart += s.e_q_start / static_cast<double>(trials.size());
+    result.meanFitted += s.e_q_fitted / static_cast<double>(trials.size());
+  }
+
+  const int k = options.folds;
+  if (k >= 2 && static_cast<int>(trials.size()) >= k) {
+    double heldOut = 0.0;
+    for (int fold = 0; fold < k; ++fold) {
+      std::vector<std::size_t> train, test;
+      for (std::size_t i = 0; i < trials.size(); ++i)
+        (static_cast<int>(i % static_cast<std::size_t>(k)) == fold ? test : train).push_back(i);
+      Evaluator e{trials,
+                  train,
+                  dims,
+                  start,
+                  options,
+                  result,
+                  "cross-validation fold " + std::to_string(fold + 1) + "/" + std::to_string(k),
+                  0,
+                  0,
+                  {}};
+      const Point p = place(dims, optimise(e, u0), start, options.settings);
+      std::vector<double> loss(test.size());
+      tbb::parallel_for(std::size_t{0}, test.size(), [&](std::size_t j) {
+        loss[j] = evaluateTrial(p.model, trials[test[j]], p.settings).loss;
+      });
+      for (std::size_t j = 0; j < test.size(); ++j) {
+        result.trials[test[j]].e_q_heldOut = loss[j];
+        result.trials[test[j]].fold = fold;
+        heldOut += loss[j];
+      }
+    }
+    result.meanHeldOut = heldOut / static_cast<double>(trials.size());
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  result.cpuSeconds = cpuNow() - cpu0;
+  return result;
+}
+
+}  // namespace vcontact::validation

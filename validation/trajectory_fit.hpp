@@ -1,0 +1,92 @@
+#pragma once
+// One contact model fitted to many dynamic trials at once (docs/DIAGNOSIS.md, "Trajectory
+// fits"): the parameters shared, each trial released from its own recorded initial state.
+//
+// The loss, the mean over trials of e_q (trajectory_compare.hpp), is not smooth in the
+// parameters: an impact that moves by one step in time changes it by a jump, and a toss that
+// lands on another face jumps it by ~2. Gradients are therefore of no use, and a local method
+// started anywhere stops in the first dip. The fit is a derivative-free global search over a
+// box (NLopt's DIRECT-L, deterministic: it divides the box and samples the centres of the
+// most promising rectangles), then local polishes by Subplex (NLopt's LN_SBPLX, Nelder–Mead on
+// subspaces, which tolerates a noisy loss) from the best distinct points of the global phase
+// (the multistart), the best result kept.
+//
+// The search box, per free parameter p with starting value p0 and bounds [lo, hi] (the
+// effect's tables, MODEL.md §3): for p0 > 0 and lo ≥ 0 the logarithm of p over
+// [p0 / kSearchFactor, p0 · kSearchFactor] ∩ [lo, hi]; otherwise p itself over
+// [p0 − 1, p0 + 1] ∩ [lo, hi]. The plate offset (TrajectorySettings::plateOffset, the start
+// and, with fitPlateOffset false, the value held) is one more parameter over ±kPlateOffsetRange.
+//
+// Trials are independent: each evaluation simulates them in parallel (TBB) and sums their
+// losses in trial order, so the result does not depend on the thread count.
+//
+// Cross-validation by trial: the trials are dealt into k folds (trial i into fold i mod k, in
+// the order given); each fold's trials are scored by the model fitted on the others, and the
+// mean of those held-out e_q is reported beside the fitted one.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "validation/trajectory_compare.hpp"
+
+namespace vcontact::validation {
+
+inline constexpr double kSearchFactor = 30.0;
+inline constexpr double kPlateOffsetRange = 0.005;  ///< m: a board's few millimetres
+
+struct TrajectoryFitOptions {
+  TrajectorySettings settings;
+  bool fitPlateOffset = true;
+  int globalEvaluations = 48;  ///< DIRECT-L's budget
+  int localEvaluations = 32;   ///< Subplex's budget per start
+  int starts = 2;              ///< local polishes, from the best distinct global points
+  int folds = 5;               ///< k of the cross-validation; 0 or 1: none
+  /// (what, done, total) after each evaluation; may be empty.
+  std::function<void(const std::string&, int, int)> progress;
+};
+
+struct TrajectoryParameter {
+  std::string name, unit;
+  double start = 0.0, value = 0.0, lower = 0.0, upper = 0.0;
+  /// Gauss–Newton standard error from the residuals' finite-difference Jacobian at the
+  /// optimum, σ² (JᵀJ)⁻¹ with σ² = RSS / (N − p); NaN when JᵀJ is singular.
+  double stdError = 0.0;
+  bool logScale = false;
+};
+
+struct TrialScore {
+  std::string name;
+  double e_q_start = 0.0;    ///< with the starting model
+  double e_q_fitted = 0.0;   ///< with the model fitted on all trials
+  double e_q_heldOut = 0.0;  ///< with the model fitted without this trial's fold (NaN: no CV)
+  int fold = -1;
+  TrajectoryErrors errors;  ///< the fitted model's, with phases
+  /// The phase where the fitted model fails most (largest share of e_q), e.g. "impacts".
+  std::string worstPhase;
+};
+
+struct TrajectoryFitResult {
+  dynamics::Model model;
+  double plateOffset = 0.0;                     ///< m
+  std::vector<TrajectoryParameter> parameters;  ///< the free ones, then "plate.offset"
+  double meanStart = 0.0, meanFitted = 0.0;
+  double meanHeldOut = std::numeric_limits<double>::quiet_NaN();
+  std::vector<TrialScore> trials;
+  long evaluations = 0;  ///< mean-loss evaluations (each simulates every trial)
+  long trialSimulations = 0;
+  double seconds = 0.0;     ///< wall
+  double cpuSeconds = 0.0;  ///< process CPU time
+  std::vector<std::string> warnings;
+};
+
+/// The mean e_q of `model` with the plate offset over the trials whose index is in `subset`
+/// (all when empty), trials in parallel, summed in index order.
+double meanTrialLoss(const std::vector<Trial>& trials, const std::vector<std::size_t>& subset,
+                     const dynamics::Model& model, TrajectorySettings settings);
+
+TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dynamics::Model& start,
+                                    const TrajectoryFitOptions& options);
+
+}  // namespace vcontact::validation
