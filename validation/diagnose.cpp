@@ -327,7 +327,7 @@ void decide(const Dataset& dataset, const DiagnoseOptions& options, DiagnosisSta
   const bool faceting = stage.geometry && stage.geometry->chi2 < base - options.margin &&
                         (!rig || stage.geometry->chi2 <= rigChi2(stage, *rig) + options.margin) &&
                         (accepted == stage.ranking.end() ||
-                         stage.geometry->chi2 < accepted->fit.comparison.chi2 - options.margin);
+                         stage.geometry->chi2 <= accepted->fit.comparison.chi2 + options.margin);
   if (faceting) {
     stage.kind = "geometry";
     stage.verdict = "geometry: " + stage.geometry->text;

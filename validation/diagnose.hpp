@@ -37,7 +37,9 @@
 //   "geometry: faceting …" (kind "geometry") when the payload is a mesh read without its
 //   recovered surface (DATASET.md "surface"), and the baseline refitted on the recovered
 //   surface (from its optimum) lowers χ² by more than the margin and explains the residual at
-//   least as well as the best rig finding: the misfit is the mesh's facets, not the channel;
+//   least as well (χ² within the margin) as the best rig finding and the accepted effect: the
+//   misfit is the mesh's facets, not the channel, and not a law that stands in for them (a
+//   power law bends kv V to a faceted V(d)); geometry adds no parameter;
 //   "rig: <finding>" when a rig candidate (refined with the contact model refitted, rig.hpp)
 //   passes the margin, removes at least kRigShare = half of the baseline's excess χ² − n
 //   (one global correction, not a partial stand-in), and no effect beats it;

@@ -199,37 +199,35 @@ std::string pullOf(const Dataset& d, const NoiseLevels& noise, const FitResult& 
   const Prediction p = replayer.run(moved);
   if (p.nonFinite) return {};
   const std::vector<Phase> phases = phasesOf(fit.prediction.regime, phaseHalfWindow(d.size()));
-  std::map<std::string, double> byPhase, byOutput;
-  std::map<std::string, std::pair<double, double>> span;
+  std::map<std::string, double> byPart;  // "sliding (81 samples)", "tz"
+  std::map<std::string, std::size_t> count;
   for (const auto& o : fit.comparison.outputs) {
     const Eigen::VectorXd y = p.column(o.output);
     for (Eigen::Index i = 0; i < y.size(); ++i) {
       const double before = o.residual[i] / o.sigma, after = (o.measured[i] - y[i]) / o.sigma;
       const double change = after * after - before * before;
       const std::string phase(phaseName(phases[static_cast<std::size_t>(i)]));
-      byPhase[phase] += change;
-      byOutput[o.output] += change;
-      const double t = d.samples[static_cast<std::size_t>(i)].t;
-      auto it = span.try_emplace(phase, t, t).first;
-      it->second.second = t;
+      byPart["phase " + phase] += change;
+      byPart["output " + o.output] += change;
+      if (o.output == fit.comparison.outputs.front().output) ++count[phase];
     }
   }
+  // largest rise first: what pulls the fit away from the estimate most
+  std::vector<std::pair<double, std::string>> parts;
+  for (const auto& [part, change] : byPart) parts.emplace_back(-change, part);
+  std::sort(parts.begin(), parts.end());
   std::ostringstream s;
   s << "at " << e.parameter << " = " << str(e.value) << " the chi2 would change by";
-  for (const auto& [phase, change] : byPhase)
-    s << ' ' << phase << ' ' << (change >= 0.0 ? "+" : "") << str(change)
-      << " (t = " << str(span[phase].first) << " .. " << str(span[phase].second) << " s);";
-  s << " by output:";
-  for (const auto& [o, change] : byOutput)
-    s << ' ' << o << ' ' << (change >= 0.0 ? "+" : "") << str(change);
   std::string pulling;
-  for (const auto& [phase, change] : byPhase) {
-    if (change > 0.0) pulling += (pulling.empty() ? "" : ", ") + phase;
+  for (const auto& [negative, part] : parts) {
+    const double change = -negative;
+    std::string label = part;
+    if (part.rfind("phase ", 0) == 0)
+      label += " (" + std::to_string(count[part.substr(6)]) + " samples)";
+    s << ' ' << label << ' ' << (change >= 0.0 ? "+" : "") << str(change) << ';';
+    if (change > 0.0) pulling += (pulling.empty() ? "" : ", ") + part;
   }
-  for (const auto& [o, change] : byOutput) {
-    if (change > 0.0) pulling += (pulling.empty() ? "" : ", ") + o;
-  }
-  s << "; pulled away by: " << (pulling.empty() ? "nothing (a poor optimum)" : pulling);
+  s << " pulled away, most first, by: " << (pulling.empty() ? "nothing (a poor optimum)" : pulling);
   return s.str();
 }
 

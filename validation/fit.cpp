@@ -160,7 +160,7 @@ class RecordResiduals {
     for (std::size_t j = 0; j < free_.size(); ++j) u_[j] = u[j][0];
     applyU(free_, u_, values_);
     model_.setParameters(values_);
-    const Prediction p = replayer_.run(model_);
+    const Prediction p = replayer_.run(model_, false);  // the residuals need no regime
     if (p.nonFinite) return false;  // Ceres rejects the step (the start is checked in fit)
     const auto& d = replayer_.dataset();
     int k = 0;
@@ -641,7 +641,7 @@ FitResult fit(Replayer& replayer, const NoiseLevels& noise, const Model& start,
   const std::vector<FreeParameter> free = freeParameters(start);
   FitResult r = startingResult(start, free);
   if (!free.empty()) {
-    requireFinite(start, replayer.run(start), replayer.dataset());
+    requireFinite(start, replayer.run(start, false), replayer.dataset());
     solveFree(replayer, noise, start, free, options, r);
   } else {
     predict(replayer, noise, r);

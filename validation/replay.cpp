@@ -260,15 +260,15 @@ const std::vector<SampleGeometry>& Replayer::geometryFor(const Model& model) {
   return *geometry_;
 }
 
-Prediction Replayer::run(const Model& model) {
+Prediction Replayer::run(const Model& model, bool regime) {
   const auto& geometry = geometryFor(model);
   std::size_t most = 1;
   for (const SampleGeometry& g : geometry) most = std::max(most, g.patches.size());
-  return most > 1 ? runPatches(model, static_cast<int>(most)) : runWhole(model);
+  return most > 1 ? runPatches(model, static_cast<int>(most), regime) : runWhole(model, regime);
 }
 
 // Every sample's contact is one region: one set of friction states.
-Prediction Replayer::runWhole(const Model& model) {
+Prediction Replayer::runWhole(const Model& model, bool regime) {
   const auto& geometry = *geometry_;
   const auto& samples = dataset_.samples;
   const std::size_t n = samples.size();
@@ -284,8 +284,10 @@ Prediction Replayer::runWhole(const Model& model) {
     noteNonFinite(model, r, i, p);
     const Eigen::Vector3d tau_Ao = r.wrench.tau_W + g.p_AoC_B.cross(r.wrench.f_W);
     p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Ao.transpose();
-    p.regime[i] = regimeOf(g, samples[i], r.f_n, model.settings.v_eps);
-    rest.update(samples[i].t, g, p.regime[i]);
+    if (regime) {
+      p.regime[i] = regimeOf(g, samples[i], r.f_n, model.settings.v_eps);
+      rest.update(samples[i].t, g, p.regime[i]);
+    }
     if (i + 1 < n) advance(model, g.cv, g.motion, r, samples[i + 1].t - samples[i].t, state);
   }
   return p;
@@ -294,7 +296,7 @@ Prediction Replayer::runWhole(const Model& model) {
 // Some sample touches in several regions: one set of friction states per tracked patch
 // (dynamics/patch_tracker.hpp), with as many slots as the most patches of any sample, so every
 // patch has its own. A sample of one region is its own single patch.
-Prediction Replayer::runPatches(const Model& model, int slots) {
+Prediction Replayer::runPatches(const Model& model, int slots, bool regime) {
   const auto& geometry = *geometry_;
   const auto& samples = dataset_.samples;
   const std::size_t n = samples.size();
@@ -339,8 +341,10 @@ Prediction Replayer::runPatches(const Model& model, int slots) {
     }
     tracker.update(volumes, match, g.X_BA, X_BB);
     p.wrench.row(static_cast<Eigen::Index>(i)) << f.transpose(), tau.transpose();
-    p.regime[i] = regimeOf(g, samples[i], f_n, model.settings.v_eps);
-    rest.update(samples[i].t, g, p.regime[i]);
+    if (regime) {
+      p.regime[i] = regimeOf(g, samples[i], f_n, model.settings.v_eps);
+      rest.update(samples[i].t, g, p.regime[i]);
+    }
   }
   return p;
 }

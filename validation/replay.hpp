@@ -110,15 +110,17 @@ class Replayer {
   /// @pre dataset outlives the replayer
   explicit Replayer(const Dataset& dataset);
 
+  /// @param regime  false: leave Prediction::regime at its defaults (a fit's residuals do not
+  ///   read it, and describing every sample's regime is a tenth of a replay's cost)
   /// @throws InputError when no volume method handles the payload/plate pair
-  Prediction run(const dynamics::Model& model);
+  Prediction run(const dynamics::Model& model, bool regime = true);
 
   const Dataset& dataset() const { return dataset_; }
 
  private:
   const std::vector<SampleGeometry>& geometryFor(const dynamics::Model& model);
-  Prediction runWhole(const dynamics::Model& model);
-  Prediction runPatches(const dynamics::Model& model, int slots);
+  Prediction runWhole(const dynamics::Model& model, bool regime);
+  Prediction runPatches(const dynamics::Model& model, int slots, bool regime);
 
   const Dataset& dataset_;
   std::vector<double> cachedKey_;

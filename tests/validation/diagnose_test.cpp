@@ -180,6 +180,8 @@ TEST(Diagnose, FacetingIsNamedBeforeAChannelArtifact) {
   const DiagnosisStage s =
       diagnose(d, noiseLevels(d), test::startModel(effects, "")).stages.front();
   ASSERT_TRUE(s.geometry.has_value());
+  std::cout << s.verdict << "; " << s.geometry->text << "; best candidate "
+            << s.ranking.front().effect << " chi " << s.ranking.front().fit.comparison.chi << '\n';
   EXPECT_EQ(s.kind, "geometry") << s.verdict;
   EXPECT_EQ(s.verdict.rfind("geometry: faceting: the recovered surface gives chi ", 0), 0u)
       << s.verdict;

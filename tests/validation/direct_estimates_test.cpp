@@ -51,11 +51,13 @@ TEST(DirectEstimates, NormalExponentIsTheLogLogSlopeWhileLoading) {
   const DirectEstimate* p = named(all, "power_law.p");
   ASSERT_NE(p, nullptr);
   EXPECT_NEAR(p->value, 0.75, 0.03 * 0.75);
-  EXPECT_NE(p->method.find("d^1.5"), std::string::npos) << p->method;
+  // 2p = 1.5 in d, less a little: V = π d² (R − d/3) is not quite d²
+  EXPECT_NE(p->method.find("fz grows as d^1.4"), std::string::npos) << p->method;
 }
 
 // fx delayed by 4 samples against its model: the cross-correlation's peak is there (within a
-// tenth of a sample: the parabola through the peak on a smooth record).
+// tenth of a sample: the parabola through the peak on a smooth record). fz is constant at the
+// slide depth: no correlation, no estimate.
 TEST(DirectEstimates, ALaggingChannelShowsInTheCrossCorrelation) {
   const dynamics::Model truth = test::trueModel({"stiffness", "coulomb"});
   Dataset d = test::syntheticDataset("friction-ramp", 600, truth, 33);
@@ -65,11 +67,9 @@ TEST(DirectEstimates, ALaggingChannelShowsInTheCrossCorrelation) {
   const auto all = estimatesOf(d, truth);
   const double dt = d.samples[1].t - d.samples[0].t;
   const DirectEstimate* lx = named(all, "lag fx");
-  const DirectEstimate* lz = named(all, "lag fz");
   ASSERT_NE(lx, nullptr);
-  ASSERT_NE(lz, nullptr);
   EXPECT_NEAR(lx->value, 4.0 * dt, 0.1 * dt);
-  EXPECT_NEAR(lz->value, 0.0, 0.5 * dt);
+  EXPECT_EQ(named(all, "lag fz"), nullptr);
 }
 
 // A fit held far from the record's μ: the drive record fitted with μ fixed at a third of the
