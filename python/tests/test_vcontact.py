@@ -262,5 +262,5 @@ def test_fit_of_a_model_predicting_inf_is_an_input_error_not_a_crash(tmp_path):
     model = tmp_path / "broken.model.json"
     model.write_text(json.dumps(BROKEN_MODEL))
     with pytest.raises(vcontact.InputError, match=r"effect 'broken' predicts a non-finite wrench"
-                                                  r" \(fz = .*\) at sample \d+"):
+                                                  r" \(f[xyz] = .*\) at sample \d+"):
         vcontact.fit(dataset, str(model))
