@@ -25,6 +25,7 @@
 #include "report/report_html.hpp"
 #include "report/validation_output.hpp"
 #include "validation/diagnose.hpp"
+#include "validation/direct_estimates.hpp"
 #include "validation/synthetic.hpp"
 
 namespace vcontact::cli {
@@ -112,6 +113,16 @@ void addReport(io::OutputSet& files, const std::string& dir, const report::Repor
   files.add(dir + "/report.html", [&](std::ostream& out) { out << report::reportHtml(report); });
 }
 
+// Each direct estimate beside the fitted value it is compared with.
+void printDirect(const std::vector<validation::DirectEstimate>& direct) {
+  for (const auto& e : direct) {
+    std::cout << "  direct estimate " << e.parameter << " = " << e.value << " (" << e.low << " .. "
+              << e.high << ") " << e.unit << ": " << e.method;
+    if (!std::isnan(e.fitted)) std::cout << "; fitted " << e.fitted << (e.far ? ", FAR" : "");
+    std::cout << '\n';
+  }
+}
+
 // Every parameter held: the model exactly as given.
 validation::FitResult asGiven(validation::Replayer& replayer, const validation::NoiseLevels& noise,
                               dynamics::Model model) {
@@ -167,8 +178,9 @@ void runFit(ValidationOptions o) {
   options.progress = [&](const std::string& what, int done, int total) {
     progress.update(what, done, total);
   };
-  const validation::FitResult r = validation::fit(replayer, noise, in.model, options);
+  validation::FitResult r = validation::fit(replayer, noise, in.model, options);
   progress.finish();
+  const std::vector<validation::DirectEstimate> direct = validation::estimatesBeside(d, noise, r);
   printNoise(noise);
   printComparison("as given", before.comparison);
   printComparison("fitted", r.comparison);
@@ -176,10 +188,11 @@ void runFit(ValidationOptions o) {
     if (!p.fixed)
       std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << '\n';
   }
+  printDirect(direct);
   printWarnings(r.warnings);
   io::OutputSet files(o.out);
   addJson(files, o.out + "/model.json", formats::modelToJson(r.model));
-  addJson(files, o.out + "/fit.json", report::fitJson(r, noise, in.loss));
+  addJson(files, o.out + "/fit.json", report::fitJson(r, noise, in.loss, &direct));
   addResiduals(files, o.out, d, r.comparison);
   addReport(files, o.out,
             {"fit",
@@ -187,7 +200,8 @@ void runFit(ValidationOptions o) {
              noise,
              {{"as given", &before}, {"fitted", &r}},
              validation::failureWindows(d, r.comparison, r.prediction),
-             nullptr});
+             nullptr,
+             &direct});
   files.commit();
 }
 
@@ -196,6 +210,7 @@ void printStage(const validation::DiagnosisStage& s) {
   printComparison(label(s.effects), s.baseline.comparison);
   std::cout << "  held-out chi2 " << s.heldOutChi2 << " (" << validation::kCvBlocks
             << " contiguous blocks)\n";
+  printDirect(s.direct);
   printWarnings(s.baseline.warnings);
   std::cout << "  verdict: " << s.verdict << " (time: baseline fit " << s.seconds.baseline
             << " s, candidates " << s.seconds.candidates << " s, cross-validation "
@@ -249,8 +264,13 @@ void runDiagnose(ValidationOptions o) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // the failing windows and ranking shown are the final model's (the last stage's baseline)
-  report::ReportInput report{
-      "diagnose", &d, noise, {}, diag.stages.back().where, &diag.stages.back().ranking};
+  report::ReportInput report{"diagnose",
+                             &d,
+                             noise,
+                             {},
+                             diag.stages.back().where,
+                             &diag.stages.back().ranking,
+                             &diag.stages.back().direct};
   for (std::size_t i = 0; i < diag.stages.size(); ++i) {
     const auto& s = diag.stages[i];
     // every stage named by its whole model, so that the final model reads right
@@ -260,8 +280,8 @@ void runDiagnose(ValidationOptions o) {
     printStage(s);
   }
   for (const auto& w : diag.stages.back().where) {
-    std::cout << "  fails: " << w.output << " t = " << w.t0 << " .. " << w.t1 << " s, chi " << w.chi
-              << ", " << w.regime << '\n';
+    std::cout << "  fails: " << w.output << " t = " << w.t0 << " .. " << w.t1 << " s (" << w.phase
+              << "), chi " << w.chi << ", " << w.regime << '\n';
   }
   std::cout << "diagnose took " << seconds << " s\n";
   io::OutputSet files(o.out);
@@ -413,8 +433,9 @@ void addValidationCommands(CLI::App& app) {
   CLI::App* s = app.add_subcommand(
       "synth",
       "Write a synthetic rig dataset: a rig profile replayed through a known model plus noise.");
-  s->add_option("--profile", synth->profile,
-                "loading | impacts | friction-ramp | drive | dwell | slide-spin | rolling")
+  s->add_option(
+       "--profile", synth->profile,
+       "loading | impacts | friction-ramp | drive | dwell | slide-spin | rolling | indentation")
       ->required();
   s->add_option("--model", synth->model, "the true model file")->required();
   s->add_option("--out", synth->out, "dataset sidecar to write, NAME.json (NAME.csv beside it)")

@@ -15,24 +15,36 @@ Matrix3d planeProjector(const Vector3d& n) { return Matrix3d::Identity() - n * n
 
 bool hasDamping(const Model& m) { return m.has("damping"); }
 
-// kv' = ∂f_n/∂V = kv (1 + a δ̇_c), zero when the damping clamp holds f_n at 0 (DISCRETE.md
-// (2.1)).
+// kv' = ∂f_n/∂V = k_n (1 + a δ̇_c), zero when the damping clamp holds f_n at 0 (DISCRETE.md
+// (2.1)); k_n is the normal law's ∂f_n/∂V at fixed states (kv, p f_n/V with power_law, times
+// r with viscoelastic, whose Maxwell force q is a state advanced explicitly).
 double effectiveStiffness(const Model& m, const ContactContext& ctx) {
-  if (!hasDamping(m)) return ctx.kv;
-  return std::max(0.0, ctx.kv * (1.0 + ctx.a * ctx.delta_dot));
+  if (!hasDamping(m)) return ctx.k_n;
+  return std::max(0.0, ctx.k_n * (1.0 + ctx.a * ctx.delta_dot));
+}
+
+// The tilt stiffness's factor: a tilt about p_c moves the centroid (where f_n acts) by
+// J_s θ / V at an unchanged V, so the torque is (f_n/V) J_s θ: the secant f_n/V, which is kv'
+// for the volumetric law (kept as kv' there, to the bit) and f_n/V for a non-linear normal law
+// (power_law: kv'/p; viscoelastic: its r f_e + q over V).
+double tiltStiffness(const Model& m, const ContactContext& ctx, double kv) {
+  if (!m.has("power_law") && !m.has("viscoelastic")) return kv;
+  const double f =
+      hasDamping(m) ? std::max(0.0, ctx.f_spring * (1.0 + ctx.a * ctx.delta_dot)) : ctx.f_spring;
+  return f / ctx.cv->volume;
 }
 
 // Normal stiffness and tilt stiffness about p_c (DISCRETE.md (2.2), (2.3)).
 void positionTerms(const Model& m, const ContactContext& ctx, Matrix6d& K) {
   const volume::ContactVolume& cv = *ctx.cv;
   const double kv = effectiveStiffness(m, ctx);
-  const double area = cv.area > 0.0 ? cv.area : (cv.depth > 0.0 ? cv.volume / cv.depth : 0.0);
+  const double area = contactArea(cv);
   if (kv <= 0.0 || area <= 0.0) return;
   const Vector3d& n = ctx.n;
   const Matrix3d P = planeProjector(n);
   const double mean_depth = cv.volume / area;
   K.topLeftCorner<3, 3>() -= kv * area * n * n.transpose();
-  K.bottomRightCorner<3, 3>() -= (kv / mean_depth) * P * cv.J_s * P;
+  K.bottomRightCorner<3, 3>() -= (tiltStiffness(m, ctx, kv) / mean_depth) * P * cv.J_s * P;
 }
 
 // The velocity terms of damping, rolling resistance, viscous friction, Coulomb friction and
@@ -45,7 +57,7 @@ void velocityTerms(const Model& m, const ContactContext& ctx, Matrix6d& D) {
   auto Dff = D.topLeftCorner<3, 3>();
   auto Dtw = D.bottomRightCorner<3, 3>();
   if (hasDamping(m) && 1.0 + ctx.a * ctx.delta_dot > 0.0) {
-    Dff -= ctx.kv * ctx.cv->volume * ctx.a * nn;  // f_n = kv V (1 + a δ̇), δ̇ = −n·v_c
+    Dff -= ctx.f_spring * ctx.a * nn;  // f_n = f_spring (1 + a δ̇), δ̇ = −n·v_c
   }
   if (m.has("rolling_resistance")) Dtw -= ctx.kv * ctx.a * ctx.cv->J_s * P;
   if (m.has("viscous")) {

@@ -29,7 +29,9 @@ struct ContactJacobians {
   /// across the slip, and along it D ξ0 equals the force at ξ0.
   Matrix6d D = Matrix6d::Zero();
   /// Position part: the normal stiffness kv' A n nᵀ and the tilt stiffness kv' P J_s P / d̄
-  /// (d̄ = V/A), kv' = kv (1 + a δ̇_c) (zero when the damping clamp holds f_n at 0), negated.
+  /// (d̄ = V/A), kv' = k_n (1 + a δ̇_c) (zero when the damping clamp holds f_n at 0), negated;
+  /// k_n = ∂f_n/∂V of the normal law (ContactContext::k_n: kv, or power_law's p f_n/V, times
+  /// viscoelastic's ratio r). Adhesion's share and viscoelastic's state q stay explicit.
   Matrix6d K = Matrix6d::Zero();
 };
 

@@ -5,6 +5,11 @@
 namespace vcontact::dynamics {
 
 // dir_ε(v) = v / max(|v|, v_ε)   (MODEL.md §3)
+double contactArea(const volume::ContactVolume& cv) {
+  if (cv.area > 0.0) return cv.area;
+  return cv.depth > 0.0 ? cv.volume / cv.depth : 0.0;
+}
+
 Eigen::Vector3d dirEps(const Eigen::Vector3d& v, double v_eps) {
   return v / std::max(v.norm(), v_eps);
 }

@@ -65,14 +65,16 @@ struct ModelSettings {
 /// The order in which effects apply (see the header comment). Each stage reads what the
 /// earlier stages left in the context.
 enum class Stage {
-  kNormalForce = 0,  ///< stiffness: f_n = kv V
-  kNormalDamping,    ///< damping: f_n ← kv V (1 + a δ̇), clamped ≥ 0
-  kStickState,       ///< dwell: s_μ ← s_dw
-  kFrictionLimit,    ///< stribeck: μ_max = μ_C + (μ_S − μ_C) s_μ
-  kFrictionSharing,  ///< contensou: C_v, C_ω
-  kFrictionState,    ///< bristle: ż, θ̇_n and the bristle friction force
-  kFriction,         ///< coulomb, spin, viscous, rolling_resistance: read the final context
-  kGeometryOnly,     ///< misalignment: acts on the pose before geometry, no wrench
+  kNormalForce = 0,   ///< stiffness: f_n = kv V
+  kNormalLaw,         ///< power_law: f_n ← kv V (V/V_ref)^(p−1)
+  kNormalRelaxation,  ///< viscoelastic: f_n ← r f_n + q (standard linear solid, state q)
+  kNormalDamping,     ///< damping: f_n ← f_n (1 + a δ̇), clamped ≥ 0
+  kStickState,        ///< dwell: s_μ ← s_dw
+  kFrictionLimit,     ///< stribeck: μ_max = μ_C + (μ_S − μ_C) s_μ
+  kFrictionSharing,   ///< contensou: C_v, C_ω
+  kFrictionState,     ///< bristle: ż, θ̇_n and the bristle friction force
+  kFriction,      ///< coulomb, spin, viscous, rolling_resistance, adhesion: read the final context
+  kGeometryOnly,  ///< misalignment: acts on the pose before geometry, no wrench
 };
 
 enum class FrictionLaw { kCoulomb, kBristle };
@@ -109,13 +111,18 @@ struct ContactContext {
   FrictionLaw law = FrictionLaw::kCoulomb;
 
   // ---- derived, refined in stage order ----
-  double v_avg = 0.0;      ///< sqrt(|v_t|² + (r_gyr ω_n)²), m/s
-  double s = 1.0;          ///< exp(−v_avg²/v_s²)
-  double s_mu = 1.0;       ///< the stick measure in μ_max (s, or s_dw with dwell)
-  double mu_max = 0.0;     ///< –
-  double C_v = 1.0;        ///< Contensou factor on translation
-  double C_w = 1.0;        ///< Contensou factor on spin
-  double f_n = 0.0;        ///< normal force magnitude, N (≥ 0)
+  double v_avg = 0.0;   ///< sqrt(|v_t|² + (r_gyr ω_n)²), m/s
+  double s = 1.0;       ///< exp(−v_avg²/v_s²)
+  double s_mu = 1.0;    ///< the stick measure in μ_max (s, or s_dw with dwell)
+  double mu_max = 0.0;  ///< –
+  double C_v = 1.0;     ///< Contensou factor on translation
+  double C_w = 1.0;     ///< Contensou factor on spin
+  double f_n = 0.0;     ///< normal force magnitude, N (≥ 0)
+  /// ∂f_n/∂V of the normal law at fixed states, before damping, N/m³: kv from stiffness,
+  /// refined by power_law and viscoelastic (the discrete stepper's normal stiffness).
+  double k_n = 0.0;
+  /// f_n before damping (the force damping multiplies by 1 + a δ̇), N.
+  double f_spring = 0.0;
   double theta_n = 0.0;    ///< θ_n from the bristle stage (its state), rad
   double theta_dot = 0.0;  ///< θ̇_n from the bristle stage, rad/s
 
@@ -127,6 +134,9 @@ Eigen::Vector3d dirEps(const Eigen::Vector3d& v, double v_eps);
 double sgnEps(double omega, double v_eps, double r_gyr);
 Eigen::Vector3d saturate(const Eigen::Vector3d& x, double max_norm);
 double saturate(double x, double max_abs);
+/// The contact area A of cv, or V/d where the volume method leaves it out (0 without
+/// contact), m².
+double contactArea(const volume::ContactVolume& cv);
 
 class Effect {
  public:

@@ -41,8 +41,9 @@ std::string fitJson(const LoadedDataset& d, const dynamics::Model& model, const 
   const auto noise = validation::noiseLevels(data);
   py::gil_scoped_release release;
   validation::Replayer replayer(data);
-  const validation::FitResult r = validation::fit(replayer, noise, model, {l, maxIterations});
-  return report::fitJson(r, noise, l).dump();
+  validation::FitResult r = validation::fit(replayer, noise, model, {l, maxIterations});
+  const auto direct = validation::estimatesBeside(data, noise, r);  // as `vcontact fit` shows
+  return report::fitJson(r, noise, l, &direct).dump();
 }
 
 // diagnosis.json's content, plus "model": the final model file (model.json).

@@ -84,10 +84,12 @@ void residuals(std::ostringstream& h, const ReportInput& in, const std::vector<d
     h << "<p>No window where the moving chi exceeds 3.</p>\n";
     return;
   }
-  h << "<table><tr><th>output</th><th>t0 [s]</th><th>t1 [s]</th><th>chi</th><th>regime</th></tr>\n";
+  h << "<table><tr><th>output</th><th>phase</th><th>t0 [s]</th><th>t1 [s]</th><th>chi</th>"
+    << "<th>regime</th></tr>\n";
   for (const auto& w : in.where) {
-    h << "<tr><td>" << w.output << "</td><td>" << num(w.t0) << "</td><td>" << num(w.t1)
-      << "</td><td>" << num(w.chi, 3) << "</td><td>" << escapeXml(w.regime) << "</td></tr>\n";
+    h << "<tr><td>" << w.output << "</td><td>" << escapeXml(w.phase) << "</td><td>" << num(w.t0)
+      << "</td><td>" << num(w.t1) << "</td><td>" << num(w.chi, 3) << "</td><td>"
+      << escapeXml(w.regime) << "</td></tr>\n";
   }
   h << "</table>\n";
 }
@@ -104,7 +106,8 @@ void residualsAgainstRegime(std::ostringstream& h, const ReportInput& in) {
       {"sliding speed |v_t| [m/s]", [](const validation::RegimeSample& r) { return r.speed; }},
       {"spin ratio r_gyr|ω_n|/|v_t|",
        [](const validation::RegimeSample& r) { return r.spin_ratio; }},
-      {"time at rest [s]", [](const validation::RegimeSample& r) { return r.time_at_rest; }},
+      {"time without tangential motion [s]",
+       [](const validation::RegimeSample& r) { return r.time_at_rest; }},
       {"rest before this motion [s]",
        [](const validation::RegimeSample& r) { return r.preceding_rest; }},
       {"penetration rate [m/s]",
@@ -160,18 +163,46 @@ void candidateTable(std::ostringstream& h, const ReportInput& in) {
   h << "</table>\n";
 }
 
+// "0.42 (0.35 .. 0.5), FAR" for the direct estimate of `name`; empty when there is none.
+std::string directText(const ReportInput& in, const std::string& name) {
+  if (!in.direct) return {};
+  for (const auto& e : *in.direct) {
+    if (e.parameter != name) continue;
+    return num(e.value, 3) + " (" + num(e.low, 3) + " .. " + num(e.high, 3) + ")" +
+           (e.far ? ", FAR FROM THE FIT" : "");
+  }
+  return {};
+}
+
+// The direct estimates with their methods (those of no model parameter too: lags, the normal
+// law's exponent).
+void directTable(std::ostringstream& h, const ReportInput& in) {
+  if (!in.direct || in.direct->empty()) return;
+  h << "<h2>Direct estimates: what the record says without the model</h2>\n<table><tr>"
+    << "<th>estimate</th><th>value</th><th>range</th><th>unit</th><th>fitted</th>"
+    << "<th>how</th></tr>\n";
+  for (const auto& e : *in.direct) {
+    h << "<tr><td>" << escapeXml(e.parameter) << "</td><td>" << num(e.value, 4) << "</td><td>"
+      << num(e.low, 3) << " .. " << num(e.high, 3) << "</td><td>" << escapeXml(e.unit)
+      << "</td><td>" << (std::isnan(e.fitted) ? "" : num(e.fitted, 4))
+      << (e.far ? " <b>(far)</b>" : "") << "</td><td>" << escapeXml(e.method) << "</td></tr>\n";
+  }
+  h << "</table>\n";
+}
+
 void parameterTable(std::ostringstream& h, const ReportInput& in) {
   const FitResult& f = *in.stages.back().fit;
   h << "<h2>Parameters of the final model, " << escapeXml(in.stages.back().label)
     << "</h2>\n<table><tr><th>parameter</th><th>value</th><th>std error</th><th>unit</th>"
-    << "<th>status</th></tr>\n";
+    << "<th>status</th><th>direct estimate</th></tr>\n";
   for (const auto& p : f.parameters) {
     const std::string err = p.fixed ? "" : (std::isfinite(p.stdError) ? num(p.stdError, 3) : "∞");
     const std::string held = in.command == "compare" ? "as given" : "fixed";
     std::string status = p.fixed ? held : (p.identifiable ? "fitted" : "not identifiable");
     if (!p.fixed && !p.atBound.empty()) status += ", AT " + p.atBound + " BOUND";
     h << "<tr><td>" << p.name << "</td><td>" << num(p.value, 6) << "</td><td>" << err << "</td><td>"
-      << escapeXml(p.unit) << "</td><td>" << escapeXml(status) << "</td></tr>\n";
+      << escapeXml(p.unit) << "</td><td>" << escapeXml(status) << "</td><td>"
+      << escapeXml(directText(in, p.name)) << "</td></tr>\n";
   }
   h << "</table>\n";
   if (f.warnings.empty()) return;
@@ -292,6 +323,7 @@ std::string reportHtml(const ReportInput& in) {
   residualsAgainstRegime(h, in);
   candidateTable(h, in);
   parameterTable(h, in);
+  directTable(h, in);
   h << kCheckScript << "\n</body></html>\n";
   return h.str();
 }

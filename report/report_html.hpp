@@ -34,6 +34,9 @@ struct ReportInput {
   std::vector<ReportStage> stages;               ///< first: the user's model; last: the final one
   std::vector<validation::FailureWindow> where;  ///< of the last stage (the final model)
   const std::vector<validation::Candidate>* ranking = nullptr;  ///< of the last stage
+  /// What the record says without the model (validation/direct_estimates.hpp), shown beside
+  /// the final model's parameters; null: none.
+  const std::vector<validation::DirectEstimate>* direct = nullptr;
 };
 
 std::string reportHtml(const ReportInput& input);

@@ -77,9 +77,15 @@ json stageSummary(const validation::DiagnosisStage& s) {
           {"rms", rmsJson(s.baseline.comparison)},
           {"params", parametersJson(s.baseline)},
           {"at_bound", atBoundJson(s.baseline)},
+          {"direct_estimates", directEstimatesJson(s.direct)},
+          {"warnings", s.baseline.warnings},
           {"verdict", s.verdict},
           {"kind", s.kind},
           {"rig", rigJson(s)},
+          {"geometry", s.geometry ? json{{"chi", s.geometry->chi},
+                                         {"chi2", s.geometry->chi2},
+                                         {"text", s.geometry->text}}
+                                  : json(nullptr)},
           {"residual", residualJson(s)},
           {"removed", s.removed.empty() ? json(nullptr) : json(s.removed)}};
 }
@@ -109,13 +115,36 @@ json rankingJson(const validation::DiagnosisStage& s) {
 json whereJson(const validation::DiagnosisStage& s) {
   json where = json::array();
   for (const auto& w : s.where) {
-    where.push_back(
-        {{"output", w.output}, {"t0", w.t0}, {"t1", w.t1}, {"chi", w.chi}, {"regime", w.regime}});
+    where.push_back({{"output", w.output},
+                     {"t0", w.t0},
+                     {"t1", w.t1},
+                     {"chi", w.chi},
+                     {"phase", w.phase},
+                     {"regime", w.regime}});
   }
   return where;
 }
 
 }  // namespace
+
+json directEstimatesJson(const std::vector<validation::DirectEstimate>& estimates) {
+  json out = json::array();
+  for (const auto& e : estimates) {
+    out.push_back({{"parameter", e.parameter},
+                   {"unit", e.unit},
+                   {"value", number(e.value)},
+                   {"low", number(e.low)},
+                   {"high", number(e.high)},
+                   {"samples", e.samples},
+                   {"t0", e.t0},
+                   {"t1", e.t1},
+                   {"method", e.method},
+                   {"fitted", number(e.fitted)},
+                   {"far", e.far},
+                   {"pull", e.pull.empty() ? json(nullptr) : json(e.pull)}});
+  }
+  return out;
+}
 
 void putResidualsCsv(const validation::Dataset& d, const Comparison& c, std::ostream& out) {
   out.precision(std::numeric_limits<double>::max_digits10);
@@ -150,7 +179,8 @@ json comparisonJson(const Comparison& c, const validation::NoiseLevels& noise) {
           {"sigma", sigma}};
 }
 
-json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validation::Loss loss) {
+json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validation::Loss loss,
+             const std::vector<validation::DirectEstimate>* direct) {
   json params = json::array();
   for (const auto& p : fit.parameters) {
     params.push_back({{"name", p.name},
@@ -170,18 +200,20 @@ json fitJson(const FitResult& fit, const validation::NoiseLevels& noise, validat
       row.push_back(number(fit.correlation(i, j)));
     corr.push_back(std::move(row));
   }
-  return {{"comparison", comparisonJson(fit.comparison, noise)},
-          {"bic", fit.bic},
-          {"free_parameters", fit.freeCount},
-          {"loss", validation::lossName(loss)},
-          {"converged", fit.converged},
-          {"iterations", fit.iterations},
-          {"multistart", {{"polished", fit.startsPolished}, {"winning_start", fit.winningStart}}},
-          {"solver", fit.solverReport},
-          {"parameters", params},
-          {"correlation", {{"names", fit.freeNames}, {"matrix", corr}}},
-          {"warnings", fit.warnings},
-          {"model", formats::modelToJson(fit.model)}};
+  json j = {{"comparison", comparisonJson(fit.comparison, noise)},
+            {"bic", fit.bic},
+            {"free_parameters", fit.freeCount},
+            {"loss", validation::lossName(loss)},
+            {"converged", fit.converged},
+            {"iterations", fit.iterations},
+            {"multistart", {{"polished", fit.startsPolished}, {"winning_start", fit.winningStart}}},
+            {"solver", fit.solverReport},
+            {"parameters", params},
+            {"correlation", {{"names", fit.freeNames}, {"matrix", corr}}},
+            {"warnings", fit.warnings},
+            {"model", formats::modelToJson(fit.model)}};
+  if (direct) j["direct_estimates"] = directEstimatesJson(*direct);
+  return j;
 }
 
 json diagnosisJson(const validation::Diagnosis& d, const validation::NoiseLevels& noise) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "validation/diagnose.hpp"
+#include "validation/direct_estimates.hpp"
 #include "validation/fit.hpp"
 #include "validation/residuals.hpp"
 
@@ -20,9 +21,15 @@ void putResidualsCsv(const validation::Dataset& dataset, const validation::Compa
 nlohmann::json comparisonJson(const validation::Comparison& comparison,
                               const validation::NoiseLevels& noise);
 
-/// fit.json: comparison, BIC, parameters with standard errors, correlations, warnings.
+/// fit.json: comparison, BIC, parameters with standard errors, correlations, warnings, and
+/// with `direct` the direct estimates beside the fitted values ("direct_estimates").
 nlohmann::json fitJson(const validation::FitResult& fit, const validation::NoiseLevels& noise,
-                       validation::Loss loss);
+                       validation::Loss loss,
+                       const std::vector<validation::DirectEstimate>* direct = nullptr);
+
+/// [{"parameter", "unit", "value", "low", "high", "samples", "t0", "t1", "method", "fitted",
+///   "far", "pull"}] (validation/direct_estimates.hpp).
+nlohmann::json directEstimatesJson(const std::vector<validation::DirectEstimate>& estimates);
 
 /// diagnosis.json (issue #5): verdict, baseline, ranking, where, and the stages of --iterate.
 nlohmann::json diagnosisJson(const validation::Diagnosis& diagnosis,

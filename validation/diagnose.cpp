@@ -8,8 +8,11 @@
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <variant>
 
 #include "geometry/error.hpp"
+#include "validation/phases.hpp"
+#include "volume/recovered_surface.hpp"
 
 namespace vcontact::validation {
 namespace {
@@ -19,10 +22,10 @@ using dynamics::Model;
 // A sample fails when the chi of the window around it exceeds 3: for a model that explains
 // the data the window's mean (r/σ)² is 1 ± sqrt(2/m), so 9 is far out for any m ≥ 5.
 constexpr double kWindowChi = 3.0;
-// Window of the moving chi: long enough to average the noise, short enough to resolve an
-// impact or a restart; 1 % of the record, at least 5 samples.
+// Window of the moving chi (phaseHalfWindow): long enough to average the noise, short enough
+// to resolve an impact or a restart; 1 % of the record, at least 5 samples. A failing run
+// shorter than that is a lone outlier.
 constexpr std::size_t kMinWindowSamples = 5;
-constexpr double kWindowFraction = 0.01;
 // Windows reported, worst (largest excess χ²) first.
 constexpr std::size_t kMaxWindows = 8;
 
@@ -63,7 +66,8 @@ void tell(const DiagnoseOptions& options, const std::string& what, int done, int
   if (options.progress) options.progress(what, done, total);
 }
 
-void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model& baseline,
+// @param replayer  the baseline's, copied by each candidate (its geometry shared)
+void fitCandidates(const Replayer& replayer, const NoiseLevels& noise, const Model& baseline,
                    const DiagnoseOptions& options, const std::string& label,
                    std::vector<Candidate>& candidates) {
   std::atomic<int> done{0};
@@ -72,11 +76,11 @@ void fitCandidates(const Dataset& dataset, const NoiseLevels& noise, const Model
   tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
     Candidate& c = candidates[i];
     try {
-      Replayer replayer(dataset);
+      Replayer own_replayer = replayer;
       const Model start = candidateModel(baseline, options.candidates, c);
       FitOptions own = options.fit;
       own.explore = addedParameters(start, c);
-      c.fit = fit(replayer, noise, start, own);
+      c.fit = fit(own_replayer, noise, start, own);
     } catch (const std::exception& e) {
       c.error = e.what();
     }
@@ -115,25 +119,32 @@ struct RegimeVariable {
   const char* unit;
   const char* high;  // what a window far above the record's median means physically
   const char* low;
+  bool tangential;  // describes tangential motion: not used for a window of normal motion
   std::function<double(const RegimeSample&)> get;
 };
 
 const std::vector<RegimeVariable>& regimeVariables() {
   static const std::vector<RegimeVariable> v = {
-      {"sliding speed |v_t|", "m/s", "fast sliding", "sticking or slow sliding",
+      {"sliding speed |v_t|", "m/s", "fast sliding", "sticking or slow sliding", true,
        [](const RegimeSample& r) { return r.speed; }},
       {"spin ratio r_gyr|ω_n|/|v_t|", "", "spin-dominated sliding", "translation-dominated sliding",
-       [](const RegimeSample& r) { return r.spin_ratio; }},
-      {"time at rest", "s", "long at rest", "moving",
+       true, [](const RegimeSample& r) { return r.spin_ratio; }},
+      {"time without tangential motion", "s", "long without slip", "slipping", true,
        [](const RegimeSample& r) { return r.time_at_rest; }},
       {"rest before this motion", "s", "restart after a long stop", "restart after a short stop",
-       [](const RegimeSample& r) { return r.preceding_rest; }},
-      {"penetration rate δ̇_c", "m/s", "fast approach (impact)", "separating",
+       true, [](const RegimeSample& r) { return r.preceding_rest; }},
+      {"penetration rate δ̇_c", "m/s", "fast approach (impact)", "separating", false,
        [](const RegimeSample& r) { return r.penetration_rate; }},
-      {"normal load f_n", "N", "high load", "light load or no contact",
+      {"normal load f_n", "N", "high load", "light load or no contact", false,
        [](const RegimeSample& r) { return r.load; }},
   };
   return v;
+}
+
+// A phase of normal motion only: tangential regime variables say nothing of it.
+bool normalPhase(Phase p) {
+  return p == Phase::kApproach || p == Phase::kSeparation || p == Phase::kLoading ||
+         p == Phase::kHolding || p == Phase::kUnloading;
 }
 
 double quantile(std::vector<double> v, double q) {
@@ -162,11 +173,14 @@ double windowRank(const std::vector<double>& all, const std::vector<double>& sor
   return sum / (static_cast<double>(b - a + 1) * static_cast<double>(sorted.size()));
 }
 
-// The regime variable in which the window [a, b] is most unlike the whole record.
-std::string describeRegime(const std::vector<RegimeSample>& regime, std::size_t a, std::size_t b) {
+// The regime variable in which the window [a, b] of phase `phase` is most unlike the whole
+// record (the tangential ones only for a window with tangential motion).
+std::string describeRegime(const std::vector<RegimeSample>& regime, std::size_t a, std::size_t b,
+                           Phase phase) {
   double best = 0.0;
-  std::string text = "throughout the record (no regime variable singles the window out)";
+  std::string text = "typical of the record in every regime variable";
   for (const auto& var : regimeVariables()) {
+    if (var.tangential && normalPhase(phase)) continue;
     std::vector<double> all;
     for (const auto& r : regime) all.push_back(var.get(r));
     std::vector<double> sorted = all;
@@ -188,12 +202,10 @@ std::string describeRegime(const std::vector<RegimeSample>& regime, std::size_t 
 }
 
 void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
+               const std::vector<Phase>& phases,
                std::vector<std::pair<double, FailureWindow>>& out) {
   const auto n = static_cast<std::size_t>(r.residual.size());
-  const std::size_t half =
-      std::max(kMinWindowSamples,
-               static_cast<std::size_t>(kWindowFraction * static_cast<double>(n))) /
-      2;
+  const std::size_t half = phaseHalfWindow(n);
   const Eigen::VectorXd e2 = (r.residual / r.sigma).array().square();
   std::vector<double> cum(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) cum[i + 1] = cum[i] + e2[static_cast<Eigen::Index>(i)];
@@ -210,14 +222,18 @@ void windowsOf(const Dataset& d, const OutputResiduals& r, const Prediction& p,
       ++i;
       continue;
     }
-    std::size_t j = i;
-    while (j + 1 < n && failing[j + 1]) ++j;
+    std::size_t j = i;  // a window ends where the failing run or the phase does
+    while (j + 1 < n && failing[j + 1] && phases[j + 1] == phases[i]) ++j;
     if (j + 1 - i < kMinWindowSamples) {  // a lone outlier, not a regime
       i = j + 1;
       continue;
     }
-    FailureWindow w{r.output, d.samples[i].t, d.samples[j].t, std::sqrt(meanOver(i, j)),
-                    describeRegime(p.regime, i, j)};
+    FailureWindow w{r.output,
+                    d.samples[i].t,
+                    d.samples[j].t,
+                    std::sqrt(meanOver(i, j)),
+                    describeRegime(p.regime, i, j, phases[i]),
+                    std::string(phaseName(phases[i]))};
     const double excess = cum[j + 1] - cum[i] - static_cast<double>(j - i + 1);
     out.emplace_back(excess, std::move(w));
     i = j + 1;
@@ -265,6 +281,24 @@ void accept(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOpti
   }
 }
 
+// χ² left after the rig finding (refined with the contact model refitted where it was).
+double rigChi2(const DiagnosisStage& stage, const RigFinding& rig) {
+  return rig.remainingChi2 >= 0.0 ? rig.remainingChi2
+                                  : stage.baseline.comparison.chi2 - rig.chi2Drop;
+}
+
+// The physical candidate that explains the residual as well as the rig finding (χ² within
+// the margin of what the finding leaves), its parameters physical; null when none does.
+const Candidate* physicalRival(const DiagnosisStage& stage, const RigFinding& rig, double margin) {
+  const Candidate* best = nullptr;
+  for (const auto& c : stage.ranking) {
+    if (!c.error.empty() || !c.redundantWith.empty() || !(c.deltaBic < -margin)) continue;
+    if (!unphysical(c).empty()) continue;
+    if (!best || c.fit.comparison.chi2 < best->fit.comparison.chi2) best = &c;
+  }
+  return best && best->fit.comparison.chi2 <= rigChi2(stage, rig) + margin ? best : nullptr;
+}
+
 void decide(const Dataset& dataset, const DiagnoseOptions& options, DiagnosisStage& stage) {
   const auto accepted = std::find_if(stage.ranking.begin(), stage.ranking.end(),
                                      [](const Candidate& c) { return c.accepted; });
@@ -284,9 +318,27 @@ void decide(const Dataset& dataset, const DiagnoseOptions& options, DiagnosisSta
   const double base = stage.baseline.comparison.chi2;
   stage.explainedFraction = base > 0.0 ? std::max(0.0, 1.0 - bestChi2 / base) : 0.0;
   stage.residual = describeResidual(dataset, stage.baseline);
-  if (accepted != stage.ranking.end() && (!rig || accepted->deltaBic <= rig->deltaBic)) {
+  const Candidate* explains = rig ? physicalRival(stage, *rig, options.margin) : nullptr;
+  const bool acceptedFirst =
+      accepted != stage.ranking.end() &&
+      (!rig || accepted->deltaBic <= rig->deltaBic ||
+       accepted->fit.comparison.chi2 <= rigChi2(stage, *rig) + options.margin);
+  const bool singleChannelLag = rig && rig->kind == "lag" && dataset.outputs.size() == 1;
+  const bool faceting = stage.geometry && stage.geometry->chi2 < base - options.margin &&
+                        (!rig || stage.geometry->chi2 <= rigChi2(stage, *rig) + options.margin) &&
+                        (accepted == stage.ranking.end() ||
+                         stage.geometry->chi2 <= accepted->fit.comparison.chi2 + options.margin);
+  if (faceting) {
+    stage.kind = "geometry";
+    stage.verdict = "geometry: " + stage.geometry->text;
+  } else if (acceptedFirst) {
     stage.kind = "effect";
     stage.verdict = accepted->effect;
+  } else if (singleChannelLag || (rig && explains)) {
+    // the record cannot separate the rig finding from physics (see the header)
+    stage.kind = "ambiguous";
+    stage.verdict = (singleChannelLag ? std::string("lag") : rig->text) + " or " +
+                    (explains ? explains->effect : std::string("viscoelastic")) + ": cannot tell";
   } else if (rig) {
     stage.kind = "rig";
     stage.verdict = "rig: " + rig->text;
@@ -295,6 +347,30 @@ void decide(const Dataset& dataset, const DiagnoseOptions& options, DiagnosisSta
   } else {
     stage.kind = stage.verdict = "unexplained";
   }
+}
+
+// The faceting check (see the header): nothing unless the payload is a mesh on a half-space
+// read without its recovered surface and the surfaces can be recognised.
+std::optional<GeometryCheck> facetingCheck(const Dataset& dataset, const NoiseLevels& noise,
+                                           const FitResult& baseline, const FitOptions& options) {
+  const auto* mesh = std::get_if<geometry::Mesh>(&dataset.payload);
+  if (!mesh || dataset.payload_surface ||
+      !std::holds_alternative<geometry::HalfSpace>(dataset.plate))
+    return std::nullopt;
+  Dataset recovered = dataset;
+  try {
+    recovered.payload_surface = volume::recoverSurface(mesh->mesh);
+  } catch (const InputError&) {
+    return std::nullopt;  // not closed or not oriented: nothing to recover
+  }
+  FitOptions own = options;
+  own.designPoints = 0;  // from the mesh's optimum
+  Replayer replayer(recovered);
+  const FitResult refit = fit(replayer, noise, baseline.model, own);
+  GeometryCheck g{refit.comparison.chi2, refit.comparison.chi,
+                  "faceting: the recovered surface gives chi " + format3(refit.comparison.chi) +
+                      " (the mesh " + format3(baseline.comparison.chi) + ")"};
+  return g;
 }
 
 // Seconds since `t`, and t reset to now.
@@ -317,9 +393,11 @@ DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, c
   if (!explore) baselineOptions.designPoints = 0;  // the start is the previous optimum
   stage.baseline = fit(replayer, noise, start, baselineOptions);
   stage.where = failureWindows(dataset, stage.baseline.comparison, stage.baseline.prediction);
+  stage.direct = directEstimates(dataset, noise, stage.baseline.prediction);
+  compareWithFit(dataset, noise, stage.baseline, stage.direct);
   stage.seconds.baseline = lap(t);
   stage.ranking = candidateList(stage.baseline.model, options);
-  fitCandidates(dataset, noise, stage.baseline.model, options, label, stage.ranking);
+  fitCandidates(replayer, noise, stage.baseline.model, options, label, stage.ranking);
   rank(stage.ranking, stage.baseline.bic, options.margin);
   stage.seconds.candidates = lap(t);
   tell(options, label + "cross-validating the baseline", 0, 0);
@@ -330,6 +408,8 @@ DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, c
   stage.rig = rigCandidates(dataset, stage.baseline.comparison);
   if (!stage.rig.empty() && stage.rig.front().deltaBic < -options.margin)
     stage.rig.front() = refineRig(dataset, noise, stage.baseline, stage.rig.front(), options.fit);
+  if (stage.baseline.comparison.chi > options.explainedChi)
+    stage.geometry = facetingCheck(dataset, noise, stage.baseline, options.fit);
   decide(dataset, options, stage);
   stage.seconds.rest = lap(t);
   return stage;
@@ -379,7 +459,8 @@ void prune(const Dataset& dataset, const NoiseLevels& noise, const DiagnoseOptio
 std::vector<FailureWindow> failureWindows(const Dataset& dataset, const Comparison& comparison,
                                           const Prediction& prediction) {
   std::vector<std::pair<double, FailureWindow>> all;
-  for (const auto& r : comparison.outputs) windowsOf(dataset, r, prediction, all);
+  const std::vector<Phase> phases = phasesOf(prediction.regime, phaseHalfWindow(dataset.size()));
+  for (const auto& r : comparison.outputs) windowsOf(dataset, r, prediction, phases, all);
   std::stable_sort(all.begin(), all.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<FailureWindow> out;

@@ -24,8 +24,22 @@
 //      kCvCandidates best candidates that pass 1 and 2 are cross-validated (the cost).
 // Rig candidates (rig.hpp: offset, gain per output, a motion–force lag) are scored on the
 // baseline's residual with the same ΔBIC and reported apart from the effects.
-// Verdict, in this order:
-//   the accepted effect, unless a rig candidate has a lower ΔBIC;
+// Verdict, in this order (physics and geometry before the rig, issue 37):
+//   the accepted effect, unless a rig candidate has a lower ΔBIC and leaves a χ² lower than
+//   the effect's by more than the margin;
+//   "<finding> or <effect>: cannot tell" (kind "ambiguous") when a rig finding would be the
+//   verdict but a physical candidate (past the ΔBIC margin, parameters within their bounds)
+//   explains the residual as well (χ² within the margin of what the finding leaves), or when
+//   the finding is a lag on a record of one output: one channel cannot tell a delay of the
+//   force from a viscoelastic normal force (its relaxation delays the force too), so the
+//   verdict is "lag or viscoelastic: cannot tell" (or the rival that explains it as well);
+//   several channels sharing one lag, or one channel of several lagging alone, can tell;
+//   "geometry: faceting …" (kind "geometry") when the payload is a mesh read without its
+//   recovered surface (DATASET.md "surface"), and the baseline refitted on the recovered
+//   surface (from its optimum) lowers χ² by more than the margin and explains the residual at
+//   least as well (χ² within the margin) as the best rig finding and the accepted effect: the
+//   misfit is the mesh's facets, not the channel, and not a law that stands in for them (a
+//   power law bends kv V to a faceted V(d)); geometry adds no parameter;
 //   "rig: <finding>" when a rig candidate (refined with the contact model refitted, rig.hpp)
 //   passes the margin, removes at least kRigShare = half of the baseline's excess χ² − n
 //   (one global correction, not a partial stand-in), and no effect beats it;
@@ -37,10 +51,13 @@
 // 1.2 also leaves room for σ estimated from the data).
 //
 // `where` locates the baseline's failures: samples whose moving-window chi exceeds
-// kWindowChi are merged into time windows, and each window is described by the regime
-// variable (speed, spin ratio, time at rest, rest before the motion, penetration rate, load)
-// in which it is most unlike the rest of the record (mean rank of its samples farthest from
-// the middle), as that variable's 10–90 % range over the window and what it means.
+// kWindowChi are merged into time windows, cut where the motion's phase changes
+// (validation/phases.hpp: a window lies in one phase, which it names), and each window is
+// described by the regime variable (speed, spin ratio, time without tangential motion, rest
+// before the motion, penetration rate, load; the tangential ones only for a window with
+// tangential motion) in which it is most unlike the rest of the record (mean rank of its
+// samples farthest from the middle), as that variable's 10–90 % range over the window and
+// what it means.
 //
 // --iterate adds the accepted effect and repeats while the verdict is an effect (a rig finding
 // stops it: correct the record first). An effect added early can become unnecessary once a
@@ -60,6 +77,7 @@
 #include <vector>
 
 #include "validation/candidates.hpp"
+#include "validation/direct_estimates.hpp"
 #include "validation/fit.hpp"
 #include "validation/rig.hpp"
 #include "validation/selection.hpp"
@@ -99,6 +117,14 @@ struct FailureWindow {
   double chi = 0.0;           ///< sqrt(mean (r/σ)²) over the window
   std::string
       regime;  ///< e.g. "spin ratio r_gyr|ω_n|/|v_t| in [2.1, 8.4] (spin-dominated sliding)"
+  std::string phase;  ///< the motion's phase over the window (phases.hpp): "sliding", …
+};
+
+/// The faceting check (see the header): the baseline refitted on the mesh payload's
+/// recovered surface.
+struct GeometryCheck {
+  double chi2 = 0.0, chi = 0.0;  ///< of the refit on the recovered surface
+  std::string text;              ///< "faceting: the recovered surface gives chi 1.02 (mesh 7.3)"
 };
 
 struct DiagnosisStage {
@@ -106,12 +132,18 @@ struct DiagnosisStage {
   FitResult baseline;
   std::vector<Candidate> ranking;  ///< best (lowest ΔBIC) first; failed candidates last
   std::vector<FailureWindow> where;
-  /// The accepted effect's id, "rig: <finding>", "none" or "unexplained" (see the header).
+  /// The accepted effect's id, "rig: <finding>", "<finding> or <effect>: cannot tell", "none"
+  /// or "unexplained" (see the header).
   std::string verdict;
-  std::string kind;     ///< "effect", "rig", "none" or "unexplained"
+  std::string kind;     ///< "effect", "rig", "ambiguous", "none" or "unexplained"
   std::string removed;  ///< non-empty: this stage dropped an effect (pruning)
   double heldOutChi2 = std::numeric_limits<double>::quiet_NaN();  ///< of the baseline
   std::vector<RigFinding> rig;                                    ///< best first
+  /// What the record says without the model, beside the baseline's values (far ones flagged
+  /// in baseline.warnings).
+  std::vector<DirectEstimate> direct;
+  /// Tried for a mesh payload on a half-space plate read without its recovered surface.
+  std::optional<GeometryCheck> geometry;
   double explainedFraction = 0.0;  ///< 1 − χ²_best candidate / χ²_baseline, ≥ 0
   ResidualDescription residual;    ///< of the baseline
   /// Wall-clock seconds of the stage's parts: baseline fit, candidate fits, cross-validation

@@ -23,8 +23,9 @@
 // at the start. Design range in u: the bounds, narrowed for positive parameters to three
 // decades either side of the default (s·10^±3), which covers the physical magnitudes of
 // MODEL.md §4 without spending points on 1e-6 or 1e12. Every point is screened by one replay
-// (its cost), the `polished` cheapest are solved by Levenberg–Marquardt in parallel (TBB,
-// one Replayer each) and the lowest final cost wins (ties: the earlier point, so the result
+// (its cost), the `polished` cheapest are run by Levenberg–Marquardt in parallel (TBB, one
+// copy of the Replayer each, sharing its geometry) for a few iterations, the cheapest is then
+// solved to convergence, and the lowest cost wins (ties: the earlier point, so the result
 // does not depend on the thread schedule).
 //
 // At a bound: a free parameter whose u ends within 1e-6 of the u range from a bound

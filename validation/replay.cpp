@@ -157,13 +157,19 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
   return g;
 }
 
-RegimeSample regimeOf(const SampleGeometry& g, double load, double v_eps) {
+RegimeSample regimeOf(const SampleGeometry& g, const Sample& s, double load, double v_eps) {
   RegimeSample r;
   r.load = load;
+  r.approach_rate = -s.v_BA.z();
   if (!g.cv.inContact()) return r;
   const dynamics::ContactKinematics k = dynamics::resolve(g.motion, g.cv.n_W);
+  r.in_contact = true;
+  r.volume = g.cv.volume;
+  r.depth = g.cv.depth;
   r.speed = k.v_t_W.norm();
-  r.spin_ratio = g.cv.r_gyr * std::abs(k.omega_n) / std::max(r.speed, v_eps);
+  r.spin_speed = g.cv.r_gyr * std::abs(k.omega_n);
+  r.spin_ratio = r.spin_speed / std::max(r.speed, v_eps);
+  r.roll_speed = k.omega_t_W.norm() * g.p_AoC_B.norm();
   r.penetration_rate = k.delta_dot;
   return r;
 }
@@ -212,6 +218,19 @@ void advance(const Model& model, const volume::ContactVolume& cv,
   state = PairState::unpack(x, size);
 }
 
+// Records the first sample whose evaluation is not finite, and the effect responsible.
+void noteNonFinite(const Model& model, const dynamics::ContactResult& r, std::size_t sample,
+                   Prediction& p) {
+  if (p.nonFinite || (r.wrench.f_W.allFinite() && r.wrench.tau_W.allFinite())) return;
+  NonFinitePrediction bad{sample, "the model"};
+  for (std::size_t e = 0; e < r.shares.size(); ++e) {
+    if (r.shares[e].f_W.allFinite() && r.shares[e].tau_W.allFinite()) continue;
+    bad.effect = std::string(model.effect(e).id());
+    break;
+  }
+  p.nonFinite = bad;
+}
+
 }  // namespace
 
 int wrenchIndex(const std::string& output) {
@@ -228,28 +247,29 @@ Replayer::Replayer(const Dataset& dataset) : dataset_(dataset) {}
 
 const std::vector<SampleGeometry>& Replayer::geometryFor(const Model& model) {
   std::vector<double> key = geometryKey(model);
-  if (cached_ && key == cachedKey_) return geometry_;
-  geometry_.clear();
-  geometry_.reserve(dataset_.size());
+  if (cached_ && key == cachedKey_) return *geometry_;
+  auto geometry = std::make_shared<std::vector<SampleGeometry>>();
+  geometry->reserve(dataset_.size());
   HalfspaceVolumes halfspace;
   for (const auto& s : dataset_.samples) {
-    geometry_.push_back(sampleGeometry(dataset_, s, model, halfspace));
+    geometry->push_back(sampleGeometry(dataset_, s, model, halfspace));
   }
+  geometry_ = std::move(geometry);  // a new vector: copies sharing the old one keep it
   cachedKey_ = std::move(key);
   cached_ = true;
-  return geometry_;
+  return *geometry_;
 }
 
-Prediction Replayer::run(const Model& model) {
+Prediction Replayer::run(const Model& model, bool regime) {
   const auto& geometry = geometryFor(model);
   std::size_t most = 1;
   for (const SampleGeometry& g : geometry) most = std::max(most, g.patches.size());
-  return most > 1 ? runPatches(model, static_cast<int>(most)) : runWhole(model);
+  return most > 1 ? runPatches(model, static_cast<int>(most), regime) : runWhole(model, regime);
 }
 
 // Every sample's contact is one region: one set of friction states.
-Prediction Replayer::runWhole(const Model& model) {
-  const auto& geometry = geometry_;
+Prediction Replayer::runWhole(const Model& model, bool regime) {
+  const auto& geometry = *geometry_;
   const auto& samples = dataset_.samples;
   const std::size_t n = samples.size();
   Prediction p;
@@ -261,10 +281,13 @@ Prediction Replayer::runWhole(const Model& model) {
     const SampleGeometry& g = geometry[i];
     model.settle(g.cv, g.motion, state);  // projection, dwell jump, reset out of contact
     const dynamics::ContactResult r = model.evaluate(g.cv, g.motion, state);
+    noteNonFinite(model, r, i, p);
     const Eigen::Vector3d tau_Ao = r.wrench.tau_W + g.p_AoC_B.cross(r.wrench.f_W);
     p.wrench.row(static_cast<Eigen::Index>(i)) << r.wrench.f_W.transpose(), tau_Ao.transpose();
-    p.regime[i] = regimeOf(g, r.f_n, model.settings.v_eps);
-    rest.update(samples[i].t, g, p.regime[i]);
+    if (regime) {
+      p.regime[i] = regimeOf(g, samples[i], r.f_n, model.settings.v_eps);
+      rest.update(samples[i].t, g, p.regime[i]);
+    }
     if (i + 1 < n) advance(model, g.cv, g.motion, r, samples[i + 1].t - samples[i].t, state);
   }
   return p;
@@ -273,8 +296,8 @@ Prediction Replayer::runWhole(const Model& model) {
 // Some sample touches in several regions: one set of friction states per tracked patch
 // (dynamics/patch_tracker.hpp), with as many slots as the most patches of any sample, so every
 // patch has its own. A sample of one region is its own single patch.
-Prediction Replayer::runPatches(const Model& model, int slots) {
-  const auto& geometry = geometry_;
+Prediction Replayer::runPatches(const Model& model, int slots, bool regime) {
+  const auto& geometry = *geometry_;
   const auto& samples = dataset_.samples;
   const std::size_t n = samples.size();
   Prediction p;
@@ -305,6 +328,7 @@ Prediction Replayer::runPatches(const Model& model, int slots) {
       PairState& state = states[static_cast<std::size_t>(match.host[j])];
       if (own >= 0) model.settle(q.cv, q.motion, state);
       const dynamics::ContactResult r = model.evaluate(q.cv, q.motion, state);
+      noteNonFinite(model, r, i, p);
       f += r.wrench.f_W;
       tau += r.wrench.tau_W + q.p_AoC_B.cross(r.wrench.f_W);
       f_n += r.f_n;
@@ -317,8 +341,10 @@ Prediction Replayer::runPatches(const Model& model, int slots) {
     }
     tracker.update(volumes, match, g.X_BA, X_BB);
     p.wrench.row(static_cast<Eigen::Index>(i)) << f.transpose(), tau.transpose();
-    p.regime[i] = regimeOf(g, f_n, model.settings.v_eps);
-    rest.update(samples[i].t, g, p.regime[i]);
+    if (regime) {
+      p.regime[i] = regimeOf(g, samples[i], f_n, model.settings.v_eps);
+      rest.update(samples[i].t, g, p.regime[i]);
+    }
   }
   return p;
 }

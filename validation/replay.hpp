@@ -27,6 +27,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,17 +64,35 @@ struct RegimeSample {
   double preceding_rest = 0.0;    ///< moving: length of the rest before this motion, s
   double penetration_rate = 0.0;  ///< δ̇_c, m/s
   double load = 0.0;              ///< f_n, N
+  bool in_contact = false;        ///< the payload touches the plate (V > 0)
+  double volume = 0.0;            ///< V, m³
+  double depth = 0.0;             ///< deepest penetration, m
+  /// Out of contact: the payload's approach speed along the plate's e_z (−v_z), m/s.
+  double approach_rate = 0.0;
+  /// The speed at which the payload's surface rolls over the contact: |ω_t| times the lever
+  /// from the payload origin to the centroid, m/s.
+  double roll_speed = 0.0;
+  double spin_speed = 0.0;  ///< r_gyr |ω_n|, m/s
 };
 
 /// Below this sliding-plus-spin speed a sample counts as "at rest": a tenth of the smallest
 /// stick–slip speed v_s a rig resolves (1e-4 m/s against the default v_s = 1e-3 m/s).
 inline constexpr double kRestSpeed = 1e-4;  // m/s
 
+/// The first sample where the model's wrench is not finite (inf or NaN), and the effect whose
+/// share is not; a prediction with one cannot be compared with the record.
+struct NonFinitePrediction {
+  std::size_t sample = 0;
+  std::string effect;  ///< the first effect (in stage order) with a non-finite share
+};
+
 struct Prediction {
   /// n × 6, columns in kWrenchColumns order: force on the payload by the plate (N) and torque
   /// about the payload origin (N·m), both in B (the plate frame).
   Eigen::MatrixXd wrench;
   std::vector<RegimeSample> regime;
+  /// Set when some sample's wrench is not finite (the first such sample).
+  std::optional<NonFinitePrediction> nonFinite;
   /// The predicted column named `output` ("fx" … "tz").
   Eigen::VectorXd column(const std::string& output) const;
 };
@@ -82,26 +102,30 @@ int wrenchIndex(const std::string& output);
 
 /// Replays one dataset through many models (a fit evaluates thousands): the geometry of every
 /// sample is computed once per value of the model's geometry-only parameters and cached.
-/// Not thread-safe; use one Replayer per thread.
+/// Not thread-safe; use one Replayer per thread. A copy shares the cached geometry (immutable,
+/// reference-counted): the parallel starts, candidates and folds of one record copy one
+/// replayer instead of computing every sample's contact volume again.
 class Replayer {
  public:
   /// @pre dataset outlives the replayer
   explicit Replayer(const Dataset& dataset);
 
+  /// @param regime  false: leave Prediction::regime at its defaults (a fit's residuals do not
+  ///   read it, and describing every sample's regime is a tenth of a replay's cost)
   /// @throws InputError when no volume method handles the payload/plate pair
-  Prediction run(const dynamics::Model& model);
+  Prediction run(const dynamics::Model& model, bool regime = true);
 
   const Dataset& dataset() const { return dataset_; }
 
  private:
   const std::vector<SampleGeometry>& geometryFor(const dynamics::Model& model);
-  Prediction runWhole(const dynamics::Model& model);
-  Prediction runPatches(const dynamics::Model& model, int slots);
+  Prediction runWhole(const dynamics::Model& model, bool regime);
+  Prediction runPatches(const dynamics::Model& model, int slots, bool regime);
 
   const Dataset& dataset_;
   std::vector<double> cachedKey_;
   bool cached_ = false;
-  std::vector<SampleGeometry> geometry_;
+  std::shared_ptr<const std::vector<SampleGeometry>> geometry_;
 };
 
 }  // namespace vcontact::validation

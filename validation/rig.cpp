@@ -21,7 +21,9 @@ std::string describe(const std::string& what, double value, const std::string& u
 // "payload inertia -1 × (m·a, I·α)".
 std::string textOf(const std::string& kind, const std::string& output, double value,
                    const std::string& unit) {
-  if (kind == "lag") return describe("force lags motion by", value, unit);
+  if (kind == "lag")
+    return describe(output == "all" ? "force lags motion by" : output + " lags motion by", value,
+                    unit);
   if (kind == "inertia") return describe("payload inertia", value, "× (m·a, I·α)");
   return describe(output + " " + kind, value, unit);
 }
@@ -61,10 +63,13 @@ double at(const Eigen::VectorXd& x, double u) {
                    f * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + f * (3.0 * (p1 - p2) + p3 - p0)));
 }
 
-// Σ over outputs of ((y_i − ŷ(i − τ))/σ)² over i in [a, b), τ in samples (fractional).
-double shiftedChi2(const Comparison& c, double tau, Eigen::Index a, Eigen::Index b) {
+// Σ over outputs (`only`, or all when "all") of ((y_i − ŷ(i − τ))/σ)² over i in [a, b), τ in
+// samples (fractional).
+double shiftedChi2(const Comparison& c, double tau, Eigen::Index a, Eigen::Index b,
+                   const std::string& only) {
   double sum = 0.0;
   for (const auto& o : c.outputs) {
+    if (only != "all" && o.output != only) continue;
     for (Eigen::Index i = a; i < b; ++i) {
       const double e = (o.measured[i] - at(o.predicted, static_cast<double>(i) - tau)) / o.sigma;
       sum += e * e;
@@ -75,11 +80,12 @@ double shiftedChi2(const Comparison& c, double tau, Eigen::Index a, Eigen::Index
 
 // The best whole-sample shift, then golden-section search for the fractional one within a
 // sample either side (χ²(τ) of a smooth record is unimodal there).
-double bestShift(const Comparison& c, int maxLag, Eigen::Index a, Eigen::Index b) {
+double bestShift(const Comparison& c, int maxLag, Eigen::Index a, Eigen::Index b,
+                 const std::string& only) {
   int best = 0;
-  double bestChi2 = shiftedChi2(c, 0.0, a, b);
+  double bestChi2 = shiftedChi2(c, 0.0, a, b, only);
   for (int tau = -maxLag; tau <= maxLag; ++tau) {
-    const double x = tau == 0 ? bestChi2 : shiftedChi2(c, tau, a, b);
+    const double x = tau == 0 ? bestChi2 : shiftedChi2(c, tau, a, b, only);
     if (x < bestChi2) {
       bestChi2 = x;
       best = tau;
@@ -89,16 +95,16 @@ double bestShift(const Comparison& c, int maxLag, Eigen::Index a, Eigen::Index b
   const double g = (std::sqrt(5.0) - 1.0) / 2.0;
   double lo = best - 1.0, hi = best + 1.0;
   double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = shiftedChi2(c, x1, a, b), f2 = shiftedChi2(c, x2, a, b);
+  double f1 = shiftedChi2(c, x1, a, b, only), f2 = shiftedChi2(c, x2, a, b, only);
   while (hi - lo > 1e-3) {  // a thousandth of a sample
     if (f1 < f2) {
-      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = shiftedChi2(c, x1, a, b);
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = shiftedChi2(c, x1, a, b, only);
     } else {
-      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = shiftedChi2(c, x2, a, b);
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = shiftedChi2(c, x2, a, b, only);
     }
   }
   const double tau = 0.5 * (lo + hi);
-  return shiftedChi2(c, tau, a, b) < bestChi2 ? tau : static_cast<double>(best);
+  return shiftedChi2(c, tau, a, b, only) < bestChi2 ? tau : static_cast<double>(best);
 }
 
 double meanStep(const Dataset& d) {
@@ -117,12 +123,20 @@ void lag(const Dataset& d, const Comparison& c, double n, std::vector<RigFinding
   if (maxLag < 1 || c.outputs.empty()) return;
   const Eigen::Index a = maxLag + 1, b = m - maxLag - 1;  // every shift covers [a, b)
   if (b <= a) return;
-  const double tau = bestShift(c, maxLag, a, b);
-  if (tau == 0.0) return;
-  const double seconds = tau * meanStep(d);
-  out.push_back(finding("lag", "all", seconds, "s",
-                        shiftedChi2(c, 0.0, a, b) - shiftedChi2(c, tau, a, b), n,
-                        textOf("lag", "all", seconds, "s")));
+  // one lag shared by every output, and, with several outputs, one lag of each alone (a
+  // channel's own delay: a filter, a clock of its own)
+  std::vector<std::string> which{"all"};
+  for (const auto& o : c.outputs) {
+    if (c.outputs.size() > 1) which.push_back(o.output);
+  }
+  for (const auto& only : which) {
+    const double tau = bestShift(c, maxLag, a, b, only);
+    if (tau == 0.0) continue;
+    const double seconds = tau * meanStep(d);
+    out.push_back(finding("lag", only, seconds, "s",
+                          shiftedChi2(c, 0.0, a, b, only) - shiftedChi2(c, tau, a, b, only), n,
+                          textOf("lag", only, seconds, "s")));
+  }
 }
 
 // k of y = ŷ + k w (w the payload's inertial wrench, every output at once), for each
@@ -175,7 +189,8 @@ Dataset corrected(const Dataset& dataset, const RigFinding& finding) {
     if (finding.kind == "offset" && o == finding.output) y.array() -= finding.value;
     if (finding.kind == "gain" && o == finding.output) y /= finding.value;
     if (finding.kind == "inertia") y -= finding.value * w.at(o);
-    if (finding.kind == "lag") {  // y'(i) = y(i + τ)
+    if (finding.kind == "lag" && (finding.output == "all" || o == finding.output)) {
+      // y'(i) = y(i + τ)
       const Eigen::VectorXd& src = dataset.columns.at(o);
       for (Eigen::Index i = 0; i < y.size(); ++i) y[i] = at(src, static_cast<double>(i) + shift);
     }

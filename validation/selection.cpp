@@ -11,14 +11,16 @@ namespace vcontact::validation {
 namespace {
 
 // Held-out χ² of one block [a, b) after a fit without it.
-double foldChi2(const Dataset& dataset, const NoiseLevels& noise, const dynamics::Model& fitted,
+// @param shared  a replayer of the record whose geometry the fold's copy shares
+double foldChi2(const Replayer& shared, const NoiseLevels& noise, const dynamics::Model& fitted,
                 FitOptions options, std::size_t a, std::size_t b) {
+  const Dataset& dataset = shared.dataset();
   options.heldOut.assign(dataset.size(), false);
   std::fill(options.heldOut.begin() + static_cast<std::ptrdiff_t>(a),
             options.heldOut.begin() + static_cast<std::ptrdiff_t>(b), true);
   options.designPoints = 0;
   options.polished = 1;
-  Replayer replayer(dataset);
+  Replayer replayer = shared;
   const FitResult r = fit(replayer, noise, fitted, options);
   double sum = 0.0;
   for (const auto& o : r.comparison.outputs) {
@@ -79,10 +81,12 @@ double heldOutChi2(const Dataset& dataset, const NoiseLevels& noise, const dynam
                    const FitOptions& options) {
   const std::size_t n = dataset.size();
   std::vector<double> chi2(kCvBlocks, 0.0);
+  Replayer shared(dataset);
+  shared.run(fitted);  // the contact volumes, once for the five folds
   tbb::parallel_for(0, kCvBlocks, [&](int k) {
     const std::size_t a = n * static_cast<std::size_t>(k) / kCvBlocks;
     const std::size_t b = n * static_cast<std::size_t>(k + 1) / kCvBlocks;
-    chi2[static_cast<std::size_t>(k)] = foldChi2(dataset, noise, fitted, options, a, b);
+    chi2[static_cast<std::size_t>(k)] = foldChi2(shared, noise, fitted, options, a, b);
   });
   double sum = 0.0;
   for (double c : chi2) sum += c;
@@ -90,9 +94,12 @@ double heldOutChi2(const Dataset& dataset, const NoiseLevels& noise, const dynam
 }
 
 std::vector<RegimeColumn> regimeColumns(const std::vector<RegimeSample>& regime) {
-  std::vector<RegimeColumn> c = {{"sliding speed |v_t|", {}},  {"spin ratio r_gyr|ω_n|/|v_t|", {}},
-                                 {"time at rest", {}},         {"rest before this motion", {}},
-                                 {"penetration rate δ̇_c", {}}, {"normal load f_n", {}}};
+  std::vector<RegimeColumn> c = {{"sliding speed |v_t|", {}},
+                                 {"spin ratio r_gyr|ω_n|/|v_t|", {}},
+                                 {"time without tangential motion", {}},
+                                 {"rest before this motion", {}},
+                                 {"penetration rate δ̇_c", {}},
+                                 {"normal load f_n", {}}};
   for (const auto& r : regime) {
     c[0].values.push_back(r.speed);
     c[1].values.push_back(r.spin_ratio);

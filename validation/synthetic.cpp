@@ -97,6 +97,20 @@ RigState rolling(double t) {
   return r;
 }
 
+// Piecewise-linear indentation: approach, loading at a constant rate, hold, unloading at the
+// same rate, separated. The depth of the sphere's lowest point below the surface.
+RigState indentation(double t) {
+  constexpr double dMax = 8e-6, lift = 2e-6;                // m
+  constexpr double tTouch = 0.3, tLoad = 1.2, tHold = 1.0;  // s
+  constexpr double rate = dMax / tLoad;                     // m/s: 6.7 µm/s
+  const double tUnload = tTouch + tLoad + tHold, tOff = tUnload + tLoad;
+  if (t < tTouch) return {-lift + lift * t / tTouch, lift / tTouch};
+  if (t < tTouch + tLoad) return {rate * (t - tTouch), rate};
+  if (t < tUnload) return {dMax, 0.0};
+  if (t < tOff) return {dMax - rate * (t - tUnload), -rate};
+  return {-lift * std::min(1.0, (t - tOff) / tTouch), -lift / tTouch};
+}
+
 const std::vector<Profile>& profiles() {
   static const std::vector<Profile> p = {
       {"loading", 2.0, false, {"fz", "tx", "ty"}, loading},
@@ -106,6 +120,7 @@ const std::vector<Profile>& profiles() {
       {"dwell", 4.0, false, {"fx", "fz"}, dwell},
       {"slide-spin", 3.0, false, {"fx", "fy", "fz", "tz"}, slideSpin},
       {"rolling", 2.0, true, {"fz", "tx"}, rolling},
+      {"indentation", 4.0, true, {"fz"}, indentation},
   };
   return p;
 }

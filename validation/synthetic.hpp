@@ -13,6 +13,8 @@
 //   dwell          punch at 20 nm, slide–stop–restart with stops of 0.1, 0.5, 1.5 s (dwell)
 //   slide-spin     punch at 20 nm, sliding slows while the spin grows (spin, contensou)
 //   rolling        ball at 5 µm rolling without slip, rocking (rolling_resistance)
+//   indentation    ball pressed at 6.7 µm/s to 8 µm, held 1 s, released at the same rate, one
+//                  force channel fz (power_law, viscoelastic, adhesion: the normal law)
 
 #include <string>
 #include <vector>

@@ -1,5 +1,6 @@
 // damping: f_n = kv V (1 + a δ̇_c) n, clamped so that f_n·n ≥ 0 (MODEL.md §3, Hunt–Crossley
-// form of Gonthier). Its share is the change it makes to the stiffness force.
+// form of Gonthier); with a normal law before it (power_law, viscoelastic) the factor
+// multiplies that law's force f_spring. Its share is the change it makes to that force.
 #include <algorithm>
 
 #include "dynamics/effects/effect_base.hpp"
@@ -21,7 +22,7 @@ class Damping final : public EffectBase<Damping> {
   void configure(ContactContext& ctx) const override { ctx.a = parameter(0); }
 
   Wrench apply(ContactContext& ctx) const override {
-    const double f_n = std::max(0.0, ctx.kv * ctx.cv->volume * (1.0 + ctx.a * ctx.delta_dot));
+    const double f_n = std::max(0.0, ctx.f_spring * (1.0 + ctx.a * ctx.delta_dot));
     const double change = f_n - ctx.f_n;
     ctx.f_n = f_n;
     return {change * ctx.n, Eigen::Vector3d::Zero()};

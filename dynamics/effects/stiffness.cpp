@@ -18,6 +18,8 @@ class Stiffness final : public EffectBase<Stiffness> {
 
   Wrench apply(ContactContext& ctx) const override {
     ctx.f_n = ctx.kv * ctx.cv->volume;
+    ctx.f_spring = ctx.f_n;
+    ctx.k_n = ctx.kv;
     return {ctx.f_n * ctx.n, Eigen::Vector3d::Zero()};
   }
 };

@@ -243,3 +243,24 @@ def test_engine_errors_are_python_exceptions_with_the_engine_message():
         vcontact.Scenario.load("no_such.json")
     with pytest.raises(ValueError):  # InputError is a ValueError
         vcontact.sphere(-1)
+
+
+BROKEN_MODEL = {
+    "format": "vcontact.model/1",
+    "effects": {
+        "stiffness": {},
+        "broken": {"kind": "expression",
+                   "parameters": {"b": {"value": 1, "unit": "N", "lower": 0, "upper": 10}},
+                   "normal": "b/(V-V)"},
+    },
+}
+
+
+def test_fit_of_a_model_predicting_inf_is_an_input_error_not_a_crash(tmp_path):
+    # issue 36: an effect dividing by V - V made fit segfault (the Jacobian went unchecked)
+    dataset = os.path.join(ASSETS, "datasets", "loading.json")
+    model = tmp_path / "broken.model.json"
+    model.write_text(json.dumps(BROKEN_MODEL))
+    with pytest.raises(vcontact.InputError, match=r"effect 'broken' predicts a non-finite wrench"
+                                                  r" \(f[xyz] = .*\) at sample \d+"):
+        vcontact.fit(dataset, str(model))

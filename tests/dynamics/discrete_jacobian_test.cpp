@@ -242,5 +242,31 @@ TEST(DiscreteJacobian, SphereNormalStiffnessIsExactAndTiltIsTwoThirds) {
   EXPECT_NEAR(J.K(4, 4) / true_tilt, 2.0 / 3.0, 0.01);
 }
 
+// The normal-law effects (MODEL.md §3 "Normal law") on a flat face, where A is constant in the
+// depth: power_law's normal stiffness p f_n/V and tilt stiffness (secant) f_n/V · J_s/d̄,
+// viscoelastic's r k at a fixed Maxwell force q (the state, which the stepper advances
+// explicitly), adhesion's −σ_a A (constant in the depth: no stiffness), each with damping's
+// f_spring a n nᵀ in the twist. Tolerance 1e-3 as the flat-face test above (pose step 1e-7 m
+// against a depth of 1e-4 m; f ∝ d² has no third derivative, so the difference is exact up to
+// round-off); the twist column is linear: 1e-7.
+TEST(DiscreteJacobian, NormalLawEffectsMatchDifferences) {
+  const Isometry3d X = cubePose(1e-4, 0.0, 0.3);
+  const volume::ContactVolume cv = cubeContact(X);
+  const Vector6d press = (Vector6d() << 0, 0, -0.01, 0, 0, 0).finished();  // δ̇ = 1 cm/s
+  for (const auto& law : {"power_law", "viscoelastic", "adhesion"}) {
+    Model m = soft({"stiffness", law, "damping"});
+    if (m.has("power_law")) m.setParameter("power_law.p", 2.0);
+    if (m.has("viscoelastic")) m.setParameter("viscoelastic.ratio", 0.3);
+    if (m.has("adhesion")) m.setParameter("adhesion.sigma_a", 1e3);
+    PairState state;
+    if (m.has("viscoelastic")) state[m.stateLayout().offsetOf("viscoelastic")] = 0.5;  // N
+    const ContactJacobians J = contactJacobians(m, cv, motionOf(press), state);
+    SCOPED_TRACE(law);
+    expectClose(J.K, poseDifferences(m, X, press, 1e-7), 1e-3);
+    const Matrix6d D = twistDifferences(m, cv, press, state, 1e-6);
+    EXPECT_NEAR(J.D(2, 2), D(2, 2), 1e-7 * std::abs(D(2, 2)));
+  }
+}
+
 }  // namespace
 }  // namespace vcontact::test

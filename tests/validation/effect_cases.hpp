@@ -16,10 +16,11 @@ namespace vcontact::test {
 /// the library defaults so that a fit has to move).
 inline const std::map<std::string, double>& trueParameters() {
   static const std::map<std::string, double> p = {
-      {"stiffness.kv", 4.2e12},    {"damping.a", 400.0},      {"coulomb.mu", 0.15},
-      {"coulomb.v_s", 1.5e-3},     {"stribeck.mu_s", 0.3},    {"bristle.sigma0", 6000.0},
-      {"bristle.sigma1", 300.0},   {"viscous.sigma2", 4.0},   {"dwell.tau_dw", 0.4},
-      {"misalignment.rx", 1.5e-6}, {"misalignment.ry", -1e-6}};
+      {"stiffness.kv", 4.2e12},    {"damping.a", 400.0},        {"coulomb.mu", 0.15},
+      {"coulomb.v_s", 1.5e-3},     {"stribeck.mu_s", 0.3},      {"bristle.sigma0", 6000.0},
+      {"bristle.sigma1", 300.0},   {"viscous.sigma2", 4.0},     {"dwell.tau_dw", 0.4},
+      {"misalignment.rx", 1.5e-6}, {"misalignment.ry", -1e-6},  {"power_law.p", 0.75},
+      {"viscoelastic.tau", 0.3},   {"viscoelastic.ratio", 0.6}, {"adhesion.sigma_a", 2e6}};
   return p;
 }
 
@@ -51,6 +52,9 @@ inline const std::vector<EffectCase>& effectCases() {
       {"contensou", "slide-spin", {"stiffness", "coulomb", "spin", "contensou"}, 300},
       {"dwell", "dwell", {"stiffness", "coulomb", "stribeck", "dwell"}, 600},
       {"misalignment", "loading", {"stiffness", "misalignment"}, 300},
+      {"power_law", "indentation", {"stiffness", "power_law"}, 400},
+      {"viscoelastic", "indentation", {"stiffness", "viscoelastic"}, 400},
+      {"adhesion", "indentation", {"stiffness", "adhesion"}, 400},
   };
   return c;
 }

@@ -185,6 +185,27 @@ TEST_F(ValidationCli, BadDatasetsAndModelFilesGiveAMessageExitTwoAndWriteNothing
   EXPECT_FALSE(fs::exists(out()));
 }
 
+// A model whose prediction is not finite (issue 36: an expression effect b/(V − V)): compare,
+// fit and diagnose stop with exit 2, a message naming the effect, its parameter and the
+// sample, and nothing in --out (compare printed chi = -nan and wrote its files; fit and
+// diagnose crashed).
+TEST_F(ValidationCli, NonFinitePredictionExitsTwoNamingTheEffectAndWritesNothing) {
+  writeText(dir_ / "model.json", R"json({"format": "vcontact.model/1", "effects": {
+      "stiffness": {}, "coulomb": {},
+      "broken": {"kind": "expression",
+                 "parameters": {"b": {"value": 1, "unit": "N", "lower": 0, "upper": 10}},
+                 "normal": "b/(V-V)"}}})json");
+  for (const char* command : {"compare", "fit", "diagnose"}) {
+    const CommandResult r = run(standardArgs(command));
+    EXPECT_EQ(r.exitCode, 2) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("effect 'broken' predicts a non-finite wrench (f"), std::string::npos)
+        << command << ": " << r.err;
+    EXPECT_NE(r.err.find("at sample 0 (t = 0 s) with broken.b = 1"), std::string::npos)
+        << command << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out())) << command;
+  }
+}
+
 TEST_F(ValidationCli, ReportRendersEveryChartInHeadlessChromium) {
   const fs::path chromium = "/usr/bin/chromium";
   if (!fs::exists(chromium))
