@@ -130,6 +130,12 @@ void runMeshInfoJson(const MeshInfoOptions& o) {
   }
 }
 
+// Largest --weld-tolerance, a fraction of the bounding-box diagonal. Coordinates printed with
+// 4 significant digits (a coarse ASCII export) are within 5e-5 of their magnitude, well inside
+// it; a thousandth of the part is the size of a chamfer or a thin wall, and welding more
+// closes real features (0.3 halves a sphere).
+constexpr double kMaxWeldTolerance = 1e-3;
+
 struct MeshRepairOptions {
   std::string in, out;
   bool fillHoles = false;
@@ -142,8 +148,12 @@ void writeMesh(const geometry::TriangleMesh& mesh, const std::string& path) {
 }
 
 void runMeshRepair(const MeshRepairOptions& o) {
-  if (!(o.weldTolerance >= 0.0)) {
-    throw InputError("--weld-tolerance", "must be zero or positive");
+  if (!(o.weldTolerance >= 0.0 && o.weldTolerance <= kMaxWeldTolerance)) {
+    std::ostringstream s;
+    s << "expected a fraction of the bounding-box diagonal in [0, " << kMaxWeldTolerance
+      << "], got " << o.weldTolerance
+      << " (a larger weld closes real features: 0.3 halves a sphere)";
+    throw InputError("--weld-tolerance", s.str());
   }
   io::MeshReadOptions options = meshReadOptions(true, o.fillHoles);
   options.repairOptions.weldTolerance = o.weldTolerance;
@@ -232,7 +242,8 @@ void addMeshRepairCommand(CLI::App& app) {
   cmd->add_flag("--fill-holes", opts->fillHoles,
                 "fill holes shorter around than half the part's diagonal");
   cmd->add_option("--weld-tolerance", opts->weldTolerance,
-                  "weld vertices closer than this fraction of the bounding-box diagonal")
+                  "weld vertices closer than this fraction of the bounding-box diagonal, at "
+                  "most 1e-3 (a thousandth of the part is a chamfer; more closes real features)")
       ->capture_default_str();
   cmd->callback([opts] { runMeshRepair(*opts); });
 }

@@ -1,13 +1,19 @@
 // `vcontact surfaces MESH`: the analytic surfaces a mesh was tessellated from
 // (docs/SURFACES.md), and the recovered-surface contact `volume --surface recovered` uses.
 
+#include <chrono>
+#include <condition_variable>
 #include <iostream>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
 #include "geometry/surface_recognition.hpp"
 #include "io/json_file.hpp"
+#include "io/progress.hpp"
 #include "io/shape_spec.hpp"
 #include "volume/recovered_surface.hpp"
 
@@ -59,11 +65,61 @@ nlohmann::json surfaceJson(const geometry::RecognisedSurface& s) {
   return j;
 }
 
+// A line on a terminal naming the stage and the seconds it has taken, rewritten every
+// io::Progress::kProgressIntervalS (io/progress.hpp: a terminal, CI unset): reading and
+// recognising a 2M-triangle mesh take about a minute, and neither reports an amount done.
+class StageTicker {
+ public:
+  explicit StageTicker(std::string stage) : stage_(std::move(stage)) {
+    if (io::progressWanted()) thread_ = std::thread([this] { tick(); });
+  }
+  ~StageTicker() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+  StageTicker(const StageTicker&) = delete;
+  StageTicker& operator=(const StageTicker&) = delete;
+
+  void stage(std::string name) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stage_ = std::move(name);
+    start_ = std::chrono::steady_clock::now();
+  }
+
+ private:
+  void tick() {
+    io::Progress progress("surfaces", 0.0, "");
+    const auto interval = std::chrono::duration<double>(io::Progress::kProgressIntervalS);
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!wake_.wait_for(lock, interval, [this] { return done_; })) {
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      progress.update(
+          "surfaces: " + stage_ + " (" + std::to_string(static_cast<int>(seconds)) + " s)", 0.0,
+          0.0);
+    }
+  }
+
+  std::string stage_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  bool done_ = false;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread thread_;
+};
+
 void runSurfaces(const SurfacesOptions& o) {
+  std::optional<StageTicker> ticker(std::in_place, "reading " + o.mesh);
   const io::ParsedShape parsed = io::parseShape(o.mesh, "MESH (" + o.mesh + ")");
   printWarnings(parsed.warnings);
   const auto* mesh = std::get_if<geometry::Mesh>(&parsed.shape);
   if (!mesh) throw InputError("MESH (" + o.mesh + ")", "expected a mesh file, not a primitive");
+  ticker->stage("recognising the surfaces of " + std::to_string(mesh->mesh->triangleCount()) +
+                " triangles");
   geometry::RecognitionOptions options;
   options.tolerance = o.tolerance;
   geometry::SurfaceRecognition r;
@@ -72,6 +128,7 @@ void runSurfaces(const SurfacesOptions& o) {
   } catch (const InputError& e) {
     throw e.withSource(o.mesh);
   }
+  ticker.reset();  // its line ends before the table
   nlohmann::json j = {{"mesh", o.mesh},
                       {"triangles", mesh->mesh->triangleCount()},
                       {"tolerance_m", r.tolerance},

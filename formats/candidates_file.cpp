@@ -47,6 +47,19 @@ void readStartValues(dynamics::Effect& effect, const nlohmann::json& params,
   }
 }
 
+// Each effect a candidate requires is another candidate or a registered effect: diagnose
+// would otherwise stop later with an error that does not name the file.
+void checkRequirements(const validation::CandidateSet& set, const std::string& source) {
+  for (const std::string& id : set.ids()) {
+    for (const std::string_view required : set.create(id)->requiredEffects()) {
+      if (set.create(required)) continue;
+      throw InputError(source, "candidates." + id + ".requires: unknown effect '" +
+                                   std::string(required) + "'; expected a candidate or one of: " +
+                                   joined(dynamics::registeredEffectIds()));
+    }
+  }
+}
+
 }  // namespace
 
 validation::CandidateSet candidatesFromJson(const nlohmann::json& j, const std::string& source) {
@@ -76,6 +89,7 @@ validation::CandidateSet candidatesFromJson(const nlohmann::json& j, const std::
     readStartValues(*effect, entry, source, place);
     set.add(std::move(effect));
   }
+  checkRequirements(set, source);
   return set;
 }
 

@@ -88,6 +88,27 @@ struct Triple {
   const std::vector<double>&x, &y, &z;
 };
 
+// Velocities differentiated from the rows within the bounds a velocity column has: samples
+// 1e-9 s apart a millimetre apart would give 1e6 m/s.
+void checkDifferentiatedSpeeds(const Table& t, const std::string& path,
+                               const validation::Dataset& d) {
+  for (std::size_t i = 0; i < d.samples.size(); ++i) {
+    const validation::Sample& s = d.samples[i];
+    const bool fast = d.velocityFromPositions && !(s.v_BA.norm() <= io::kMaxSpeed);
+    const bool spinning = d.omegaFromAttitude && !(s.w_BA.norm() <= io::kMaxAngularSpeed);
+    if (!fast && !spinning) continue;
+    std::ostringstream os;
+    os << "line " << t.lineOf[i] << ": "
+       << (fast ? "speed differentiated from x, y, z "
+                : "angular speed differentiated from the "
+                  "quaternions ")
+       << (fast ? s.v_BA.norm() : s.w_BA.norm()) << (fast ? " m/s" : " rad/s")
+       << "; expected at most " << (fast ? io::kMaxSpeed : io::kMaxAngularSpeed)
+       << (fast ? " m/s" : " rad/s") << " (rows too close in time, or a jump in the motion)";
+    throw InputError(path, os.str());
+  }
+}
+
 // `needWrench`: a dataset's CSV needs a wrench column, a motion CSV (synth --motion) not.
 void fillSamples(const Table& t, const std::string& path, validation::Dataset& d,
                  bool needWrench = true) {
@@ -153,6 +174,7 @@ void fillSamples(const Table& t, const std::string& path, validation::Dataset& d
   d.omegaFromAttitude = !hasW;
   if (!hasV) validation::differentiatePositions(d.samples);
   if (!hasW) validation::differentiateAttitudes(d.samples);
+  checkDifferentiatedSpeeds(t, path, d);
 }
 
 void readOutputsAndNoise(const json& j, const std::string& where, const std::string& csv,

@@ -1,5 +1,6 @@
 #include "formats/expression_entry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,6 +12,11 @@ namespace vcontact::formats {
 namespace {
 
 using dynamics::ExpressionDefinition;
+
+// The widest bound a parameter may have. Any physical coefficient in SI units lies well within
+// 1e±100, and fit scales a parameter by its range: ±1e308 overflowed that range to infinity and
+// the fit's first step to NaN ("b = -nan is outside its physical range").
+constexpr double kMaxBound = 1e100;
 
 constexpr const char* kTermKeys[] = {"normal", "tangential", "spin"};
 
@@ -44,6 +50,12 @@ dynamics::ParameterSpec readParameter(const std::string& name, const nlohmann::j
     if (!j["description"].is_string())
       throw InputError(source, place + ".description: expected a string");
     p.description = j["description"].get<std::string>();
+  }
+  if (!(std::abs(p.lower) <= kMaxBound && std::abs(p.upper) <= kMaxBound)) {
+    std::ostringstream s;
+    s << place << ": expected bounds within +-" << kMaxBound << ", got [" << p.lower << ", "
+      << p.upper << "] (give the parameter a unit in which its range is finite)";
+    throw InputError(source, s.str());
   }
   if (!(p.lower <= p.default_value && p.default_value <= p.upper)) {
     std::ostringstream s;
@@ -102,6 +114,32 @@ std::string termText(const ExpressionDefinition& def, const std::string& term) {
   return term == "normal" ? def.normal : term == "tangential" ? def.tangential : def.spin;
 }
 
+// The formula around a 0-based position: at most kExcerptSide characters either side, with
+// "..." where cut (a formula can be 5,000 characters), never inside a UTF-8 sequence.
+std::string excerpt(const std::string& text, int position) {
+  constexpr std::size_t kExcerptSide = 30;
+  const std::size_t at = std::min(static_cast<std::size_t>(std::max(position, 0)), text.size());
+  std::size_t begin = at > kExcerptSide ? at - kExcerptSide : 0;
+  std::size_t end = std::min(text.size(), at + kExcerptSide);
+  const auto continuation = [&](std::size_t i) {
+    return i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80;
+  };
+  while (begin > 0 && continuation(begin)) --begin;
+  while (continuation(end)) ++end;
+  return (begin > 0 ? "..." : "") + text.substr(begin, end - begin) +
+         (end < text.size() ? "..." : "");
+}
+
+std::string syntaxMessage(const dynamics::ExpressionSyntaxError& e, const std::string& text,
+                          const std::string& place) {
+  std::ostringstream s;
+  s << place << "." << e.term() << ": " << e.reason();
+  if (e.position() >= 0) {
+    s << " (at character " << e.position() + 1 << " of \"" << excerpt(text, e.position()) << "\")";
+  }
+  return s.str();
+}
+
 }  // namespace
 
 bool isExpressionEntry(const nlohmann::json& entry) {
@@ -112,6 +150,12 @@ std::unique_ptr<dynamics::Effect> expressionEffectFromJson(const std::string& id
                                                            const nlohmann::json& entry,
                                                            const std::string& source,
                                                            const std::string& place) {
+  if (!dynamics::isExpressionName(id)) {
+    throw InputError(source, place +
+                                 ": expected an effect id of letters, digits and '_' that "
+                                 "does not start with a digit, got '" +
+                                 excerpt(id, 0) + "'");
+  }
   if (dynamics::createEffect(id)) {
     throw InputError(source, place + ": '" + id +
                                  "' is a built-in effect; give the expression effect a new name");
@@ -121,11 +165,7 @@ std::unique_ptr<dynamics::Effect> expressionEffectFromJson(const std::string& id
     return dynamics::makeExpressionEffect(def);
   } catch (const dynamics::ExpressionSyntaxError& e) {
     if (e.term().empty()) throw InputError(source, place + ".parameters: " + e.reason());
-    const std::string text = termText(*def, e.term());
-    std::ostringstream s;
-    s << place << "." << e.term() << ": " << e.reason() << " (muparser, at character "
-      << e.position() + 1 << " of \"" << text << "\")";
-    throw InputError(source, s.str());
+    throw InputError(source, syntaxMessage(e, termText(*def, e.term()), place));
   }
 }
 

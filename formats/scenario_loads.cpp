@@ -63,6 +63,11 @@ io::CsvTable readTable(const Reader& r, const std::string& key, const std::strin
     } else if (i > 0 && !(t[i] > t[i - 1])) {
       s << path << ": line " << table.lineOf[i] << ", column t: " << t[i] << " s does not follow "
         << t[i - 1] << " s; expected strictly increasing times";
+    } else if (i > 0 && t[i] - t[i - 1] < io::kMinSampleInterval) {
+      // rows 1e-300 s apart made a speed of 1e300 m/s out of a millimetre
+      s << path << ": line " << table.lineOf[i] << ", column t: " << t[i] - t[i - 1]
+        << " s after the previous row; expected at least " << io::kMinSampleInterval
+        << " s (a 1 GHz rate)";
     }
     if (!s.str().empty()) r.fail(key, s.str());
   }
@@ -207,6 +212,35 @@ dynamics::BodySpring readSpring(const Reader& r, const dynamics::Scenario& sc) {
   return s;
 }
 
+// The speeds a trajectory gives its body, between rows (interval slopes: the linear
+// interpolation's velocities and what the cubic's tangents are estimated from) and in its
+// velocity columns, within io::kMaxSpeed and io::kMaxAngularSpeed.
+void checkSpeeds(const dynamics::TrajectoryRows& rows, const io::CsvTable& t,
+                 const std::string& path, const Reader& r) {
+  const auto fail = [&](std::size_t i, const char* what, double value, double limit,
+                        const char* unit) {
+    std::ostringstream s;
+    s << path << ": line " << t.lineOf[i] << ", " << what << ": " << value << " " << unit
+      << "; expected at most " << limit << " " << unit;
+    r.fail("csv", s.str());
+  };
+  for (std::size_t i = 0; i < rows.t.size(); ++i) {
+    if (!rows.v_WBo.empty() && !(rows.v_WBo[i].norm() <= io::kMaxSpeed))
+      fail(i, "columns vx..vz: speed", rows.v_WBo[i].norm(), io::kMaxSpeed, "m/s");
+    if (!rows.w_WB.empty() && !(rows.w_WB[i].norm() <= io::kMaxAngularSpeed))
+      fail(i, "columns wx..wz: angular speed", rows.w_WB[i].norm(), io::kMaxAngularSpeed, "rad/s");
+    if (i == 0) continue;
+    const double dt = rows.t[i] - rows.t[i - 1];
+    const double v = (rows.p_WB[i] - rows.p_WB[i - 1]).norm() / dt;
+    if (!(v <= io::kMaxSpeed))
+      fail(i, "columns x..z: speed from the previous row", v, io::kMaxSpeed, "m/s");
+    const double angle = rows.q_WB[i].normalized().angularDistance(rows.q_WB[i - 1].normalized());
+    if (!(angle / dt <= io::kMaxAngularSpeed))
+      fail(i, "columns qw..qz: angular speed from the previous row", angle / dt,
+           io::kMaxAngularSpeed, "rad/s");
+  }
+}
+
 }  // namespace
 
 std::shared_ptr<const dynamics::Trajectory> readTrajectoryMotion(const Reader& r,
@@ -246,6 +280,7 @@ std::shared_ptr<const dynamics::Trajectory> readTrajectoryMotion(const Reader& r
     }
     rows.q_WB.push_back(q);
   }
+  checkSpeeds(rows, t, path, r);
   if (interpolation == dynamics::Interpolation::kLinear &&
       (!rows.v_WBo.empty() || !rows.w_WB.empty())) {
     r.fail("interpolation", path +

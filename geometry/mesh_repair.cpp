@@ -18,6 +18,9 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/property_map.h>
 
+#include <array>
+#include <cassert>
+#include <cmath>
 #include <functional>
 #include <numeric>
 #include <set>
@@ -247,6 +250,66 @@ double perimeter(const SurfaceMesh& sm, Halfedge border) {
   return length;
 }
 
+// A hole whose boundary is planar (within kStripPlanarity of its size from its Newell plane)
+// and strictly convex in that plane, filled by a strip zig-zagging between its two sides:
+// corners (0, 1, n−1), (1, n−2, n−1), (1, 2, n−2), ... Any triangulation of an n-gon has
+// n − 2 triangles, but the one CGAL's triangulate_hole gives a large cap is a fan of slivers
+// from one corner, whose bounding boxes all overlap: the self-intersection tests of step 7
+// and of checkShells then compare every pair, O(n²) exact coplanar tests (a 10,000-edge cap:
+// minutes). A strip's boxes overlap only their neighbours'. Other holes go to CGAL.
+constexpr double kStripPlanarity = 1e-9;
+
+std::vector<std::array<std::size_t, 3>> convexStrip(const std::vector<Point>& p) {
+  const std::size_t n = p.size();
+  if (n < 4) return {};
+  Kernel::Vector_3 normal(0, 0, 0);  // Newell: twice the area vector of the polygon
+  for (std::size_t i = 0; i < n; ++i)
+    normal = normal + CGAL::cross_product(p[i] - CGAL::ORIGIN, p[(i + 1) % n] - CGAL::ORIGIN);
+  const double length = std::sqrt(normal.squared_length());
+  if (!(length > 0.0)) return {};
+  normal = normal / length;
+  const CGAL::Bbox_3 box = CGAL::bbox_3(p.begin(), p.end());
+  const double size =
+      std::hypot(box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin());
+  double turning = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs((p[i] - p[0]) * normal) > kStripPlanarity * size) return {};
+    const Kernel::Vector_3 a = p[(i + 1) % n] - p[i], b = p[(i + 2) % n] - p[(i + 1) % n];
+    const double sine = CGAL::cross_product(a, b) * normal, cosine = a * b;
+    if (!(sine > kStripPlanarity * std::sqrt(a.squared_length() * b.squared_length()))) return {};
+    turning += std::atan2(sine, cosine);
+  }
+  if (std::abs(turning - 2.0 * M_PI) > 1e-6) return {};  // winds once: a simple polygon
+  std::vector<std::array<std::size_t, 3>> strip;
+  std::size_t lo = 0, hi = n - 1;
+  while (hi - lo >= 2) {
+    strip.push_back({lo, lo + 1, hi});
+    if (hi - lo >= 3) strip.push_back({lo + 1, hi - 1, hi});
+    ++lo;
+    --hi;
+  }
+  return strip;
+}
+
+// The hole of `border` filled by convexStrip; false, with the mesh unchanged, when it does
+// not apply.
+bool fillWithStrip(SurfaceMesh& sm, Halfedge border, std::vector<Face>& patch) {
+  std::vector<SurfaceMesh::Vertex_index> corners;
+  std::vector<Point> points;
+  for (const auto h : CGAL::halfedges_around_face(border, sm)) {
+    corners.push_back(sm.source(h));
+    points.push_back(sm.point(sm.source(h)));
+  }
+  const std::vector<std::array<std::size_t, 3>> strip = convexStrip(points);
+  if (strip.empty()) return false;
+  for (const auto& t : strip) {
+    const Face f = sm.add_face(corners[t[0]], corners[t[1]], corners[t[2]]);
+    assert(f != SurfaceMesh::null_face());  // each triangle closes a corner of a simple hole
+    patch.push_back(f);
+  }
+  return true;
+}
+
 // Step 6.
 void fillSmallHoles(SurfaceMesh& sm, double diagonal, std::vector<std::string>& changes) {
   std::vector<Halfedge> cycles;
@@ -261,7 +324,7 @@ void fillSmallHoles(SurfaceMesh& sm, double diagonal, std::vector<std::string>& 
     }
     if (filled++ == 0) first = sm.point(sm.target(h));
     std::vector<Face> patch;
-    PMP::triangulate_hole(sm, h, std::back_inserter(patch));
+    if (!fillWithStrip(sm, h, patch)) PMP::triangulate_hole(sm, h, std::back_inserter(patch));
     triangles += patch.size();
   }
   std::ostringstream os;

@@ -104,6 +104,23 @@ class StrictReader {
   std::vector<Frame> stack_;
 };
 
+// `input`: a stream or a string.
+template <typename Input>
+nlohmann::json parseStrictly(Input&& input, const std::string& source) {
+  StrictReader reader(source);
+  try {
+    return nlohmann::json::parse(std::forward<Input>(input), std::ref(reader));
+  } catch (const nlohmann::json::parse_error& e) {
+    std::ostringstream os;
+    os << "not valid JSON (byte " << e.byte << "): " << e.what();
+    throw InputError(source, os.str());
+  } catch (const nlohmann::json::out_of_range& e) {
+    const std::string what = e.what();  // "... number overflow parsing '1e400'"
+    const auto open = what.find('\'');
+    reader.overflow(open == std::string::npos ? "?" : what.substr(open));
+  }
+}
+
 }  // namespace
 
 nlohmann::json readJsonFile(const std::string& path) {
@@ -115,18 +132,11 @@ nlohmann::json readJsonFile(const std::string& path) {
   if (!in) {
     throw InputError(path, std::filesystem::exists(path, ec) ? "cannot be read" : "no such file");
   }
-  StrictReader reader(path);
-  try {
-    return nlohmann::json::parse(in, std::ref(reader));
-  } catch (const nlohmann::json::parse_error& e) {
-    std::ostringstream os;
-    os << "not valid JSON (byte " << e.byte << "): " << e.what();
-    throw InputError(path, os.str());
-  } catch (const nlohmann::json::out_of_range& e) {
-    const std::string what = e.what();  // "... number overflow parsing '1e400'"
-    const auto open = what.find('\'');
-    reader.overflow(open == std::string::npos ? "?" : what.substr(open));
-  }
+  return parseStrictly(in, path);
+}
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& source) {
+  return parseStrictly(text, source);
 }
 
 void putJson(const nlohmann::json& j, std::ostream& out) { out << j.dump(2) << '\n'; }

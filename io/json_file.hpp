@@ -16,6 +16,10 @@ namespace vcontact::io {
 ///         or an out-of-range number
 nlohmann::json readJsonFile(const std::string& path);
 
+/// Parses `text` as readJsonFile parses a file's content (a model handed over as text).
+/// @throws InputError naming `source`: "not valid JSON (byte N): …", or "KEY.PATH: …"
+nlohmann::json parseJsonText(const std::string& text, const std::string& source);
+
 /// Puts `j` on `out` as writeJson writes it (for a file of an io::OutputSet).
 void putJson(const nlohmann::json& j, std::ostream& out);
 

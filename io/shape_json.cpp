@@ -54,7 +54,14 @@ JsonShape parseShapeJson(const nlohmann::json& j, const std::string& where,
     if (!j.at("mesh").is_string()) throw InputError(where, "\"mesh\" must be a file name");
     std::filesystem::path path = j.at("mesh").get<std::string>();
     if (path.is_relative()) path = std::filesystem::path(baseDir) / path;
-    auto read = readMesh(path.string(), meshScale(j, where), meshReadOptions(j, where));
+    const double scale = meshScale(j, where);
+    const MeshReadOptions options = meshReadOptions(j, where);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {  // named by the field, not only by its path
+      throw InputError(where, "\"mesh\": \"" + j.at("mesh").get<std::string>() +
+                                  "\": no such file (looked for " + path.string() + ")");
+    }
+    auto read = readMesh(path.string(), scale, options);
     out.warnings = std::move(read.warnings);
     out.shape = geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(read.mesh)),
                                path.string()};

@@ -3,6 +3,7 @@
 #include "dynamics/model.hpp"
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
+#include "io/json_file.hpp"
 #include "python/bindings.hpp"
 
 namespace vcontact::python {
@@ -38,14 +39,9 @@ py::dict wrench(const dynamics::Model& model, const py::dict& contact, const Eig
   return wrenchDict(model, model.evaluate(cv, motion, dynamics::PairState{}));
 }
 
+// Parsed as a model file is (io/json_file.hpp): a repeated key is refused, not kept.
 dynamics::Model fromJsonText(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(source, std::string("not JSON: ") + e.what());
-  }
-  return formats::modelFromJson(j, source);
+  return formats::modelFromJson(io::parseJsonText(text, source), source);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // vcontact.Scenario: a scenario file (dynamics/SCENARIO.md) loaded, run, and its body and pair
 // series handed over as NumPy arrays.
 
+#include <chrono>
 #include <optional>
+#include <sstream>
 
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
@@ -98,8 +100,42 @@ void record(const dynamics::Snapshot& s, std::vector<Columns>& bodies, std::vect
   }
 }
 
+// The CLI's limit on the rows a run writes (report::kMaxOutputRows), before the run: here the
+// rows are also held in memory, as NumPy arrays.
+void checkRowCount(const LoadedScenario& s) {
+  const std::uint64_t rows = report::outputRowCount(s.file.scenario, s.file.outputs);
+  if (rows <= report::kMaxOutputRows) return;
+  const dynamics::SimulationSettings& set = s.file.scenario.settings;
+  std::ostringstream m;
+  m << "the run would write " << rows << " rows (" << set.duration << " s at " << set.output_rate_hz
+    << " Hz), more than the limit of " << report::kMaxOutputRows
+    << "; lower the scenario's output rate";
+  throw InputError(s.path, m.str());
+}
+
+// Ctrl-C during a run: Python runs its signal handlers only when asked, and the run does not
+// hold the GIL. The step loop's progress hook asks (PyErr_CheckSignals) at most every
+// kSignalPoll of wall time; a handler that raises (KeyboardInterrupt) ends the run.
+struct Interrupted {};
+
+class SignalPoll {
+ public:
+  void operator()() {
+    constexpr auto kSignalPoll = std::chrono::milliseconds(50);
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_) return;
+    next_ = now + kSignalPoll;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw Interrupted{};
+  }
+
+ private:
+  std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
+};
+
 // Runs the scenario; with `out`, also writes what `vcontact simulate --out` writes there.
 py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
+  checkRowCount(s);
   dynamics::Simulator sim(s.file.scenario);
   std::vector<Columns> bodies(sim.scenario().bodies.size(), bodyColumns());
   std::vector<Columns> pairs(sim.scenario().pairs.size(), pairColumns());
@@ -110,19 +146,24 @@ py::dict run(const LoadedScenario& s, const std::optional<std::string>& out) {
     writer = std::make_unique<report::SimulationCsvWriter>(*out, sim.scenario(), s.file.outputs);
   dynamics::SimulationSummary summary;
   std::optional<report::StopInfo> stop;
+  bool interrupted = false;
   {
     py::gil_scoped_release release;
+    SignalPoll poll;
     try {
       sim.run(
           [&](const dynamics::Snapshot& snap) {
             record(snap, bodies, pairs, loads);
             if (writer) writer->write(snap);
           },
-          [](double) {}, summary);
+          [&](double) { poll(); }, summary);
     } catch (const dynamics::SimulationError& e) {
       stop = report::StopInfo{e};
+    } catch (const Interrupted&) {
+      interrupted = true;
     }
   }
+  if (interrupted) throw py::error_already_set();  // the handler's exception, KeyboardInterrupt
   // A stopped run keeps its output and reports the stop in its summary, as `vcontact simulate`.
   const nlohmann::json j =
       writer ? report::finishSimulationOutput(*writer, *out, summary, s.path, stop)

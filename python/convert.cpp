@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geometry/error.hpp"
+#include "io/json_file.hpp"
 #include "io/shape_spec.hpp"
 
 namespace vcontact::python {
@@ -12,10 +13,47 @@ namespace {
 // same bound the text form puts on a quaternion's norm (io/shape_spec.hpp).
 constexpr double kRotationTolerance = 1e-6;
 
+// Every value of `a` finite, or a ValueError naming `what` (a NaN position gave volume 0).
+void checkFinite(const double* values, py::ssize_t n, const std::string& what) {
+  for (py::ssize_t i = 0; i < n; ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InputError(what, "expected finite numbers, got " + std::to_string(values[i]));
+    }
+  }
+}
+
 Eigen::Vector3d vector3(const py::handle& o, const std::string& what) {
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(o);
   if (!a || a.size() != 3) throw InputError(what, "expected 3 numbers");
+  checkFinite(a.data(), 3, what);
   return {a.data()[0], a.data()[1], a.data()[2]};
+}
+
+// A number of a contact dict: a TypeError when it is not one (pybind's cast error would be a
+// RuntimeError), a ValueError when it is not finite (a NaN volume gave a zero wrench).
+double contactNumber(const py::handle& o, const std::string& key) {
+  const std::string what = "contact['" + key + "']";
+  if (!py::isinstance<py::float_>(o) && !py::isinstance<py::int_>(o) &&
+      !py::isinstance(o, py::module_::import("numbers").attr("Real"))) {
+    throw py::type_error(what + ": expected a number, got " +
+                         std::string(py::str(py::type::of(o).attr("__name__"))));
+  }
+  const double x = o.cast<double>();
+  checkFinite(&x, 1, what);
+  return x;
+}
+
+Eigen::Matrix3d contactMatrix(const py::handle& o, const std::string& key) {
+  const std::string what = "contact['" + key + "']";
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(o);
+  if (!a || a.ndim() != 2 || a.shape(0) != 3 || a.shape(1) != 3) {
+    throw py::type_error(what + ": expected a 3x3 array of numbers");
+  }
+  checkFinite(a.data(), 9, what);
+  Eigen::Matrix3d M;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) M(i, j) = a.at(i, j);
+  return M;
 }
 
 }  // namespace
@@ -29,6 +67,7 @@ Eigen::Isometry3d toPose(const py::handle& pose, const std::string& what) {
       const auto q = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
           py::object(seq[1]));
       if (!q || q.size() != 4) throw InputError(what, "expected (p, (qw, qx, qy, qz))");
+      checkFinite(q.data(), 4, what);
       return io::poseFromQuaternion(vector3(py::object(seq[0]), what),
                                     {q.data()[0], q.data()[1], q.data()[2], q.data()[3]}, what);
     }
@@ -88,14 +127,16 @@ volume::ContactVolume contactVolumeFrom(const py::dict& d) {
     return d[key];
   };
   volume::ContactVolume cv;
-  cv.volume = get("volume").cast<double>();
-  cv.p_WC = vector3(get("centroid"), "contact.centroid");
-  cv.n_W = vector3(get("normal"), "contact.normal");
-  cv.depth = get("depth").cast<double>();
-  cv.area = get("area").cast<double>();
-  cv.r_gyr = get("r_gyr").cast<double>();
-  cv.J_v = get("J_v").cast<Eigen::Matrix3d>();
-  cv.J_s = get("J_s").cast<Eigen::Matrix3d>();
+  cv.volume = contactNumber(get("volume"), "volume");
+  cv.p_WC = vector3(get("centroid"), "contact['centroid']");
+  cv.n_W = vector3(get("normal"), "contact['normal']");
+  cv.depth = contactNumber(get("depth"), "depth");
+  cv.area = contactNumber(get("area"), "area");
+  cv.r_gyr = contactNumber(get("r_gyr"), "r_gyr");
+  cv.J_v = contactMatrix(get("J_v"), "J_v");
+  cv.J_s = contactMatrix(get("J_s"), "J_s");
+  if (!py::isinstance<py::str>(get("method")))
+    throw py::type_error("contact['method']: expected a string such as 'exact'");
   cv.method = volume::parseMethod(get("method").cast<std::string>());
   if (!(std::abs(cv.n_W.norm() - 1.0) < kRotationTolerance)) {
     throw InputError("contact.normal", "expected a unit vector");
@@ -108,7 +149,9 @@ py::object toPython(const nlohmann::json& j) {
 }
 
 nlohmann::json toJson(const py::handle& o) {
-  return nlohmann::json::parse(py::module_::import("json").attr("dumps")(o).cast<std::string>());
+  // Strictly, as a file: {1: 0, "1": 0} dumps to a repeated key.
+  return io::parseJsonText(py::module_::import("json").attr("dumps")(o).cast<std::string>(),
+                           "dict");
 }
 
 }  // namespace vcontact::python

@@ -2,6 +2,8 @@
 // scenarios and datasets in the other bind_*.cpp files. python/vcontact/__init__.py is the
 // documented face of the package (docs/PYTHON.md).
 
+#include <cmath>
+
 #include "geometry/error.hpp"
 #include "geometry/mesh_check.hpp"
 #include "io/shape_spec.hpp"
@@ -35,25 +37,40 @@ PyShape parsedShape(const std::string& text, bool repair, bool fillHoles) {
   return {std::move(p.shape), std::move(p.warnings)};
 }
 
+// Face indices as read from any numeric array: integers, or floats that hold integers (a
+// float 1.5 was truncated to 1 silently); a ValueError names the first one that is not.
+geometry::Triangles faceIndices(const py::array& faces, py::ssize_t vertexCount,
+                                const std::string& name) {
+  const char kind = faces.dtype().kind();
+  if (kind != 'i' && kind != 'u' && kind != 'f') {
+    throw py::type_error(name + ": faces: expected an array of integer vertex indices");
+  }
+  const auto f = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(faces);
+  if (f.ndim() != 2 || f.shape(1) != 3) throw InputError(name, "faces: expected an (m, 3) array");
+  geometry::Triangles triangles(f.shape(0), 3);
+  for (py::ssize_t i = 0; i < f.size(); ++i) {
+    const double k = f.data()[i];
+    const std::string at = " at face " + std::to_string(i / 3);
+    if (!(k == std::floor(k))) {
+      throw InputError(name, "faces: index " + std::to_string(k) + at + " is not an integer");
+    }
+    if (k < 0 || k >= static_cast<double>(vertexCount)) {
+      throw InputError(name, "faces: index " + std::to_string(static_cast<long long>(k)) + at +
+                                 " is not a vertex (0 to " + std::to_string(vertexCount - 1) + ")");
+    }
+    triangles.data()[i] = static_cast<int>(k);
+  }
+  return triangles;
+}
+
 // A mesh from arrays, checked (and optionally repaired) as a mesh file is.
 PyShape meshFromArrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
-                       const py::array_t<long, py::array::c_style | py::array::forcecast>& f,
-                       const std::string& name, bool repair, bool fillHoles) {
+                       const py::array& f, const std::string& name, bool repair, bool fillHoles) {
   if (v.ndim() != 2 || v.shape(1) != 3)
     throw InputError(name, "vertices: expected an (n, 3) array");
-  if (f.ndim() != 2 || f.shape(1) != 3) throw InputError(name, "faces: expected an (m, 3) array");
   geometry::TriangleMesh mesh;
   mesh.vertices = Eigen::Map<const geometry::Vertices>(v.data(), v.shape(0), 3);
-  mesh.triangles.resize(f.shape(0), 3);
-  for (py::ssize_t i = 0; i < f.size(); ++i) {
-    const long k = f.data()[i];
-    if (k < 0 || k >= v.shape(0)) {
-      throw InputError(name, "faces: index " + std::to_string(k) + " at face " +
-                                 std::to_string(i / 3) + " is not a vertex (0 to " +
-                                 std::to_string(v.shape(0) - 1) + ")");
-    }
-    mesh.triangles.data()[i] = static_cast<int>(k);
-  }
+  mesh.triangles = faceIndices(f, v.shape(0), name);
   std::vector<std::string> warnings;
   try {
     geometry::checkFinite(mesh);

@@ -3,7 +3,9 @@
 #include <muParser.h>
 
 #include <array>
+#include <cctype>
 #include <optional>
+#include <set>
 
 namespace vcontact::dynamics {
 namespace {
@@ -55,6 +57,108 @@ const std::array<ExpressionVariable, kVariableCount>& variableTable() {
 
 enum Term { kNormal, kTangential, kSpin, kTermCount };
 constexpr const char* kTermNames[kTermCount] = {"normal", "tangential", "spin"};
+
+bool isNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+bool isNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool isDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+// The names muparser defines before ours: its functions and its constants (_pi, _e).
+const std::set<std::string>& muparserNames() {
+  static const std::set<std::string> names = [] {
+    const mu::Parser p;
+    std::set<std::string> n;
+    for (const auto& [name, callback] : p.GetFunDef()) n.insert(name);
+    for (const auto& [name, value] : p.GetConst()) n.insert(name);
+    return n;
+  }();
+  return names;
+}
+
+// The end of the number starting at `i`: digits, an optional point and digits, an optional
+// exponent (muparser's own reading). A number of two or more integer digits starting with 0 is
+// refused: "max(0,001*f_n, 1)" would otherwise read as max(0, 1*f_n, 1).
+std::size_t scanNumber(Term term, const std::string& text, std::size_t i) {
+  const std::size_t start = i;
+  while (i < text.size() && isDigit(text[i])) ++i;
+  if (i - start > 1 && text[start] == '0') {
+    throw ExpressionSyntaxError(kTermNames[term], static_cast<int>(start),
+                                "a number starts with 0 followed by a digit; write decimals "
+                                "with a point (0.001, not 0,001)");
+  }
+  if (i < text.size() && text[i] == '.') ++i;
+  while (i < text.size() && isDigit(text[i])) ++i;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    std::size_t j = i + 1;
+    if (j < text.size() && (text[j] == '+' || text[j] == '-')) ++j;
+    if (j < text.size() && isDigit(text[j])) {
+      i = j;
+      while (i < text.size() && isDigit(text[i])) ++i;
+    }
+  }
+  return i;
+}
+
+// muparser reads more than docs/EXTENDING.md's grammar, and two of its extras change what a
+// formula means without an error: ',' outside a function's arguments separates results (the
+// last one is kept: "0,001*f_n" is 1*f_n) and '=' assigns to a variable ("0*(f_n=1e3)" changes
+// the f_n the next term reads). Both are refused here, with their place; '==', '<=', '>=' and
+// '!=' are comparisons.
+void checkGrammar(Term term, const std::string& text) {
+  if (text.size() > kMaxFormulaLength) {
+    throw ExpressionSyntaxError(kTermNames[term], -1,
+                                "a formula of " + std::to_string(text.size()) +
+                                    " characters; at most " + std::to_string(kMaxFormulaLength) +
+                                    " (give a long sub-term its own parameter or effect)");
+  }
+  std::vector<bool> call;  // each open parenthesis: does it hold a function's arguments?
+  bool after_name = false;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    const int at = static_cast<int>(i);
+    if (isNameStart(c)) {
+      while (i < text.size() && isNameChar(text[i])) ++i;
+      after_name = true;
+      continue;
+    }
+    if (isDigit(c) || (c == '.' && i + 1 < text.size() && isDigit(text[i + 1]))) {
+      i = scanNumber(term, text, i);
+      after_name = false;
+      continue;
+    }
+    if (std::string("<>!=").find(c) != std::string::npos && i + 1 < text.size() &&
+        text[i + 1] == '=') {
+      i += 2;
+      after_name = false;
+      continue;
+    }
+    if (c == '=') {
+      throw ExpressionSyntaxError(kTermNames[term], at,
+                                  "'=' would assign to a variable, which a formula may not do; "
+                                  "compare with '=='");
+    }
+    if (c == ',' && (call.empty() || !call.back())) {
+      throw ExpressionSyntaxError(kTermNames[term], at,
+                                  "',' separates a function's arguments only; write decimals "
+                                  "with a point (0.001, not 0,001)");
+    }
+    if (c == '(') call.push_back(after_name);
+    if (c == ')' && !call.empty()) call.pop_back();
+    if (!std::isspace(static_cast<unsigned char>(c))) after_name = false;
+    ++i;
+  }
+}
+
+// What checkGrammar guarantees, asked of the compiled bytecode: one result, and no assignment
+// (a formula never writes a variable).
+void checkBytecode(Term term, const mu::Parser& p) {
+  const mu::ParserByteCode& code = p.GetByteCode();
+  for (std::size_t i = 0; i < code.GetSize(); ++i) {
+    if (code.GetBase()[i].Cmd == mu::cmASSIGN)
+      throw ExpressionSyntaxError(kTermNames[term], -1, "the formula assigns to a variable");
+  }
+  if (p.GetNumResults() != 1)
+    throw ExpressionSyntaxError(kTermNames[term], -1, "the formula has more than one result");
+}
 
 class Expression final : public Effect {
  public:
@@ -116,10 +220,21 @@ class Expression final : public Effect {
     for (std::size_t i = 0; i < params_.size(); ++i) params_[i] = parameter(i);
   }
 
-  // muparser would silently rebind a parameter named like a variable, or a repeated name.
+  // muparser would silently rebind a parameter named like a variable, or a repeated name, and
+  // refuse one named like its functions or constants with a message that does not name it.
   static void checkNames(const ExpressionDefinition& def) {
     for (std::size_t i = 0; i < def.parameters.size(); ++i) {
       const std::string& name = def.parameters[i].name;
+      if (!isExpressionName(name)) {
+        throw ExpressionSyntaxError("", -1,
+                                    "parameter '" + name +
+                                        "': expected a name of letters, digits and '_' that "
+                                        "does not start with a digit");
+      }
+      if (muparserNames().count(name) != 0) {
+        throw ExpressionSyntaxError(
+            "", -1, "parameter '" + name + "' is named like a function or constant of muparser");
+      }
       for (const auto& v : variableTable()) {
         if (name == v.name)
           throw ExpressionSyntaxError("", -1, "parameter '" + name + "' is named like a variable");
@@ -135,20 +250,34 @@ class Expression final : public Effect {
   // value at zero inputs is discarded: 0/0 is not an error there).
   void compile(Term term, const std::string& text) {
     if (text.empty()) return;
+    checkGrammar(term, text);
     auto& p = terms_[term].emplace();
-    try {
-      for (int v = 0; v < kVariableCount; ++v) p.DefineVar(variableTable()[v].name, &vars_[v]);
-      for (std::size_t i = 0; i < params_.size(); ++i)
-        p.DefineVar(def_->parameters[i].name, &params_[i]);
-    } catch (const mu::Parser::exception_type& e) {
-      throw ExpressionSyntaxError("", -1, "parameter name '" + e.GetToken() + "': " + e.GetMsg());
+    for (int v = 0; v < kVariableCount; ++v) p.DefineVar(variableTable()[v].name, &vars_[v]);
+    for (std::size_t i = 0; i < params_.size(); ++i) {
+      const std::string& name = def_->parameters[i].name;
+      try {
+        p.DefineVar(name, &params_[i]);
+      } catch (const mu::Parser::exception_type& e) {
+        throw ExpressionSyntaxError("", -1, "parameter '" + name + "': muparser: " + e.GetMsg());
+      }
     }
     try {
       p.SetExpr(text);
       p.Eval();
     } catch (const mu::Parser::exception_type& e) {
-      throw ExpressionSyntaxError(kTermNames[term], e.GetPos(), e.GetMsg());
+      throw ExpressionSyntaxError(kTermNames[term], e.GetPos(), "muparser: " + shortened(e));
     }
+    checkBytecode(term, p);
+  }
+
+  // muparser's message quotes the token it stopped at, which can be most of the formula.
+  static std::string shortened(const mu::Parser::exception_type& e) {
+    constexpr std::size_t kLongest = 40;
+    std::string msg = e.GetMsg();
+    const std::string& token = e.GetToken();
+    const std::size_t at = token.size() > kLongest ? msg.find(token) : std::string::npos;
+    if (at != std::string::npos) msg.replace(at, token.size(), token.substr(0, kLongest) + "...");
+    return msg.size() > 4 * kLongest ? msg.substr(0, 4 * kLongest) + "..." : msg;
   }
 
   std::shared_ptr<const ExpressionDefinition> def_;
@@ -158,6 +287,14 @@ class Expression final : public Effect {
 };
 
 }  // namespace
+
+bool isExpressionName(const std::string& name) {
+  if (name.empty() || !isNameStart(name[0])) return false;
+  for (const char c : name) {
+    if (!isNameChar(c)) return false;
+  }
+  return true;
+}
 
 ExpressionSyntaxError::ExpressionSyntaxError(std::string term, int position, std::string reason)
     : std::runtime_error(reason),

@@ -42,12 +42,21 @@ struct ExpressionVariable {
 };
 const std::vector<ExpressionVariable>& expressionVariables();
 
+/// The longest formula a term may be (characters): a formula longer than a page is not one a
+/// reader can check, and muparser's own limit (10,000 in 2.3) refuses it by quoting all of it.
+inline constexpr std::size_t kMaxFormulaLength = 5000;
+
+/// Whether `name` can name an expression effect or parameter: letters, digits and '_', not
+/// starting with a digit (the characters of a muparser name, and of the CSV column ID.NAME).
+bool isExpressionName(const std::string& name);
+
 /// A term that does not compile: which term, where in it (0-based character), and why.
 class ExpressionSyntaxError : public std::runtime_error {
  public:
   ExpressionSyntaxError(std::string term, int position, std::string reason);
   const std::string& term() const { return term_; }  ///< "normal", "tangential", "spin", ""
   int position() const { return position_; }         ///< −1 when not about one place
+  /// "muparser: ..." when muparser refused the term, else the engine's own check
   const std::string& reason() const { return reason_; }
 
  private:

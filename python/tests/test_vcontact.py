@@ -264,3 +264,85 @@ def test_fit_of_a_model_predicting_inf_is_an_input_error_not_a_crash(tmp_path):
     with pytest.raises(vcontact.InputError, match=r"effect 'broken' predicts a non-finite wrench"
                                                   r" \(f[xyz] = .*\) at sample \d+"):
         vcontact.fit(dataset, str(model))
+
+
+# --- refusals of issue 36: nothing wrong, nothing lost -------------------------------------------
+
+def test_float_face_indices_must_be_integers():
+    v, f = box_arrays(0.02, 0.03, 0.01)
+    assert vcontact.mesh(v, f.astype(float), name="brick").kind == "mesh"  # 1.0 is index 1
+    bad = f.astype(float)
+    bad[3, 1] = 2.5
+    with pytest.raises(vcontact.InputError, match=r"brick: faces: index 2\.5.* at face 3 is not "
+                                                  r"an integer"):
+        vcontact.mesh(v, bad, name="brick")
+    with pytest.raises(TypeError, match="faces: expected an array of integer vertex indices"):
+        vcontact.mesh(v, f.astype(str), name="brick")
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_a_position_that_is_not_finite_is_refused_naming_the_argument(bad):
+    ball, plate = vcontact.sphere(0.01), vcontact.halfspace()
+    for X in [(0, 0, bad), ((0, 0, bad), (1, 0, 0, 0)), ((0, 0, 0.0095), (bad, 0, 0, 0))]:
+        with pytest.raises(vcontact.InputError, match="X_WA: expected finite numbers"):
+            vcontact.contact(ball, X, plate, None)
+
+
+def test_a_contact_dict_with_a_nan_or_a_wrong_type_is_refused():
+    model = vcontact.Model.from_dict(
+        {"format": "vcontact.model/1", "effects": {"stiffness": {"kv": 4.2e12}}})
+    c = vcontact.contact(vcontact.sphere(0.01), (0, 0, 0.0095), vcontact.halfspace(),
+                         None)["aggregate"]
+    for key in ("volume", "depth", "area", "r_gyr"):
+        with pytest.raises(vcontact.InputError, match=rf"contact\['{key}'\]: expected finite"):
+            model.wrench(dict(c, **{key: math.nan}))
+        with pytest.raises(TypeError, match=rf"contact\['{key}'\]: expected a number, got str"):
+            model.wrench(dict(c, **{key: "0.1"}))
+    with pytest.raises(vcontact.InputError, match=r"contact\['centroid'\]: expected finite"):
+        model.wrench(dict(c, centroid=(0, math.nan, 0)))
+    with pytest.raises(TypeError, match=r"contact\['J_v'\]: expected a 3x3 array"):
+        model.wrench(dict(c, J_v="identity"))
+    with pytest.raises(TypeError, match=r"contact\['method'\]: expected a string"):
+        model.wrench(dict(c, method=3))
+    assert model.wrench(c)["f_n"] == pytest.approx(4.2e12 * c["volume"], rel=1e-12)
+
+
+def test_a_repeated_json_key_is_refused_with_its_path():
+    text = '{"format": "vcontact.model/1", "effects": {"stiffness": {"kv": 1e12, "kv": 2e12}}}'
+    with pytest.raises(vcontact.InputError,
+                       match=r"text: effects\.stiffness\.kv: the key appears twice"):
+        vcontact.Model.from_json(text, "text")
+    with pytest.raises(vcontact.InputError, match=r"dict: effects\.1: the key appears twice"):
+        vcontact.Model.from_dict({"format": "vcontact.model/1", "effects": {1: {}, "1": {}}})
+
+
+def long_scenario(tmp_path, duration, output_rate):
+    with open(os.path.join(ASSETS, "scenarios", "ball_drop.json"), encoding="utf-8") as f:
+        s = json.load(f)
+    s.update(duration=duration, output_rate=output_rate)
+    s["pairs"][0]["model"] = os.path.join(ASSETS, "scenarios", s["pairs"][0]["model"])
+    path = tmp_path / "long.json"
+    path.write_text(json.dumps(s), encoding="utf-8")
+    return vcontact.Scenario.load(str(path))
+
+
+def test_run_keeps_the_command_line_row_limit(tmp_path):
+    s = long_scenario(tmp_path, 1e5, 1e3)  # 1e8 output times, two bodies
+    with pytest.raises(vcontact.InputError, match="more than the limit of 50000000; lower"):
+        s.run()
+
+
+def test_ctrl_c_stops_a_run(tmp_path):
+    import signal
+    import threading
+    # Uninterrupted, this run takes minutes (1e4 s in steps of at most 1 ms) and then writes
+    # summary.json; a run deaf to Ctrl-C would raise KeyboardInterrupt only after that.
+    s = long_scenario(tmp_path, 1e4, 0.01)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            s.run(out=tmp_path / "out")
+    finally:
+        timer.cancel()
+    assert not (tmp_path / "out" / "summary.json").exists()

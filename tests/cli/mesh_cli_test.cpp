@@ -48,6 +48,22 @@ TEST_F(MeshCli, MeshInfoRepairSaysWhatItChanged) {
   EXPECT_NE(r.out.find("shells         1"), std::string::npos) << r.out;
 }
 
+// A weld tolerance of 0.3 of the diagonal halved a sphere (issue 36): beyond 1e-3 it is
+// refused, nothing written; 1e-3 itself is accepted.
+TEST_F(MeshCli, WeldToleranceIsBoundedByAThousandthOfThePart) {
+  const auto refused =
+      run("mesh-repair " + path("seam.obj") + " --weld-tolerance 0.3 --out " + path("w.obj"));
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.err.find("--weld-tolerance: expected a fraction of the bounding-box diagonal "
+                             "in [0, 0.001], got 0.3"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(path("w.obj")));
+  const auto accepted =
+      run("mesh-repair " + path("seam.obj") + " --weld-tolerance 1e-3 --out " + path("w.obj"));
+  EXPECT_EQ(accepted.exitCode, 0) << accepted.err;
+}
+
 TEST_F(MeshCli, MeshRepairWritesAMeshThatNeedsNoRepair) {
   const auto r = run("mesh-repair " + path("seam.obj") + " --out " + path("fixed.obj"));
   ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -152,6 +152,19 @@ TEST_F(DatasetFiles, EachCsvDefectHasItsMessage) {
   }
 }
 
+// Velocities differentiated from rows close in time are held to a velocity column's bounds: a
+// 1 mm step in 1 ns gave 1e6 m/s (issue 36).
+TEST_F(DatasetFiles, ImpossibleDifferentiatedSpeedsNameTheLine) {
+  write("rig.csv", replaceFirst(csv(false), "\n0.01,0,0,", "\n1e-9,0,0.001,"));
+  const std::string msg = rejection([&] { readDataset(sidecar()); });
+  EXPECT_NE(msg.find("rig.csv: line 2: speed differentiated from x, y, z "), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("m/s; expected at most 1000 m/s (rows too close in time, or a jump in the "
+                     "motion)"),
+            std::string::npos)
+      << msg;
+}
+
 TEST_F(DatasetFiles, EachSidecarDefectHasItsMessage) {
   write("rig.csv", csv(true));
   const std::string path = (dir_ / "rig.json").string();
@@ -191,8 +204,14 @@ TEST_F(DatasetFiles, EachSidecarDefectHasItsMessage) {
   const std::string missingMesh = write("mesh.json", R"({"format": "vcontact.dataset/1",
       "data": "rig.csv", "mode": "kinematic", "payload": {"mesh": "part.stl"},
       "plate": {"shape": "halfspace"}, "outputs": ["fz"]})");
-  EXPECT_NE(rejection([&] { readDataset(missingMesh); }).find("part.stl: no such file"),
-            std::string::npos);
+  // Named by the sidecar and its field (issue 36), not only by the mesh's path.
+  const std::string noMesh = rejection([&] { readDataset(missingMesh); });
+  EXPECT_EQ(noMesh.rfind((dir_ / "mesh.json").string() +
+                             ": payload: \"mesh\": \"part.stl\": no such file (looked for " +
+                             (dir_ / "part.stl").string() + ")",
+                         0),
+            0u)
+      << noMesh;
   EXPECT_NE(rejection([&] { readDataset(sidecar(R"(, "outputs": ["fx"])")); }).size(), 0u);
 }
 

@@ -137,6 +137,37 @@ TEST(ScenarioLoads, BadTablesNameTheFileLineAndColumn) {
   EXPECT_NE(l.find("bodies[1].motion.interpolation"), std::string::npos) << l;
 }
 
+// Rows 1e-300 s apart made 1e300 m/s of a millimetre (issue 36): a time step below a 1 GHz
+// rate is refused, and so is a speed or an angular speed beyond io::kMaxSpeed (1e3 m/s) and
+// io::kMaxAngularSpeed (1e4 rad/s), from the rows or from the velocity columns.
+TEST(ScenarioLoads, ImpossibleSpeedsOfATrajectoryNameTheLine) {
+  struct Case {
+    const char* name;
+    const char* csv;
+    const char* fragment;
+  };
+  const Case cases[] = {
+      {"tiny_step", "t,x,y,z,qw,qx,qy,qz\n0,0,0,0.01,1,0,0,0\n1e-300,0,0,0.011,1,0,0,0\n",
+       "ball.csv: line 3, column t: 1e-300 s after the previous row; expected at least 1e-09 s"},
+      {"fast", "t,x,y,z,qw,qx,qy,qz\n0,0,0,0.01,1,0,0,0\n1e-6,0,0,0.02,1,0,0,0\n",
+       "ball.csv: line 3, columns x..z: speed from the previous row: 10000 m/s; expected at most "
+       "1000 m/s"},
+      // a quarter turn (pi/2 rad) in 1e-5 s: 1.6e5 rad/s
+      {"spin", "t,x,y,z,qw,qx,qy,qz\n0,0,0,0.01,1,0,0,0\n1e-5,0,0,0.01,0.70710678,0,0,0.70710678\n",
+       "line 3, columns qw..qz: angular speed from the previous row: 157080 rad/s"},
+      {"v_column",
+       "t,x,y,z,qw,qx,qy,qz,vx,vy,vz\n0,0,0,0.01,1,0,0,0,0,0,0\n1,0,0,0.01,1,0,0,0,0,2e3,0\n",
+       "line 3, columns vx..vz: speed: 2000 m/s; expected at most 1000 m/s"},
+  };
+  for (const Case& c : cases) {
+    const fs::path dir = sceneFolder(c.name, c.csv);
+    const std::string e =
+        test::inputErrorMessage([&] { scenarioFromJson(scene(), "s.json", dir.string()); });
+    EXPECT_NE(e.find("s.json: bodies[1].motion.csv: "), std::string::npos) << e;
+    EXPECT_NE(e.find(c.fragment), std::string::npos) << c.name << ": " << e;
+  }
+}
+
 TEST(ScenarioLoads, BadKeysNameThePlace) {
   const fs::path dir = sceneFolder("keys_bad");
   const auto error = [&](const std::function<void(nlohmann::json&)>& change) {

@@ -69,6 +69,34 @@ def shape_pose_seeds(out):
         write(os.path.join(out, "shape_pose"), "seed%d" % i, t)
 
 
+# Formulas of docs/EXTENDING.md and of the grammar's edges; NULs separate the normal,
+# tangential and spin terms (expression_fuzz.cpp).
+FORMULAS = ["\0-b*f_n^2", "\0-c2*f_n*max(v_t, v_eps)",
+            "\0\0-c2*r_gyr^2*f_n*max(abs(omega_n), v_eps/r_gyr)",
+            "kv*V*(1 + b*ddot)\0-mu_max*f_n*(s_mu < 0.5 ? 1 : s)",
+            "\0-b*t*f_n + sum(1, 2, 3)*avg(C_v, C_w)/_pi",
+            "sqrt(max(V, 0))*atan2(omega_t, 1)\0-(f_n >= 1 && v_avg != 0 || mu_C == 0)",
+            "\0-0,001*f_n", "\0-max(0,001*f_n, b)", "\00*(f_n=1e3)+f_n", "\0-b*f_n^",
+            "\0" + "b+" * 2600 + "b"]
+
+
+def expression_seeds(out):
+    for i, f in enumerate(FORMULAS):
+        write(os.path.join(out, "expression"), "seed%d" % i, f)
+
+
+def candidates_seeds(out):
+    mu_load = {"kind": "expression",
+               "parameters": {"b": {"value": 0, "unit": "1/N", "lower": 0, "upper": 1}},
+               "tangential": "-b*f_n^2", "requires": ["stiffness", "coulomb"]}
+    files = {"library": {"viscous": {}, "stribeck": {"mu_s": 0.3}, "bristle": {}},
+             "expression": {"mu_load": mu_load},
+             "both": {"viscous": {}, "mu_load": mu_load}}
+    for name, candidates in files.items():
+        write(os.path.join(out, "candidates"), name + ".json",
+              json.dumps({"format": "vcontact.candidates/1", "candidates": candidates}))
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -77,6 +105,8 @@ def main():
     json_seeds(assets, out)
     dataset_seeds(assets, out)
     shape_pose_seeds(out)
+    expression_seeds(out)
+    candidates_seeds(out)
 
 
 if __name__ == "__main__":
