@@ -87,7 +87,11 @@ void applyOutputOptions(const SimulateOptions& o, formats::ScenarioFile& file) {
 // place is no folder, and no output would replace the scenario file. (The CSV files are
 // opened before the run.)
 void checkBeforeRun(const SimulateOptions& o) {
-  io::checkOutputFolder(o.out);
+  try {  // the message names the option too
+    io::checkOutputFolder(o.out);
+  } catch (const InputError& e) {
+    throw InputError("--out", e.what());
+  }
   (void)io::jsonText(report::simulationSummaryJson(dynamics::SimulationSummary{}, o.scenario));
   const std::string summary = (std::filesystem::path(o.out) / "summary.json").string();
   std::error_code ec;

@@ -59,7 +59,11 @@ struct Inputs {
 // Reads and checks everything; creates nothing. `outputs` are the names of the files the
 // command writes into --out: none may be one of its inputs.
 Inputs readInputs(const ValidationOptions& o, const std::vector<std::string>& outputs) {
-  io::checkOutputFolder(o.out);
+  try {  // the message names the option too
+    io::checkOutputFolder(o.out);
+  } catch (const InputError& e) {
+    throw InputError("--out", e.what());
+  }
   if (o.maxIterations < 1) throw InputError("--max-iterations", "expected a positive count");
   if (o.starts < 0) throw InputError("--starts", "expected a count >= 0");
   Inputs in{

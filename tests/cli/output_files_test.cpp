@@ -232,7 +232,8 @@ TEST(OutputFiles, OutputFolderThatCannotBeMadeExitsTwo) {
       const CommandResult r = vcontact(command + " " + inQuotes(dataset) + " --model " +
                                            inQuotes(model) + " --out " + inQuotes(out),
                                        scratch.path());
-      expectExitTwo(r, "vcontact: error: " + out.string() + ": cannot be made the output folder");
+      expectExitTwo(
+          r, "vcontact: error: --out: " + out.string() + ": cannot be made the output folder");
       EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
       EXPECT_EQ(r.out.find("chi"), std::string::npos) << "refused before any work: " << r.out;
     }
