@@ -10,7 +10,9 @@
 #include "geometry/mesh_repair.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/input_ranges.hpp"
+#include "io/json_file.hpp"
 #include "io/mesh_io.hpp"
+#include "io/output_folder.hpp"
 #include "io/shape_spec.hpp"
 
 namespace vcontact::cli {
@@ -21,13 +23,15 @@ struct MeshInfoOptions {
   double density = 7900.0;
   bool repair = false;
   bool fillHoles = false;
+  bool removeSelfIntersections = false;
   bool json = false;
 };
 
-io::MeshReadOptions meshReadOptions(bool repair, bool fillHoles) {
+io::MeshReadOptions meshReadOptions(bool repair, bool fillHoles, bool removeSelfIntersections) {
   io::MeshReadOptions options;
-  options.repair = repair || fillHoles;
+  options.repair = repair || fillHoles || removeSelfIntersections;
   options.repairOptions.fillHoles = fillHoles;
+  options.repairOptions.removeSelfIntersections = removeSelfIntersections;
   return options;
 }
 
@@ -104,8 +108,8 @@ void runMeshInfo(const MeshInfoOptions& o) {
     const std::string why = io::outOfRange(o.density, io::kDensityRange, "a density");
     if (!why.empty()) throw InputError("--density", why + " (or 0 for the volume alone)");
   }
-  const io::ParsedShape s =
-      io::parseShape(o.shape, o.shape, meshReadOptions(o.repair, o.fillHoles));
+  const io::ParsedShape s = io::parseShape(
+      o.shape, o.shape, meshReadOptions(o.repair, o.fillHoles, o.removeSelfIntersections));
   std::vector<std::string> warnings = s.warnings;
   const auto more = densityWarnings(s, o.density);
   warnings.insert(warnings.end(), more.begin(), more.end());
@@ -113,7 +117,7 @@ void runMeshInfo(const MeshInfoOptions& o) {
   const geometry::Moments M = geometry::solidMoments(s.shape);
   const geometry::MassProperties p = geometry::massProperties(M, o.density);
   if (o.json) {
-    std::cout << meshInfoJson(s, p, M.m0, o.density, warnings).dump(2) << "\n";
+    std::cout << io::jsonText(meshInfoJson(s, p, M.m0, o.density, warnings)) << "\n";
   } else {
     printMeshInfo(s, p, M.m0, o.density);
   }
@@ -124,7 +128,7 @@ void runMeshInfoJson(const MeshInfoOptions& o) {
   try {
     runMeshInfo(o);
   } catch (const std::exception& e) {
-    std::cout << nlohmann::json{{"ok", false}, {"error", e.what()}}.dump(2) << "\n";
+    std::cout << io::jsonText(nlohmann::json{{"ok", false}, {"error", e.what()}}) << "\n";
     if (const auto* input = dynamic_cast<const InputError*>(&e)) throw *input;
     throw InputError(o.shape, e.what());
   }
@@ -139,13 +143,9 @@ constexpr double kMaxWeldTolerance = 1e-3;
 struct MeshRepairOptions {
   std::string in, out;
   bool fillHoles = false;
+  bool removeSelfIntersections = false;
   double weldTolerance = geometry::kDefaultWeldTolerance;
 };
-
-void writeMesh(const geometry::TriangleMesh& mesh, const std::string& path) {
-  const bool obj = path.size() > 4 && path.substr(path.size() - 4) == ".obj";
-  obj ? io::writeObj(mesh, path) : io::writeStl(mesh, path);
-}
 
 void runMeshRepair(const MeshRepairOptions& o) {
   if (!(o.weldTolerance >= 0.0 && o.weldTolerance <= kMaxWeldTolerance)) {
@@ -155,14 +155,15 @@ void runMeshRepair(const MeshRepairOptions& o) {
       << " (a larger weld closes real features: 0.3 halves a sphere)";
     throw InputError("--weld-tolerance", s.str());
   }
-  io::MeshReadOptions options = meshReadOptions(true, o.fillHoles);
+  io::MeshReadOptions options = meshReadOptions(true, o.fillHoles, o.removeSelfIntersections);
   options.repairOptions.weldTolerance = o.weldTolerance;
   const auto [path, scale] = io::splitMeshScale(o.in);
+  io::refuseOverwritingInputs({o.out}, {{path, "the mesh to repair"}}, "--out");
   const io::MeshReadResult r = io::readMesh(path, scale, options);
   for (const auto& change : r.report.repairs) std::cout << "repaired: " << change << "\n";
   if (r.report.repairs.empty()) std::cout << "no repair needed\n";
   for (const auto& doubt : r.report.doubts) printWarnings({path + ": " + doubt});
-  writeMesh(r.mesh, o.out);
+  io::writeMesh(r.mesh, o.out);
   std::cout << "wrote " << o.out << ": " << r.mesh.vertexCount() << " vertices, "
             << r.mesh.triangleCount() << " triangles, " << r.report.shells
             << (r.report.shells == 1 ? " shell" : " shells") << ", volume "
@@ -210,7 +211,7 @@ void runTessellate(const TessellateOptions& o) {
   } else {
     throw InputError(o.shape, "only a sphere, cylinder or box can be tessellated");
   }
-  writeMesh(mesh, o.out);
+  io::writeMesh(mesh, o.out);
   std::cout << "wrote " << o.out << ": " << mesh.triangleCount() << " triangles, volume "
             << geometry::meshMoments(mesh).m0 << " m^3\n";
 }
@@ -225,6 +226,9 @@ void addMeshInfoCommand(CLI::App& app) {
   cmd->add_option("--density", opts->density, "kg/m^3")->capture_default_str();
   cmd->add_flag("--repair", opts->repair, "repair the mesh first (as mesh-repair does)");
   cmd->add_flag("--fill-holes", opts->fillHoles, "repair, and fill small holes");
+  cmd->add_flag("--remove-self-intersections", opts->removeSelfIntersections,
+                "repair, and cut a surface that passes through itself along the intersections, "
+                "keeping the outer layer");
   cmd->add_flag("--json", opts->json,
                 "print JSON (also on failure, with \"ok\": false; exit 2 for bad input)");
   cmd->callback([opts] { opts->json ? runMeshInfoJson(*opts) : runMeshInfo(*opts); });
@@ -241,6 +245,9 @@ void addMeshRepairCommand(CLI::App& app) {
       ->required();
   cmd->add_flag("--fill-holes", opts->fillHoles,
                 "fill holes shorter around than half the part's diagonal");
+  cmd->add_flag("--remove-self-intersections", opts->removeSelfIntersections,
+                "cut a surface that passes through itself along the intersections and keep the "
+                "outer layer (CGAL's autorefinement)");
   cmd->add_option("--weld-tolerance", opts->weldTolerance,
                   "weld vertices closer than this fraction of the bounding-box diagonal, at "
                   "most 1e-3 (a thousandth of the part is a chamfer; more closes real features)")

@@ -1,5 +1,6 @@
 // vcontact simulate SCENARIO --out DIR: integrates a scenario and writes CSV output.
 
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -8,6 +9,9 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
+#include "io/interrupt.hpp"
+#include "io/json_file.hpp"
+#include "io/output_folder.hpp"
 #include "io/progress.hpp"
 #include "report/async_simulation_csv.hpp"
 #include "report/simulation_summary.hpp"
@@ -87,15 +91,38 @@ void applyOutputOptions(const SimulateOptions& o, formats::ScenarioFile& file) {
   throw InputError(o.outputRate ? "--output-rate" : o.scenario, s.str());
 }
 
+// What the end of the run needs, tried before it: the output folder can be made, the
+// summary can be built and written as JSON (a file name that is not UTF-8, issue 36), its
+// place is no folder, and no output would replace the scenario file. (The CSV files are
+// opened before the run.)
+void checkBeforeRun(const SimulateOptions& o) {
+  try {  // the message names the option too
+    io::checkOutputFolder(o.out);
+  } catch (const InputError& e) {
+    throw InputError("--out", e.what());
+  }
+  (void)io::jsonText(report::simulationSummaryJson(dynamics::SimulationSummary{}, o.scenario));
+  const std::string summary = (std::filesystem::path(o.out) / "summary.json").string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(summary, ec)) {
+    throw InputError(summary, "is a folder; expected the place of the run's summary file");
+  }
+  io::refuseOverwritingInputs({summary}, {{o.scenario, "the scenario file"}}, "--out");
+}
+
 void runSimulate(const SimulateOptions& o) {
   formats::ScenarioFile file = formats::readScenarioFile(o.scenario);
   printWarnings(file.warnings);
   applyOutputOptions(o, file);
+  checkBeforeRun(o);
   printRecognition(file.scenario, o.quiet);
   dynamics::Simulator sim(file.scenario);
   sim.setOutputDepths(file.outputs.pairs);  // the depth column is in the pair files only
   const report::OutputThread thread =
       o.outputThread == "on" ? report::OutputThread::kOn : report::OutputThread::kOff;
+  // Ctrl-C or SIGTERM from here on ends the run as a stopped one: exit 3, the rows so far and
+  // summary.json in place (io/interrupt.hpp); a second signal ends the process at once.
+  const io::InterruptHandlers interrupts;
   report::AsyncSimulationCsvWriter writer(o.out, sim.scenario(), file.outputs, thread);
   io::Progress progress("simulate", file.scenario.settings.duration, "s", o.quiet);
   dynamics::SimulationSummary summary;

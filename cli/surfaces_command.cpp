@@ -138,7 +138,7 @@ void runSurfaces(const SurfacesOptions& o) {
   for (const geometry::RecognisedSurface& s : r.surfaces) j["surfaces"].push_back(surfaceJson(s));
   if (!o.out.empty()) io::writeJson(j, o.out);
   if (o.json) {
-    std::cout << j.dump(2) << '\n';
+    std::cout << io::jsonText(j) << '\n';
     return;
   }
   std::cout << o.mesh << ": " << mesh->mesh->triangleCount() << " triangles, " << r.surfaces.size()

@@ -17,9 +17,11 @@
 #include "formats/dataset_file.hpp"
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
+#include "io/file_names.hpp"
 #include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
+#include "io/output_folder.hpp"
 #include "io/progress.hpp"
 #include "io/shape_json.hpp"
 #include "report/report_html.hpp"
@@ -58,16 +60,27 @@ struct Inputs {
   validation::Loss loss;
 };
 
-// Reads and checks everything; creates nothing.
-Inputs readInputs(const ValidationOptions& o) {
-  if (fs::exists(o.out) && !fs::is_directory(o.out)) {
-    throw InputError("--out", o.out + " exists and is not a directory");
+// Reads and checks everything; creates nothing. `outputs` are the names of the files the
+// command writes into --out: none may be one of its inputs.
+Inputs readInputs(const ValidationOptions& o, const std::vector<std::string>& outputs) {
+  try {  // the message names the option too
+    io::checkOutputFolder(o.out);
+  } catch (const InputError& e) {
+    throw InputError("--out", e.what());
   }
   if (o.maxIterations < 1) throw InputError("--max-iterations", "expected a positive count");
   if (o.starts < 0) throw InputError("--starts", "expected a count >= 0");
   Inputs in{
       formats::readDataset(o.dataset), formats::readModelFile(o.model),
       namingOptions({{"robust loss", "--loss"}}, [&] { return validation::parseLoss(o.loss); })};
+  std::vector<std::string> paths;
+  for (const std::string& name : outputs) paths.push_back((fs::path(o.out) / name).string());
+  io::refuseOverwritingInputs(paths,
+                              {{o.dataset, "the dataset's sidecar"},
+                               {in.data.dataset.dataPath, "the dataset's CSV"},
+                               {o.model, "the model file"},
+                               {o.candidates, "the candidates file"}},
+                              "--out");
   printWarnings(in.data.warnings);
   return in;
 }
@@ -131,7 +144,7 @@ validation::FitResult asGiven(validation::Replayer& replayer, const validation::
 }
 
 void runCompare(const ValidationOptions& o) {
-  const Inputs in = readInputs(o);
+  const Inputs in = readInputs(o, {"residuals.csv", "compare.json", "report.html"});
   const validation::Dataset& d = in.data.dataset;
   if (d.mode == validation::DatasetMode::kDynamic)
     return runTrajectoryCompare(in.data, in.model, o.model, o.trajectory, o.out);
@@ -168,7 +181,7 @@ bool trajectoryFit(ValidationOptions& o) {
 
 void runFit(ValidationOptions o) {
   if (trajectoryFit(o)) return;
-  const Inputs in = readInputs(o);
+  const Inputs in = readInputs(o, {"model.json", "fit.json", "residuals.csv", "report.html"});
   const validation::Dataset& d = in.data.dataset;
   const auto noise = validation::noiseLevels(d);
   validation::Replayer replayer(d);
@@ -245,7 +258,7 @@ void runDiagnose(ValidationOptions o) {
   const std::vector<std::string> all = expandDatasets(o.datasets);
   if (all.size() != 1) throw InputError("DATASET", "diagnose takes one dataset");
   o.dataset = all.front();
-  const Inputs in = readInputs(o);
+  const Inputs in = readInputs(o, {"diagnosis.json", "model.json", "residuals.csv", "report.html"});
   if (in.data.dataset.mode == validation::DatasetMode::kDynamic)
     throw InputError(o.dataset,
                      "diagnose reads kinematic datasets; fit a dynamic one with `vcontact fit`");
@@ -335,9 +348,13 @@ void useMotion(validation::Dataset& d, const std::string& path) {
 
 void runSynth(const SynthOptions& o) {
   const fs::path out(o.out);
-  if (out.extension() != ".json") throw InputError("--out", "expected NAME.json (the sidecar)");
-  if (!out.parent_path().empty() && !fs::is_directory(out.parent_path())) {
-    throw InputError("--out", out.parent_path().string() + " is not a directory");
+  if (!io::hasExtension(o.out, ".json")) {
+    throw InputError("--out", "expected NAME.json (the sidecar)");
+  }
+  std::error_code ec;
+  if (!out.parent_path().empty() && !fs::is_directory(out.parent_path(), ec)) {
+    throw InputError("--out", out.parent_path().string() + " is not a directory" +
+                                  (ec ? " (" + ec.message() + ")" : std::string()));
   }
   // A thousand times the profile's noise already buries every force in it.
   if (!(o.noiseScale >= 0.0 && o.noiseScale <= 1e3)) {
@@ -349,10 +366,11 @@ void runSynth(const SynthOptions& o) {
                                       ", " + std::to_string(io::kMaxSamples) + "], got " +
                                       std::to_string(o.samples));
   }
-  if (!o.motion.empty() && fs::exists(o.motion) &&
-      fs::equivalent(o.motion, fs::path(out).replace_extension(".csv"))) {
-    throw InputError("--motion", o.motion + " is the CSV that --out would overwrite; name another");
-  }
+  io::refuseOverwritingInputs({o.out, fs::path(out).replace_extension(".csv").string()},
+                              {{o.model, "the true model file"},
+                               {o.motion, "the motion CSV"},
+                               {o.payload, "the payload mesh"}},
+                              "--out");
   if (!o.payloadScale.empty() && o.payload.empty())
     throw InputError("--payload-scale", "needs --payload (the mesh it scales)");
   const dynamics::Model truth = formats::readModelFile(o.model);

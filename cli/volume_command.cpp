@@ -176,7 +176,7 @@ void runVolume(const VolumeOptions& o) {
   if (!o.out.empty()) files.add(o.out, [&](std::ostream& out) { io::putJson(j, out); });
   files.commit();
   if (o.json) {
-    std::cout << j.dump(2) << '\n';
+    std::cout << io::jsonText(j) << '\n';
   } else {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <sstream>
 
 #include "dynamics/bdf_integrator.hpp"
 #include "geometry/error.hpp"
+#include "io/interrupt.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
@@ -309,6 +311,8 @@ const char* stopCauseName(StopCause cause) {
       return "penetration_beyond_bound";
     case StopCause::kBlowUp:
       return "blow_up";
+    case StopCause::kInterrupted:
+      return "interrupted";
     case StopCause::kIntegratorFailure:
       break;
   }
@@ -439,6 +443,19 @@ SimulationError Simulator::bdfFailure(const BdfError& e, double t_last) const {
   return SimulationError(t, StopCause::kIntegratorFailure, s.str());
 }
 
+namespace {
+
+// "interrupted by SIGINT at t = 0.0123 s" (strsignal's words would depend on the locale).
+SimulationError interrupted(int signal, double t) {
+  const char* name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : nullptr;
+  std::ostringstream s;
+  s << "interrupted by " << (name ? name : "signal " + std::to_string(signal)) << " at t = " << t
+    << " s";
+  return SimulationError(t, StopCause::kInterrupted, s.str());
+}
+
+}  // namespace
+
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
                     const std::function<void(double)>& on_progress, SimulationSummary& summary) {
   const auto wall_start = std::chrono::steady_clock::now();
@@ -449,6 +466,12 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   const OutputFn output = [&](const Snapshot& s) {
     countPatches(s, summary, patch_samples, patch_total);
     on_output(s);
+  };
+  // Each integrator calls this after every accepted step: the one place an interruption is
+  // looked for (a flag read, no system call).
+  const ProgressFn progress = [&](double t_now) {
+    if (const int signal = io::interruptSignal()) throw interrupted(signal, t_now);
+    on_progress(t_now);
   };
   auto finish = [&] {
     summary.patches_mean = patch_samples > 0 ? double(patch_total) / double(patch_samples) : 0.0;
@@ -487,11 +510,11 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   impacts_.observe(t, kin_, last_pairs_);
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {
-      runBdf(x, t, output, on_progress, summary);
+      runBdf(x, t, output, progress, summary);
     } else if (scenario_.settings.integrator == Integrator::kDiscrete) {
-      runDiscrete(x, dxdt, t, output, on_progress, summary);
+      runDiscrete(x, dxdt, t, output, progress, summary);
     } else {
-      runDopri5(x, dxdt, t, output, on_progress, summary);
+      runDopri5(x, dxdt, t, output, progress, summary);
     }
   } catch (...) {
     finish();

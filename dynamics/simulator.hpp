@@ -68,11 +68,12 @@ enum class StopCause {
   kStepCollapse,       ///< the step size fell below SimulationSettings::min_step
   kPenetration,        ///< a pair's mean penetration exceeds max_penetration_fraction
   kIntegratorFailure,  ///< another failure of the integrator (CVODE), in its words
-  kBlowUp              ///< the free bodies gained energy no input gave them (energy_guard.hpp)
+  kBlowUp,             ///< the free bodies gained energy no input gave them (energy_guard.hpp)
+  kInterrupted         ///< the user asked the run to stop (SIGINT, SIGTERM: io/interrupt.hpp)
 };
 
 /// "non_finite_state", "step_size_collapse", "penetration_beyond_bound", "integrator_failure",
-/// "blow_up".
+/// "blow_up", "interrupted".
 const char* stopCauseName(StopCause cause);
 
 class SimulationError : public std::runtime_error {
@@ -160,7 +161,11 @@ class Simulator {
 
   /// Runs to settings.duration, calling on_output at every output time (t = 0 included) and
   /// on_progress after each accepted step. The summary is filled even when the run stops.
-  /// @throws SimulationError on a failure; output up to the failure has been delivered
+  /// After each accepted step the run also looks whether it was asked to stop
+  /// (io::interruptSignal, set by a signal handler or a front end) and stops then with
+  /// StopCause::kInterrupted.
+  /// @throws SimulationError on a failure or an interruption; output up to then has been
+  ///   delivered
   void run(const std::function<void(const Snapshot&)>& on_output,
            const std::function<void(double t)>& on_progress, SimulationSummary& summary);
 

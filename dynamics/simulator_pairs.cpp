@@ -3,6 +3,7 @@
 // pairs' depths (simulator.hpp).
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -28,16 +29,18 @@ Wrench movedTo(const Wrench& w, const Eigen::Vector3d& p, const Eigen::Vector3d&
 }
 
 // The pair's figures from its patches: the wrenches (and shares) summed at the aggregate's
-// centroid, f_n summed, s and μ_max of the first (largest) patch, the rates of slot 0.
+// centroid, f_n summed, s and μ_max of the first (largest) patch, the rates of slot 0. One
+// share per effect of the model whether or not a patch is in contact (with none, every share
+// is zero): the CSV writes a column for each (issue 36: out of contact the list was empty).
 void combine(const std::vector<PatchOutput>& patches, const Eigen::Vector3d& p_c,
-             ContactResult& r) {
+             std::size_t effects, ContactResult& r) {
   r.wrench = Wrench{};
   r.f_n = 0.0;
-  for (Wrench& share : r.shares) share = Wrench{};
+  r.shares.assign(effects, Wrench{});
   for (const PatchOutput& p : patches) {
     r.wrench += movedTo(p.result.wrench, p.cv.p_WC, p_c);
     r.f_n += p.result.f_n;
-    r.shares.resize(p.result.shares.size());
+    assert(p.result.shares.size() == effects);
     for (std::size_t i = 0; i < r.shares.size(); ++i) {
       r.shares[i] += movedTo(p.result.shares[i], p.cv.p_WC, p_c);
     }
@@ -241,7 +244,7 @@ void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& con
     if (p.slot >= 0) p.result.rates.pack(&dxdt[base + std::size_t(p.slot * size)], size);
   }
   out.state = PairState::unpack(&x[base], size);
-  combine(out.patches, out.cv.p_WC, out.result);
+  combine(out.patches, out.cv.p_WC, pair.model.effectCount(), out.result);
 }
 
 // The pair states' discrete updates (Model::settle) at the contacts of the latest evaluation:

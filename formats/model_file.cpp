@@ -7,6 +7,7 @@
 #include "dynamics/effects/expression.hpp"
 #include "dynamics/effects/registry.hpp"
 #include "formats/expression_entry.hpp"
+#include "formats/scenario_reader.hpp"
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
 
@@ -106,6 +107,10 @@ dynamics::Model modelFromJson(const nlohmann::json& j, const std::string& source
   }
   dynamics::Model model;
   for (const auto& [id, params] : j["effects"].items()) {
+    // an effect id names the CSV columns of its share (id.fx, ...)
+    if (const std::string why = detail::csvNameProblem(id); !why.empty()) {
+      throw InputError(source, at(place, "effects") + ": effect id: " + why);
+    }
     if (isExpressionEntry(params)) {
       model.add(expressionEffectFromJson(id, params, source, at(place, "effects." + id)));
       continue;

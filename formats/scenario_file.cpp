@@ -11,6 +11,7 @@
 #include "formats/scenario_loads.hpp"
 #include "formats/scenario_reader.hpp"
 #include "geometry/error.hpp"
+#include "io/file_names.hpp"
 #include "io/input_ranges.hpp"
 #include "io/json_file.hpp"
 #include "io/mesh_io.hpp"
@@ -145,7 +146,7 @@ dynamics::RigidBody readBody(const Reader& r, const std::string& base_dir,
   r.allowOnly({"name", "shape", "motion", "pose", "velocity", "angular_velocity", "density", "mass",
                "inertia", "com", "prescribed", "repair", "surface"});
   dynamics::RigidBody body;
-  body.name = r.text("name");
+  body.name = r.name("name");
   std::string shape = r.text("shape");
   if (!isPrimitive(shape)) shape = resolve(shape, base_dir);
   io::MeshReadOptions mesh;
@@ -449,23 +450,39 @@ dynamics::ContactPair readListedPair(const Reader& p,
     }
   }
   pair.name =
-      p.has("name") ? p.text("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
+      p.has("name") ? p.name("name") : sc.bodies[pair.a].name + "-" + sc.bodies[pair.b].name;
   readPairContact(p, models, base_dir, pair);
   checkPairMethod(p, pair, sc.bodies);
   return pair;
 }
 
-// Every pair name once: each names its output file. The first `listed` pairs are from
-// "pairs", the rest from "contacts".
+// The files a pair's output may take: pair_NAME.csv and pair_NAME_patches.csv, NAME made
+// file-safe (io::fileSafe).
+std::vector<std::string> pairFileNames(const dynamics::ContactPair& pair) {
+  const std::string base = "pair_" + io::fileSafe(pair.name);
+  return {base + ".csv", base + "_patches.csv"};
+}
+
+// Every pair's output files its own: two pairs whose names differ only in bytes a file name
+// does not keep ("ball a", "ball_a"), or one of whose names is the other's with "_patches",
+// would write one file (issue 36: one pair's rows were lost). The first `listed` pairs are
+// from "pairs", the rest from "contacts".
 void checkPairNames(const Reader& r, const std::vector<dynamics::ContactPair>& pairs,
                     std::size_t listed) {
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     for (std::size_t k = 0; k < i; ++k) {
-      if (pairs[k].name != pairs[i].name) continue;
-      const std::string where =
-          i < listed ? "pairs[" + std::to_string(i) + "].name" : std::string("contacts");
-      r.fail(where, "the pair name '" + pairs[i].name + "' is used twice (pair_" + pairs[i].name +
-                        ".csv would be written twice)");
+      for (const std::string& a : pairFileNames(pairs[i])) {
+        for (const std::string& b : pairFileNames(pairs[k])) {
+          if (a != b) continue;
+          const std::string where =
+              i < listed ? "pairs[" + std::to_string(i) + "].name" : std::string("contacts");
+          const std::string same = pairs[k].name == pairs[i].name
+                                       ? "the pair name '" + pairs[i].name + "' is used twice"
+                                       : "the pairs '" + pairs[k].name + "' and '" + pairs[i].name +
+                                             "' would write the same file";
+          r.fail(where, same + " (" + a + "); give each pair a name of its own");
+        }
+      }
     }
   }
 }

@@ -158,7 +158,7 @@ dynamics::ExternalLoad readLoad(const Reader& r, const std::string& base_dir,
                "torsional_stiffness", "torsional_damping", "max_force", "max_torque"});
   dynamics::ExternalLoad load;
   load.body = bodyNamed(r, "body", sc);
-  load.name = r.has("name") ? r.text("name") : "load" + std::to_string(index);
+  load.name = r.has("name") ? r.name("name") : "load" + std::to_string(index);
   load.p_BP = point(r, "point");
   const int kinds = (r.has("force") || r.has("torque")) + r.has("csv") + r.has("target");
   if (kinds != 1) {
@@ -197,7 +197,7 @@ dynamics::BodySpring readSpring(const Reader& r, const dynamics::Scenario& sc) {
   s.a = bodyNamed(r, "a", sc);
   s.b = bodyNamed(r, "b", sc);
   if (s.a == s.b) r.fail("b", "a spring joins two different bodies");
-  s.name = r.has("name") ? r.text("name") : sc.bodies[s.a].name + "-" + sc.bodies[s.b].name;
+  s.name = r.has("name") ? r.name("name") : sc.bodies[s.a].name + "-" + sc.bodies[s.b].name;
   s.p_AP = point(r, "point_a");
   s.p_BQ = point(r, "point_b");
   const Eigen::Isometry3d& X_WA = sc.bodies[s.a].X_WB0;

@@ -18,6 +18,29 @@
 
 namespace vcontact::formats::detail {
 
+/// Why `name` cannot stand in a CSV field or column name, "" when it can. The simulation's CSV
+/// files are written without quoting (dynamics/SCENARIO.md, "Names"): a comma, a double quote,
+/// a line break or another control character would split or join fields, so a name holding one
+/// is refused where it is read; so is an empty name.
+inline std::string csvNameProblem(const std::string& name) {
+  if (name.empty()) return "expected a name, got an empty string";
+  const auto bad = [](unsigned char u) { return u == ',' || u == '"' || u < 0x20 || u == 0x7f; };
+  if (std::none_of(name.begin(), name.end(), [&](char c) { return bad(c); })) return "";
+  std::ostringstream s;  // the name with its control characters as \xNN, so the message is one line
+  s << "the name '" << std::hex;
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      s << "\\x" << (u < 0x10 ? "0" : "") << int(u);
+    } else {
+      s << c;
+    }
+  }
+  s << "' holds a comma, a double quote or a control character (a line break, a tab); a name "
+       "goes into the CSV output unquoted, so it may hold none of them";
+  return s.str();
+}
+
 // Reads one JSON object, knowing the file and the place in it for every message.
 class Reader {
  public:
@@ -67,6 +90,14 @@ class Reader {
   std::string text(const std::string& key) const {
     if (!has(key) || !j_[key].is_string()) fail(key, "expected a string");
     return j_[key].get<std::string>();
+  }
+  /// A name that goes into the simulation's CSV files (a body, pair, load or spring): a string
+  /// checked by csvNameProblem.
+  std::string name(const std::string& key) const {
+    const std::string s = text(key);
+    const std::string why = csvNameProblem(s);
+    if (!why.empty()) fail(key, why);
+    return s;
   }
   std::vector<double> numbers(const std::string& key) const {
     const auto& v = j_[key];

@@ -1,5 +1,6 @@
 #include "geometry/mesh_check.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
@@ -145,7 +146,47 @@ void checkClosedAndOriented(const TriangleMesh& mesh) {
   }
 }
 
+// Below this fraction of the part's own scale (its diagonal for the centroid, the trace of Σ for
+// its eigenvalues) a violation is the rounding of the divergence-theorem sums, not a defect:
+// 1e-9 is a million times their relative rounding on a 10^6-face part.
+constexpr double kMassPropertySlack = 1e-9;
+
 }  // namespace
+
+// What no solid has, refused wherever a mesh's mass properties come from its faces: a centroid
+// outside the bounding box, a negative principal moment of inertia, principal moments that
+// break the triangle inequality (I1 + I2 >= I3). With the central second moment Σ (unit
+// density), the principal moments are I_i = tr(Σ) - σ_i for Σ's eigenvalues σ_i, so the last
+// two both come to an eigenvalue σ_i < 0 (I_j + I_k - I_i = 2 σ_i). A surface that passes through
+// itself or holds a shell turned inside out gives them (issue 36: a centroid outside the part,
+// an inertia diagonal of -204 kg m^2).
+void checkMassProperties(const TriangleMesh& mesh) {
+  const Moments M = meshMoments(mesh);
+  const Aabb box = bounds(mesh);
+  const Eigen::Vector3d c = M.centroid();
+  const double reach = kMassPropertySlack * box.size().norm();
+  const char* const why =
+      "; no solid has that: the surface most likely passes through itself or holds a shell "
+      "turned inside out";
+  if ((c.array() < box.min.array() - reach).any() || (c.array() > box.max.array() + reach).any()) {
+    throw InputError("", "impossible mass properties: the centroid " + at(c) +
+                             " lies outside the mesh's bounds " + at(box.min) + " to " +
+                             at(box.max) + why);
+  }
+  const Eigen::Matrix3d sigma = M.centralSecondMoment();
+  const Eigen::Vector3d s = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sigma).eigenvalues();
+  if (s.minCoeff() >= -kMassPropertySlack * std::abs(sigma.trace())) return;
+  const Eigen::Vector3d I = Eigen::Vector3d::Constant(sigma.trace()) - s;  // unit density
+  std::ostringstream os;
+  os.precision(6);
+  os << "impossible mass properties: the principal moments of inertia at unit density, " << I.x()
+     << ", " << I.y() << ", " << I.z() << " m^5, "
+     << (I.minCoeff() < 0.0 ? "include a negative one"
+                            : "break the triangle inequality (the two "
+                              "smaller must add up to the largest)")
+     << why;
+  throw InputError("", os.str());
+}
 
 MeshCheckResult checkAndRepair(TriangleMesh& mesh) {
   if (mesh.triangleCount() == 0) throw InputError("", "mesh has no faces");
@@ -169,6 +210,7 @@ MeshCheckResult checkAndRepair(TriangleMesh& mesh) {
                               std::to_string(mesh.triangleCount()) + " faces");
   }
   result.shells = checkShells(mesh);
+  checkMassProperties(mesh);
   return result;
 }
 

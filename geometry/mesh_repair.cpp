@@ -23,12 +23,15 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
 
+#include "geometry/cgal_surface_internal.hpp"
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
+#include "geometry/self_intersection.hpp"
 
 namespace vcontact::geometry {
 namespace {
@@ -36,7 +39,8 @@ namespace {
 namespace PMP = CGAL::Polygon_mesh_processing;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using SurfaceMesh = detail::CgalSurface;
+using detail::toTriangleMesh;
 using Face = SurfaceMesh::Face_index;
 using Halfedge = SurfaceMesh::Halfedge_index;
 using Polygons = std::vector<std::vector<std::size_t>>;
@@ -68,24 +72,6 @@ Soup toSoup(const TriangleMesh& mesh) {
                           static_cast<std::size_t>(mesh.triangles(f, 2))});
   }
   return s;
-}
-
-TriangleMesh toTriangleMesh(SurfaceMesh& sm) {
-  sm.collect_garbage();
-  TriangleMesh out;
-  out.vertices.resize(static_cast<Eigen::Index>(sm.number_of_vertices()), 3);
-  for (const auto v : sm.vertices()) {
-    const Point& p = sm.point(v);
-    out.vertices.row(static_cast<Eigen::Index>(v.idx())) << p.x(), p.y(), p.z();
-  }
-  out.triangles.resize(static_cast<Eigen::Index>(sm.number_of_faces()), 3);
-  for (const auto f : sm.faces()) {
-    int k = 0;
-    for (const auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
-      out.triangles(static_cast<Eigen::Index>(f.idx()), k++) = static_cast<int>(v.idx());
-    }
-  }
-  return out;
 }
 
 // Step 1. Each point takes the place of the first point (in file order) within `tolerance`
@@ -413,6 +399,10 @@ RepairResult repairMesh(const TriangleMesh& soup, const RepairOptions& options) 
   turnOuterShellsOutward(sm, result.changes);
   result.mesh = toTriangleMesh(sm);
   if (result.mesh.triangleCount() == 0) throw InputError("", "no face is left after repair");
+  if (options.removeSelfIntersections && CGAL::is_closed(sm)) {
+    const std::string change = removeSelfIntersections(result.mesh);
+    if (!change.empty()) result.changes.push_back(change);
+  }
   return result;
 }
 
@@ -436,8 +426,28 @@ std::vector<Eigen::Vector3i> triangulatePolygon(const std::vector<Eigen::Vector3
   return out;
 }
 
+namespace {
+
+// One shell's own intersection, which volume_connected_components (below, for several shells)
+// looks for but a single shell never reached (issue 36).
+void checkOneShell(const TriangleMesh& mesh) {
+  const std::optional<SelfIntersection> s = findSelfIntersection(mesh);
+  if (!s) return;
+  std::ostringstream os;
+  os.precision(9);
+  os << "the surface passes through itself (faces " << s->face_a << " and " << s->face_b
+     << " intersect; first at (" << s->at.x() << ", " << s->at.y() << ", " << s->at.z()
+     << ")): its volume, centroid and inertia would be wrong; " << kSelfIntersectionHint;
+  throw InputError("", os.str());
+}
+
+}  // namespace
+
 std::size_t checkShells(const TriangleMesh& mesh) {
-  if (countEdgeConnectedParts(mesh) == 1) return 1;
+  if (countEdgeConnectedParts(mesh) == 1) {
+    checkOneShell(mesh);
+    return 1;
+  }
   Soup s = toSoup(mesh);
   if (!PMP::is_polygon_soup_a_polygon_mesh(s.polygons)) {
     PMP::orient_polygon_soup(s.points, s.polygons);  // splits vertices where shells touch
@@ -466,8 +476,9 @@ std::size_t checkShells(const TriangleMesh& mesh) {
                          "(their volumes would be added: a cavity must face inward); " +
                              count(shells, "shell", "shells") + where);
       case PMP::SURFACE_WITH_SELF_INTERSECTIONS:
-        throw InputError(
-            "", "a closed shell intersects itself; " + count(shells, "shell", "shells") + where);
+        throw InputError("", "a closed shell intersects itself; " +
+                                 count(shells, "shell", "shells") + where + "; " +
+                                 kSelfIntersectionHint);
     }
   }
   return shells;

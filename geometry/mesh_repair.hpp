@@ -14,7 +14,9 @@
 //      diagonal (triangulate_hole);
 //   7. turn outward the closed shells that lie inside no other and face inward
 //      (volume_connected_components, reverse_face_orientations); a nested shell keeps its
-//      orientation (inward: a cavity; outward: refused by checkShells).
+//      orientation (inward: a cavity; outward: refused by checkShells);
+//   8. when asked, remove the intersections of a closed surface with itself
+//      (experimental::autorefine_and_remove_self_intersections, geometry/self_intersection.hpp).
 
 #include <string>
 #include <vector>
@@ -38,7 +40,17 @@ inline constexpr double kSmallHolePerimeter = 0.5;
 struct RepairOptions {
   double weldTolerance = kDefaultWeldTolerance;  ///< fraction of the bounding-box diagonal
   bool fillHoles = false;
+  /// step 8: cut a closed surface that passes through itself along its intersections and keep
+  /// the outer layer (geometry/self_intersection.hpp)
+  bool removeSelfIntersections = false;
 };
+
+/// What the refusal of a surface that passes through itself says to do.
+inline constexpr const char* kSelfIntersectionHint =
+    "'vcontact mesh-repair FILE --out FIXED.stl --remove-self-intersections' cuts the faces "
+    "along the intersections and keeps the outer layer (CGAL's autorefinement), or repair it "
+    "in a mesh editor (MeshLab: Filters > Cleaning and Repairing > Select Self Intersecting "
+    "Faces)";
 
 struct RepairResult {
   TriangleMesh mesh;
@@ -57,8 +69,9 @@ std::vector<Eigen::Vector3i> triangulatePolygon(const std::vector<Eigen::Vector3
 /// Shells of a closed, consistently oriented mesh (CGAL's volume_connected_components).
 /// @return the number of closed shells
 /// @throws InputError (empty source) when two shells intersect or touch (CGAL counts a shared
-///   point as an intersection), or a shell lies inside another with an orientation that does
-///   not make it a cavity (their volumes would add)
+///   point as an intersection), a shell intersects itself (does_self_intersect), or a shell
+///   lies inside another with an orientation that does not make it a cavity (their volumes
+///   would add)
 std::size_t checkShells(const TriangleMesh& mesh);
 
 }  // namespace vcontact::geometry

@@ -139,10 +139,14 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& source)
   return parseStrictly(text, source);
 }
 
-void putJson(const nlohmann::json& j, std::ostream& out) { out << j.dump(2) << '\n'; }
+std::string jsonText(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+void putJson(const nlohmann::json& j, std::ostream& out) { out << jsonText(j) << '\n'; }
 
 void writeJson(const nlohmann::json& j, const std::string& path) {
-  const std::string text = j.dump(2) + '\n';  // dumped first: nothing opened for a bad value
+  const std::string text = jsonText(j) + '\n';  // dumped first: nothing opened for a bad value
   writeFile(path, [&](std::ostream& out) { out << text; });
 }
 

@@ -20,6 +20,13 @@ nlohmann::json readJsonFile(const std::string& path);
 /// @throws InputError naming `source`: "not valid JSON (byte N): …", or "KEY.PATH: …"
 nlohmann::json parseJsonText(const std::string& text, const std::string& source);
 
+/// The text of `j` (indented by `indent` spaces; -1 for one line) as every writer of the
+/// project puts it out. JSON text is UTF-8, and a string that is not (a file name holding a byte
+/// of another encoding, from the command line or the file system) has each invalid byte
+/// replaced by U+FFFD, the replacement character: the JSON stays valid and the rest of the
+/// name readable (nlohmann's dump threw, an internal error after a whole run, issue 36).
+std::string jsonText(const nlohmann::json& j, int indent = 2);
+
 /// Puts `j` on `out` as writeJson writes it (for a file of an io::OutputSet).
 void putJson(const nlohmann::json& j, std::ostream& out);
 

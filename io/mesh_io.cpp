@@ -19,6 +19,7 @@
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/mesh_check.hpp"
+#include "io/file_names.hpp"
 #include "io/input_ranges.hpp"
 #include "io/output_file.hpp"
 
@@ -110,13 +111,6 @@ FileMesh readAssimp(const std::string& path) {
   return out;
 }
 
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 // A PLY header ends with an "end_header" line within its first kPlyHeaderLimit bytes; CGAL's
 // reader is handed only a file whose header does (one that never ends hung a reader, issue
 // 20), and whose every "property" follows an "element" (CGAL 5.5 reads the last element of
@@ -124,11 +118,41 @@ std::string lowerExtension(const std::string& path) {
 // of comment and property lines.
 constexpr std::size_t kPlyHeaderLimit = 1 << 16;
 
+bool isOneOf(const std::string& word, std::initializer_list<const char*> words) {
+  return std::any_of(words.begin(), words.end(), [&](const char* w) { return word == w; });
+}
+
+// CGAL 5.5's PLY reader takes vertex coordinates of a floating-point type only (an integer one
+// dereferences a null pointer: a crash, issue 36) and face indices of a 32-bit integer type
+// only (it refuses others without saying why). Either is refused here with the line and type.
+void checkPlyPropertyType(const std::string& element, std::istringstream& words, std::size_t n) {
+  std::string type, indexType, name;
+  words >> type;
+  if (type == "list") words >> indexType >> indexType;  // the count's type, then the index's
+  words >> name;
+  const std::string at = "cannot read mesh: PLY header line " + std::to_string(n) + ": ";
+  const bool vertex = element == "vertex" || element == "vertices";
+  const bool face = element == "face" || element == "faces";
+  if (vertex && type != "list" && isOneOf(name, {"x", "y", "z"}) &&
+      !isOneOf(type, {"float", "double", "float32", "float64"})) {
+    throw InputError("", at + "vertex coordinate '" + name + "' is of type '" + type +
+                             "'; expected float or double (float32, float64): vcontact reads "
+                             "no integer coordinates from PLY; export the mesh with "
+                             "floating-point coordinates, or as STL or OBJ");
+  }
+  if (face && type == "list" && isOneOf(name, {"vertex_indices", "vertex_index"}) &&
+      !isOneOf(indexType, {"int", "uint", "int32", "uint32"})) {
+    throw InputError("", at + "face indices '" + name + "' are of type '" + indexType +
+                             "'; expected int or uint (int32, uint32)");
+  }
+}
+
 void checkPlyHeader(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string line;
   std::size_t read = 0;
-  bool element = false;
+  std::string element;  // the name of the element the properties belong to; empty before one
+  bool any = false;
   for (std::size_t n = 1; read < kPlyHeaderLimit && std::getline(in, line); ++n) {
     read += line.size() + 1;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -139,12 +163,16 @@ void checkPlyHeader(const std::string& path) {
     if (n == 1 && keyword != "ply") {
       throw InputError("", "cannot read mesh: line 1 is not \"ply\"; expected a PLY file");
     }
-    element = element || keyword == "element";
-    if (keyword == "property" && !element) {
+    if (keyword == "element") {
+      any = true;
+      words >> element;
+    }
+    if (keyword == "property" && !any) {
       throw InputError("", "cannot read mesh: PLY header line " + std::to_string(n) +
                                ": a property before any element; expected \"element NAME "
                                "COUNT\" first");
     }
+    if (keyword == "property") checkPlyPropertyType(element, words, n);
   }
   throw InputError("", "cannot read mesh: the PLY header has no \"end_header\" line in its first " +
                            std::to_string(kPlyHeaderLimit) + " bytes");
@@ -378,6 +406,20 @@ void writeStl(const geometry::TriangleMesh& mesh, const std::string& path) {
 
 void writeObj(const geometry::TriangleMesh& mesh, const std::string& path) {
   writeFile(path, [&](std::ostream& out) { putObj(mesh, out); });
+}
+
+void writeMesh(const geometry::TriangleMesh& mesh, const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".obj") return writeObj(mesh, path);
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  const bool special = !ec && std::filesystem::exists(status) &&
+                       !std::filesystem::is_regular_file(status) &&
+                       !std::filesystem::is_directory(status);
+  if (ext == ".stl" || special) return writeStl(mesh, path);  // a device or pipe takes STL
+  const std::string what = ext.empty() ? "a name without an extension" : "'" + ext + "'";
+  throw InputError(path, "cannot write a mesh to " + what +
+                             "; expected a file name ending in .stl (binary STL) or .obj");
 }
 
 }  // namespace vcontact::io

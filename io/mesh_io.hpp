@@ -68,4 +68,10 @@ void writeStl(const geometry::TriangleMesh& mesh, const std::string& path);
 /// Writes a Wavefront OBJ with full double precision.
 void writeObj(const geometry::TriangleMesh& mesh, const std::string& path);
 
+/// Writes `path` in the format its extension names, in any case: ".obj" (".OBJ") an OBJ,
+/// ".stl" a binary STL; a device or pipe (/dev/stdout) with another name a binary STL too.
+/// @throws InputError naming `path` for another extension (a file the reader would then refuse
+///   or misread, issue 36) or when the file cannot be written
+void writeMesh(const geometry::TriangleMesh& mesh, const std::string& path);
+
 }  // namespace vcontact::io

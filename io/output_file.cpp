@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "io/output_folder.hpp"
 
 namespace vcontact::io {
 namespace fs = std::filesystem;
@@ -128,6 +129,7 @@ OutputSet::OutputSet(const std::string& dir) {
     if (p == p.parent_path()) break;
   }
   makeOutputFolder(dir);
+  removeDeadTemporaries(dir);  // what a killed run into this folder left (output_folder.hpp)
 }
 
 // An uncommitted set (a failure, an exception while its content was built) leaves no folder

@@ -65,7 +65,9 @@ class OutputSet {
  public:
   OutputSet() = default;
   /// A set of files in the folder `dir`, created (with its parents) when missing; a set that
-  /// fails removes the folders it created again (those left empty).
+  /// fails removes the folders it created again (those left empty). Temporaries in `dir` of
+  /// processes that no longer run (a run killed by SIGKILL) are deleted
+  /// (io/output_folder.hpp, removeDeadTemporaries).
   /// @throws InputError naming `dir` when it cannot be created or is a file
   explicit OutputSet(const std::string& dir);
   ~OutputSet();

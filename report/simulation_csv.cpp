@@ -1,11 +1,16 @@
 #include "report/simulation_csv.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <string_view>
 
 #include "geometry/error.hpp"
+#include "io/file_names.hpp"
 #include "report/csv_number.hpp"
 
 namespace vcontact::report {
@@ -44,20 +49,24 @@ void putContact(CsvBuffer& row, const volume::ContactVolume& cv, const dynamics:
   for (int i = 0; i < state_size; ++i) row.number(state[i]);
 }
 
+// One share per declared column, whatever the result holds: the header names a column for each
+// effect of the model, and every row has the header's fields (issue 36: a result that carried
+// no shares wrote a short row). A share the result lacks is an effect that did not act: zero.
+void putShares(CsvBuffer& row, const std::vector<dynamics::Wrench>& shares, std::size_t effects) {
+  assert(shares.empty() || shares.size() == effects);
+  for (std::size_t i = 0; i < effects; ++i) {
+    const dynamics::Wrench share = i < shares.size() ? shares[i] : dynamics::Wrench{};
+    put(row, share.f_W);
+    put(row, share.tau_W);
+  }
+}
+
 // The buffer's text onto the file, in one write.
 void flush(const CsvBuffer& text, std::ostream& f) {
   f.write(text.view().data(), static_cast<std::streamsize>(text.view().size()));
 }
 
 }  // namespace
-
-std::string fileSafe(const std::string& name) {
-  std::string s = name;
-  for (char& c : s) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-  }
-  return s;
-}
 
 std::ostream& SimulationCsvWriter::open(const std::string& path) {
   files_.push_back(path);
@@ -66,7 +75,7 @@ std::ostream& SimulationCsvWriter::open(const std::string& path) {
 
 SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics::Scenario& scenario,
                                          const formats::OutputSelection& outputs)
-    : scenario_(scenario), outputs_(outputs), set_(dir) {
+    : dir_(dir), scenario_(scenario), outputs_(outputs), set_(dir) {
   const std::filesystem::path base(dir);
   const bool loads = outputs_.loads && (!scenario.loads.empty() || !scenario.springs.empty());
   if (outputs_.bodies) {
@@ -80,7 +89,7 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
   if (!outputs_.pairs) return;
   for (const auto& pair : scenario.pairs) {
     std::ostream& f =
-        *pairs_.emplace_back(&open((base / ("pair_" + fileSafe(pair.name) + ".csv")).string()));
+        *pairs_.emplace_back(&open((base / ("pair_" + io::fileSafe(pair.name) + ".csv")).string()));
     f << "t";
     putContactHeader(f, pair);
     if (outputs_.shares) {
@@ -92,7 +101,7 @@ SimulationCsvWriter::SimulationCsvWriter(const std::string& dir, const dynamics:
     f << '\n';
     patches_.push_back(nullptr);
     if (dynamics::patchSlots(scenario, pair) < 2) continue;
-    patches_.back() = &open((base / ("pair_" + fileSafe(pair.name) + "_patches.csv")).string());
+    patches_.back() = &open((base / ("pair_" + io::fileSafe(pair.name) + "_patches.csv")).string());
     std::ostream& g = *patches_.back();
     g << "t,patch,slot";
     putContactHeader(g, pair);
@@ -109,12 +118,7 @@ void SimulationCsvWriter::write(const dynamics::Snapshot& s) {
     text_.clear();
     text_.first(s.t);
     putContact(text_, p.cv, p.result, p.state, state_size);
-    if (outputs_.shares) {
-      for (const auto& share : p.result.shares) {
-        put(text_, share.f_W);
-        put(text_, share.tau_W);
-      }
-    }
+    if (outputs_.shares) putShares(text_, p.result.shares, scenario_.pairs[k].model.effectCount());
     text_.endRow();
     flush(text_, *pairs_[k]);
     if (patches_[k]) writePatches(s.t, p, state_size, *patches_[k]);
@@ -191,6 +195,48 @@ void SimulationCsvWriter::checkWrites() {
 void SimulationCsvWriter::commit(const std::string& extraPath, const std::string& extraText) {
   if (!extraPath.empty()) set_.add(extraPath, [&](std::ostream& out) { out << extraText; });
   set_.commit();
+  std::vector<std::string> written;
+  for (const std::string& f : files_) written.push_back(std::filesystem::path(f).filename());
+  removeStaleOutputs(dir_, written);
+}
+
+namespace {
+
+// The first line of every CSV file a simulation writes begins with one of these.
+constexpr std::array<std::string_view, 4> kOutputHeaders = {"t,body,x,y,z,", "t,load,body,",
+                                                            "t,V,depth,area,", "t,patch,slot,V,"};
+
+bool isOutputName(const std::string& name) {
+  const bool pair = name.size() > 9 && name.rfind("pair_", 0) == 0 &&
+                    name.compare(name.size() - 4, 4, ".csv") == 0;
+  return pair || name == "bodies.csv" || name == "loads.csv";
+}
+
+bool hasOutputHeader(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  return std::any_of(kOutputHeaders.begin(), kOutputHeaders.end(),
+                     [&](std::string_view h) { return line.rfind(h, 0) == 0; });
+}
+
+}  // namespace
+
+std::vector<std::string> removeStaleOutputs(const std::string& dir,
+                                            const std::vector<std::string>& written) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> removed;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (!isOutputName(name) || std::find(written.begin(), written.end(), name) != written.end()) {
+      continue;
+    }
+    std::error_code rec;
+    if (!it->is_regular_file(rec) || !hasOutputHeader(it->path())) continue;
+    if (fs::remove(it->path(), rec)) removed.push_back(name);
+  }
+  return removed;
 }
 
 std::uint64_t outputRowCount(const dynamics::Scenario& scenario,

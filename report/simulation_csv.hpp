@@ -30,7 +30,8 @@ class SimulationCsvWriter {
   void write(const dynamics::Snapshot& snapshot);
   /// Completes the files: the rows written so far, under their final names, together with
   /// the file `extraPath` holding `extraText` when one is named (the run's summary.json). A
-  /// run that stopped with an error commits too, so its output up to the stop is kept.
+  /// run that stopped with an error commits too, so its output up to the stop is kept. Then the
+  /// files an earlier run wrote into the folder and this one did not (removeStaleOutputs) go.
   /// @throws InputError naming the file when a write, the close or the rename failed; no file
   ///         of the run is left then
   void commit(const std::string& extraPath = "", const std::string& extraText = "");
@@ -45,6 +46,7 @@ class SimulationCsvWriter {
   void writeLoads(const dynamics::Snapshot& s);
   void writePatches(double t, const dynamics::PairOutput& p, int state_size, std::ostream& f);
 
+  std::string dir_;
   const dynamics::Scenario& scenario_;
   formats::OutputSelection outputs_;
   /// bodies.csv (when selected) first, then each pair's file and its patch file
@@ -66,11 +68,15 @@ class SimulationCsvWriter {
 std::uint64_t outputRowCount(const dynamics::Scenario& scenario,
                              const formats::OutputSelection& outputs);
 
+/// Deletes from `dir` the simulation outputs of an earlier run that are not among `written`
+/// (file names): bodies.csv, loads.csv and pair_*.csv whose first line is the header vcontact
+/// writes (so that `view` never shows an old pair's forces on new motion, issue 36). Every other
+/// file is left alone. Returns the names deleted.
+std::vector<std::string> removeStaleOutputs(const std::string& dir,
+                                            const std::vector<std::string>& written);
+
 /// The most rows a simulation may write (about 10 GB of CSV at 200 bytes a row): more is
 /// refused before the run, with the count, since it would fill a disk rather than be read.
 constexpr std::uint64_t kMaxOutputRows = 50'000'000;
-
-/// A file-name-safe form of a pair name: letters, digits, '-', '_' kept, others '_'.
-std::string fileSafe(const std::string& name);
 
 }  // namespace vcontact::report

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "io/json_file.hpp"
 #include "report/async_simulation_csv.hpp"
 #include "report/simulation_csv.hpp"
 
@@ -97,7 +98,7 @@ nlohmann::json finishWith(Writer& writer, const std::string& dir,
                           const dynamics::SimulationSummary& summary,
                           const std::string& scenario_path, const std::optional<StopInfo>& stop) {
   nlohmann::json j = simulationSummaryJson(summary, scenario_path, stop);
-  writer.commit(dir + "/summary.json", j.dump(2) + '\n');  // all the run's files, or none
+  writer.commit(dir + "/summary.json", io::jsonText(j) + '\n');  // all the run's files, or none
   return j;
 }
 

@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "geometry/error.hpp"
+#include "io/json_file.hpp"
+#include "io/output_file.hpp"
 #include "report/view_html_script.hpp"
 
 namespace vcontact::report {
@@ -55,7 +57,7 @@ constexpr const char* kHead = R"HTML(<!DOCTYPE html>
 std::string viewHtml(const nlohmann::json& data, const std::string& three_js) {
   std::ostringstream page;
   page << kHead << "<script id=\"vcontact-data\" type=\"application/json\">"
-       << scriptSafe(data.dump()) << "</script>\n<script>\n"
+       << scriptSafe(io::jsonText(data, -1)) << "</script>\n<script>\n"
        << scriptSafe(three_js) << "\n</script>\n<script>" << viewScript()
        << "</script>\n</body>\n</html>\n";
   return page.str();
@@ -73,10 +75,7 @@ void writeViewHtml(const ViewOptions& options, const std::string& path,
   std::stringstream library;
   library << three.rdbuf();
   const std::string html = viewHtml(data, library.str());
-  std::ofstream out(path);
-  if (!out) throw InputError(path, "cannot open for writing");
-  out << html;
-  if (!out.flush()) throw InputError(path, "write failed");
+  io::writeFile(path, [&](std::ostream& out) { out << html; });  // whole or not at all
 }
 
 }  // namespace vcontact::report

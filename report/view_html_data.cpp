@@ -9,6 +9,7 @@
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/file_names.hpp"
 #include "io/json_file.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/view_html.hpp"
@@ -154,7 +155,7 @@ std::vector<int> columns(const CsvTable& t, std::initializer_list<const char*> n
 // patch in pair_<name>_patches.csv when present, else the aggregate when V > 0.
 nlohmann::json pairJson(const fs::path& dir, const dynamics::ContactPair& pair, std::size_t frames,
                         std::vector<std::string>& warnings) {
-  const std::string base = "pair_" + fileSafe(pair.name);
+  const std::string base = "pair_" + io::fileSafe(pair.name);
   const CsvTable agg = readCsv(dir / (base + ".csv"));
   if (agg.rows.size() != frames) {
     throw InputError(agg.path, std::to_string(agg.rows.size()) +
@@ -238,7 +239,7 @@ nlohmann::json viewData(const ViewOptions& o, std::vector<std::string>& warnings
   const std::size_t frames = data["times"].size();
   data["pairs"] = nlohmann::json::array();
   for (const auto& pair : file.scenario.pairs) {
-    const std::string csv = "pair_" + fileSafe(pair.name) + ".csv";
+    const std::string csv = "pair_" + io::fileSafe(pair.name) + ".csv";
     if (!fs::exists(dir / csv)) {  // "outputs": {"pairs": false} in the scenario
       warnings.push_back(csv + " absent: pair '" + pair.name + "' is not shown");
       continue;

@@ -35,6 +35,57 @@ std::string errorOf(const nlohmann::json& j) {
   return "";
 }
 
+// Issue 36: two pair names that differ only in bytes a file name does not keep wrote one
+// pair_*.csv, and one pair's rows were lost; a pair named like another's patch file too.
+TEST(ScenarioFile, PairNamesThatWriteTheSameFileAreRefused) {
+  nlohmann::json j = ballOnPlate();
+  j["bodies"].push_back(
+      {{"name", "ball2"}, {"shape", "sphere:0.01"}, {"density", 7900}, {"pose", "0.1,0,0.0105"}});
+  j["pairs"][0]["name"] = "ball a";
+  j["pairs"].push_back(j["pairs"][0]);
+  j["pairs"][1]["a"] = "ball2";
+  j["pairs"][1]["name"] = "ball_a";
+  EXPECT_EQ(errorOf(j),
+            "s.json: pairs[1].name: the pairs 'ball a' and 'ball_a' would write the "
+            "same file (pair_ball_a.csv); give each pair a name of its own");
+  j["pairs"][1]["name"] = "ball a_patches";
+  EXPECT_EQ(errorOf(j),
+            "s.json: pairs[1].name: the pairs 'ball a' and 'ball a_patches' would "
+            "write the same file (pair_ball_a_patches.csv); give each pair a name of "
+            "its own");
+  j["pairs"][1]["name"] = "ball b";
+  EXPECT_EQ(errorOf(j), "");
+}
+
+// Issue 36: commas and line breaks in names split the CSV rows and headers they go into; such
+// a name is refused where it is read, naming the JSON place.
+TEST(ScenarioFile, NamesThatWouldBreakTheCsvAreRefused) {
+  const std::string why =
+      "' holds a comma, a double quote or a control character (a line break, a tab); a name "
+      "goes into the CSV output unquoted, so it may hold none of them";
+  nlohmann::json body = ballOnPlate();
+  body["bodies"][1]["name"] = "ball,1";
+  body["pairs"][0]["a"] = "ball,1";
+  EXPECT_EQ(errorOf(body), "s.json: bodies[1].name: the name 'ball,1" + why);
+  body["bodies"][1]["name"] = "ball\n1";
+  body["pairs"][0]["a"] = "ball\n1";
+  EXPECT_EQ(errorOf(body), "s.json: bodies[1].name: the name 'ball\\x0a1" + why);
+  nlohmann::json pair = ballOnPlate();
+  pair["pairs"][0]["name"] = "say \"hi\"";
+  EXPECT_EQ(errorOf(pair), "s.json: pairs[0].name: the name 'say \"hi\"" + why);
+  pair["pairs"][0]["name"] = "";
+  EXPECT_EQ(errorOf(pair), "s.json: pairs[0].name: expected a name, got an empty string");
+  nlohmann::json load = ballOnPlate();
+  load["loads"] =
+      nlohmann::json::array({{{"name", "push,pull"}, {"body", "ball"}, {"force", {0, 0, -1}}}});
+  EXPECT_EQ(errorOf(load), "s.json: loads[0].name: the name 'push,pull" + why);
+  nlohmann::json effect = ballOnPlate();
+  effect["pairs"][0]["model"]["effects"]["my,drag"] = {
+      {"kind", "expression"}, {"force_t", "0"}, {"parameters", nlohmann::json::object()}};
+  const std::string msg = errorOf(effect);
+  EXPECT_NE(msg.find("effects: effect id: the name 'my,drag" + why), std::string::npos) << msg;
+}
+
 TEST(ScenarioFile, BundledScenariosRead) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {

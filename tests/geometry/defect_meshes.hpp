@@ -23,6 +23,28 @@ inline std::string rejection(TriangleMesh mesh) {
 /// A part of CAD size (30 x 50 x 70 mm) in metres; its sides are not binary fractions.
 inline TriangleMesh cadBox() { return geometry::tessellateBox({0.03, 0.05, 0.07}); }
 
+/// Issue 36: the CAD box (half sides h = 15, 25, 35 mm) with its corner (+x, +y, +z) pushed
+/// down through the opposite face to (5, 10, -105) mm: closed and consistently oriented, but
+/// the faces at that corner cross the bottom face. Its divergence-theorem moments (worked out
+/// by hand from the 12 faces): volume 1.2833e-5 m^3, centroid (-19.2, -33.3, 45.3) mm, outside
+/// the bounds, and Σ's eigenvalues -8.2e-8, 1.16e-9, 5.28e-9 m^5.
+inline TriangleMesh boxWithCornerPushedThrough() {
+  TriangleMesh m = cadBox();
+  m.vertices.row(7) = Eigen::RowVector3d(0.005, 0.01, -0.105);  // vertex 7 is (+, +, +)
+  return m;
+}
+
+/// The same corner pushed straight down to (15, 25, -105) mm: the side faces at it stay in
+/// their planes and fold back onto themselves (coplanar overlaps). Centroid inside the bounds,
+/// but Σ has a negative eigenvalue (for the unit cube, corner to z = -1.5: -0.0564, 0.0148,
+/// 0.05 m^5 at volume 1/3 m^3; scaling the axes keeps their signs). CGAL 5.5's autorefinement
+/// does not handle it.
+inline TriangleMesh boxWithCornerFolded() {
+  TriangleMesh m = cadBox();
+  m.vertices.row(7) = Eigen::RowVector3d(0.015, 0.025, -0.105);
+  return m;
+}
+
 inline int addVertex(TriangleMesh& m, const Eigen::Vector3d& p) {
   m.vertices.conservativeResize(m.vertexCount() + 1, 3);
   m.vertices.row(m.vertexCount() - 1) = p;

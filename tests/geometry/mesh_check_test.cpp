@@ -114,6 +114,58 @@ TEST(MeshCheck, FlatClosedSurfaceIsRejected) {
   EXPECT_FALSE(rejection(m).empty());
 }
 
+// Issue 36: a box with a corner pushed through the opposite face passed as closed,
+// consistently oriented and outward; a single shell's self-intersection was never looked for.
+TEST(MeshCheck, CornerPushedThroughTheOppositeFaceIsRefused) {
+  const TriangleMesh m = test::boxWithCornerPushedThrough();
+  ASSERT_LT(m.vertex(7).z(), -0.035);  // below the bottom face
+  const std::string msg = rejection(m);
+  EXPECT_EQ(msg.rfind("the surface passes through itself (faces ", 0), 0u) << msg;
+  EXPECT_NE(msg.find("intersect; first at ("), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--remove-self-intersections"), std::string::npos) << msg;
+}
+
+// The same box's mass properties, which the self-intersection test stops before: refused on
+// their own, as every mesh's are once it passed the other checks.
+TEST(MeshCheck, ImpossibleMassPropertiesAreRefused) {
+  const std::string folded =
+      test::inputErrorMessage([] { checkMassProperties(test::boxWithCornerFolded()); });
+  EXPECT_EQ(folded.rfind("impossible mass properties: the principal moments of inertia at unit "
+                         "density, ",
+                         0),
+            0u)
+      << folded;
+  EXPECT_NE(folded.find("include a negative one"), std::string::npos) << folded;
+  const std::string pushed =
+      test::inputErrorMessage([] { checkMassProperties(test::boxWithCornerPushedThrough()); });
+  EXPECT_EQ(pushed.rfind("impossible mass properties: the centroid (-0.0192045", 0), 0u) << pushed;
+  for (const TriangleMesh& good :
+       {tessellateSphere(1, 16, 8), tessellateTorus(2, 0.5, 16, 8), test::cadBox()}) {
+    EXPECT_NO_THROW(checkMassProperties(good));
+  }
+}
+
+// A centroid outside the bounds: a box of side 2 facing outward and one of side 1.9 turned
+// inside out beside it, 20 to the -x side. Their signed volumes add to 8 - 6.859 = 1.141 at
+// x = (8 · 0 - 6.859 · (-20)) / 1.141 = 120.23, far beyond the bounds' x <= 1.
+TEST(MeshCheck, CentroidOutsideTheBoundsIsRefused) {
+  TriangleMesh m = tessellateBox({2, 2, 2});
+  const TriangleMesh inner = tessellateBox({1.9, 1.9, 1.9});
+  const Eigen::Index v0 = m.vertexCount(), f0 = m.triangleCount();
+  m.vertices.conservativeResize(v0 + inner.vertexCount(), 3);
+  m.triangles.conservativeResize(f0 + inner.triangleCount(), 3);
+  for (Eigen::Index i = 0; i < inner.vertexCount(); ++i) {
+    m.vertices.row(v0 + i) = inner.vertices.row(i) + Eigen::RowVector3d(-20.0, 0.0, 0.0);
+  }
+  const int offset = static_cast<int>(v0);
+  for (Eigen::Index f = 0; f < inner.triangleCount(); ++f) {  // reversed: facing inward
+    m.triangles.row(f0 + f) << inner.triangles(f, 0) + offset, inner.triangles(f, 2) + offset,
+        inner.triangles(f, 1) + offset;
+  }
+  const std::string msg = test::inputErrorMessage([&] { checkMassProperties(m); });
+  EXPECT_EQ(msg.rfind("impossible mass properties: the centroid (120.2", 0), 0u) << msg;
+}
+
 TEST(MeshCheck, EmptyMeshIsRejected) {
   EXPECT_NE(rejection(TriangleMesh{}).find("no faces"), std::string::npos);
 }

@@ -67,5 +67,13 @@ TEST(JsonFile, AFolderOrAMissingFileIsNamed) {
   EXPECT_EQ(errorOf(missing), missing + ": no such file");
 }
 
+// Issue 36: a file name with a byte of another encoding made nlohmann's dump throw (an
+// internal error after a whole run). Each invalid byte becomes U+FFFD; valid UTF-8 is kept.
+TEST(JsonFile, TextThatIsNotUtf8IsWrittenWithTheReplacementCharacter) {
+  const nlohmann::json j = {{"file", "caf\xe9.json"}, {"name", "caf\xc3\xa9"}};
+  EXPECT_EQ(jsonText(j, -1), "{\"file\":\"caf\xef\xbf\xbd.json\",\"name\":\"caf\xc3\xa9\"}");
+  EXPECT_EQ(nlohmann::json::parse(jsonText(j)).at("name"), "caf\xc3\xa9");
+}
+
 }  // namespace
 }  // namespace vcontact::io

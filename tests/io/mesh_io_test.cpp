@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include "geometry/error.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/tessellate.hpp"
+#include "io/file_names.hpp"
 #include "io/shape_json.hpp"
 #include "support/test_support.hpp"
 
@@ -357,6 +359,100 @@ TEST_F(MeshFiles, PlyPropertyBeforeAnyElement) {
   EXPECT_EQ(msg, path("early.ply") +
                      ": cannot read mesh: PLY header line 3: a property before any element; "
                      "expected \"element NAME COUNT\" first");
+}
+
+// A PLY file of integer coordinates (a box of side 1, 2, 3 in the file's unit) in `format`:
+// "ascii", or "binary_little_endian" with each coordinate stored as a 4-byte int whatever the
+// declared type (the reader is to refuse it at the header, before any data is read).
+std::string integerPly(const std::string& type, const std::string& format,
+                       const std::string& indexType = "int", const std::string& coordType = "") {
+  const TriangleMesh m = geometry::tessellateBox({1.0, 2.0, 3.0});
+  const std::string t = coordType.empty() ? type : coordType;
+  std::ostringstream os;
+  os << "ply\nformat " << format << " 1.0\nelement vertex " << m.vertexCount() << "\nproperty " << t
+     << " x\nproperty " << t << " y\nproperty " << t << " z\nelement face " << m.triangleCount()
+     << "\nproperty list uchar " << indexType << " vertex_indices\nend_header\n";
+  const bool ascii = format == "ascii";
+  for (Eigen::Index i = 0; i < m.vertexCount(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      // whole numbers: the box moved by 1.5 along each axis, truncation keeps its sides
+      const auto v = static_cast<std::int32_t>(m.vertices(i, k) + 1.5);
+      if (ascii) os << v << (k < 2 ? " " : "\n");
+      if (!ascii) os.write(reinterpret_cast<const char*>(&v), 4);
+    }
+  }
+  for (Eigen::Index f = 0; f < m.triangleCount(); ++f) {
+    if (ascii) os << "3 " << m.triangles.row(f) << "\n";
+    if (ascii) continue;
+    const char three = 3;
+    os.write(&three, 1);
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t v = m.triangles(f, k);
+      os.write(reinterpret_cast<const char*>(&v), 4);
+    }
+  }
+  return os.str();
+}
+
+// Issue 36: a valid PLY file whose coordinates are of an integer type crashed CGAL 5.5's PLY
+// reader (SIGSEGV: it dereferences the float property it assumes). Every integer type of the
+// PLY specification, ASCII and binary, is refused with the line and the type.
+TEST_F(MeshFiles, PlyIntegerCoordinatesAreRefusedNotACrash) {
+  for (const char* type : {"char", "uchar", "short", "ushort", "int", "uint", "int8", "uint8",
+                           "int16", "uint16", "int32", "uint32"}) {
+    for (const char* format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+      const std::string name = std::string(type) + "_" + format + ".ply";
+      const std::string msg = rejection(write(name, integerPly(type, format)));
+      EXPECT_EQ(msg, path(name) +
+                         ": cannot read mesh: PLY header line 4: vertex coordinate 'x' "
+                         "is of type '" +
+                         type +
+                         "'; expected float or double (float32, float64): vcontact reads no "
+                         "integer coordinates from PLY; export the mesh with floating-point "
+                         "coordinates, or as STL or OBJ");
+    }
+  }
+}
+
+// The face index types CGAL 5.5 does not read (it refused the file as "not a valid ply file")
+// are named; the 32-bit ones it reads are read.
+TEST_F(MeshFiles, PlyFaceIndexTypeIsNamed) {
+  for (const char* type : {"uchar", "short", "ushort", "char", "int16"}) {
+    const std::string name = std::string("faces_") + type + ".ply";
+    const std::string msg = rejection(write(name, integerPly("", "ascii", type, "double")));
+    EXPECT_EQ(msg, path(name) +
+                       ": cannot read mesh: PLY header line 8: face indices "
+                       "'vertex_indices' are of type '" +
+                       type + "'; expected int or uint (int32, uint32)");
+  }
+  for (const char* type : {"int", "uint", "int32", "uint32"}) {
+    const std::string name = std::string("faces_") + type + ".ply";
+    const MeshReadResult r = readMesh(write(name, integerPly("", "ascii", type, "double")));
+    EXPECT_NEAR(geometry::meshMoments(r.mesh).m0, 6.0, 1e-12);  // 1 x 2 x 3, exact in double
+  }
+}
+
+// Issue 36: "--out X.OBJ" wrote a binary STL that the reader then refused. The extension
+// chooses the format in any case; one that names no format written is refused.
+TEST_F(MeshFiles, WriteMeshChoosesTheFormatByItsExtensionInAnyCase) {
+  for (const char* name : {"a.obj", "b.OBJ", "c.Obj", "d.stl", "e.STL"}) {
+    writeMesh(box_, path(name));
+    std::ifstream in(path(name), std::ios::binary);
+    std::string first;
+    std::getline(in, first);
+    const bool obj = lowerExtension(name) == ".obj";
+    EXPECT_EQ(first.rfind(obj ? "# vcontact mesh" : "vcontact binary STL", 0), 0u) << name;
+    EXPECT_NEAR(geometry::meshMoments(readMesh(path(name)).mesh).m0 / boxVolume_, 1.0,
+                obj ? 1e-12 : kFloatVolumeTolerance)  // OBJ: 17 digits read back exactly
+        << name;
+  }
+  for (const char* name : {"f.ply", "g"}) {
+    const std::string msg = test::inputErrorMessage([&] { writeMesh(box_, path(name)); });
+    EXPECT_NE(msg.find("expected a file name ending in .stl (binary STL) or .obj"),
+              std::string::npos)
+        << msg;
+    EXPECT_FALSE(fs::exists(path(name)));
+  }
 }
 
 // A broken file of a CGAL format is refused by CGAL's reader, not handed on to assimp (which

@@ -130,7 +130,7 @@ TEST_F(SynthCli, AMotionCsvIsFollowedSampleBySample) {
   // --out bad.json would write bad.csv over the motion it reads.
   const auto overwrite = run(bad + path("bad.json"));
   EXPECT_EQ(overwrite.exitCode, 2);
-  EXPECT_NE(overwrite.err.find("is the CSV that --out would overwrite"), std::string::npos)
+  EXPECT_NE(overwrite.err.find("bad.csv, which is the motion CSV"), std::string::npos)
       << overwrite.err;
 }
 
