@@ -82,7 +82,7 @@ void addFrictionMapCommand(CLI::App& app) {
       "at v and spinning at omega on a plate, and compare the lumped Coulomb + spin + "
       "contensou friction (MODEL.md section 3) with pointwise Coulomb friction integrated over "
       "the column method's penetration map and, for the flat punch, with the closed form "
-      "(dynamics/DISTRIBUTED_FRICTION.md). Writes a CSV (forces in N, torques in N m about the "
+      "(docs/DISTRIBUTED_FRICTION.md). Writes a CSV (forces in N, torques in N m about the "
       "centroid; rows eps = 0 and inf are pure spin and pure sliding) and prints the table "
       "normalised by mu f_n and mu f_n R. Expect the lumped spin torque 1.06x the exact one at "
       "pure spin and 2x as sliding dominates, the lumped force sqrt(2)x while spin dominates.");

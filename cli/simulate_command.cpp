@@ -44,7 +44,7 @@ void printSummary(const dynamics::SimulationSummary& s) {
                  "states of the nearest patch's slot, or were lumped into a one-slot pair's "
                  "single region); raise the pairs' max_patches (up to 16), "
                  "or set it to 1 to lump each pair's patches into one region "
-                 "(dynamics/SCENARIO.md, Contact patches; summary.json patches.without_slot)\n";
+                 "(docs/SCENARIO.md, Contact patches; summary.json patches.without_slot)\n";
   }
   for (const dynamics::SurfacePairUse& p : s.surface_pairs) {
     std::cerr << "vcontact: pair '" << p.pair << "': ";
@@ -148,7 +148,7 @@ void addSimulateCommand(CLI::App& app) {
   auto opts = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
       "simulate",
-      "Integrate a scenario (dynamics/SCENARIO.md) and write bodies.csv, pair_<name>.csv, "
+      "Integrate a scenario (docs/SCENARIO.md) and write bodies.csv, pair_<name>.csv, "
       "loads.csv (with loads or springs) and summary.json.");
   cmd->add_option("SCENARIO", opts->scenario, "scenario JSON file")->required();
   cmd->add_option("--out", opts->out, "output directory")->capture_default_str();

@@ -26,7 +26,7 @@ constexpr int kMaxOrder = 2;
 
 // The error norm of CVODE's error and convergence tests: max_i |x_i w_i| with the error weights
 // w_i = 1/(abs + rel |y_i|), in place of the weighted RMS norm. The local error is then bounded
-// in every component, as by odeint's controller and as dynamics/SCENARIO.md states, instead of
+// in every component, as by odeint's controller and as docs/SCENARIO.md states, instead of
 // on average over the states (one component could take √n times its tolerance).
 realtype maxNorm(N_Vector x, N_Vector w) {
   const realtype* xd = N_VGetArrayPointer(x);

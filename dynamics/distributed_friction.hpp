@@ -1,6 +1,6 @@
 #pragma once
 // Distributed (pointwise) Coulomb friction over the Winkler pressure field, the reference for
-// the lumped Coulomb + spin + contensou friction of MODEL.md §3 (see DISTRIBUTED_FRICTION.md;
+// the lumped Coulomb + spin + contensou friction of MODEL.md §3 (see docs/DISTRIBUTED_FRICTION.md;
 // its closed form for a flat punch is validation/punch_friction.hpp).
 //
 // Frames and units. Everything is in the world frame W, SI units. The contact plate S is the

@@ -84,7 +84,7 @@ struct ContactContext {
   // ---- inputs ----
   const volume::ContactVolume* cv = nullptr;
   /// The δ map of cv (volume::DepthField) when the pair's friction is distributed
-  /// (dynamics/DISTRIBUTED_FRICTION.md): coulomb then integrates pointwise Coulomb friction
+  /// (docs/DISTRIBUTED_FRICTION.md): coulomb then integrates pointwise Coulomb friction
   /// over it, force and spin torque together, and spin adds nothing. Null: lumped friction.
   const volume::DepthField* field = nullptr;
   PairState state;  ///< with every plane vector projected onto the contact plane

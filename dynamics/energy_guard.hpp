@@ -23,7 +23,7 @@
 // The factor leaves room for the integration error of A and T (a few tolerances) and for the
 // rectangle rule of W_p; the floor keeps a body that starts at rest from being stopped on the
 // round-off of its first steps. An active effect (an expression effect that pushes along the
-// slip) can exceed the bound legitimately: dynamics/SCENARIO.md, "Stopped runs".
+// slip) can exceed the bound legitimately: docs/SCENARIO.md, "Stopped runs".
 
 #include <string>
 #include <vector>

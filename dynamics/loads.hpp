@@ -1,5 +1,5 @@
 #pragma once
-// External loads on a body and spring–dampers between two bodies (dynamics/SCENARIO.md,
+// External loads on a body and spring–dampers between two bodies (docs/SCENARIO.md,
 // "Loads" and "Springs"): what a rig engineer adds to the contacts to drive a part.
 //
 // - A constant wrench, or one interpolated from a table (t, f, τ), acting at a body point.

@@ -3,7 +3,7 @@
 // A ∩ B has its own friction and dwell states). A pair owns a fixed number of slots, so that
 // the integrator's state vector keeps its size; the tracker follows a patch from one accepted
 // step to the next so that its slot, and with it its bristle deflection and dwell, stays with
-// it (dynamics/SCENARIO.md, "Contact patches").
+// it (docs/SCENARIO.md, "Contact patches").
 //
 // The rule, applied to the patches of one evaluation against the records of the latest
 // accepted step:

@@ -1,6 +1,6 @@
 #pragma once
 // The pairs of a scenario whose contact is computed on a body's recovered surface
-// ("surface": "recovered", dynamics/SCENARIO.md "Recovered surfaces"), and what each used.
+// ("surface": "recovered", docs/SCENARIO.md "Recovered surfaces"), and what each used.
 //
 // A mesh body with a recovered surface against a half-space (either order) is queried with
 // volume::RecoveredBody: where the part of the body that can reach the plane lies on one

@@ -43,7 +43,7 @@ struct RigidBody {
   Eigen::Vector3d v_WBcm0 = Eigen::Vector3d::Zero();        ///< initial velocity of Bcm, m/s
   Eigen::Vector3d w_WB0 = Eigen::Vector3d::Zero();          ///< initial angular velocity, rad/s
   PrescribedMotion prescribed;
-  /// A mesh body's recovered surface ("surface": "recovered", dynamics/SCENARIO.md): its
+  /// A mesh body's recovered surface ("surface": "recovered", docs/SCENARIO.md): its
   /// contact with a half-space is then that of the true sphere or capped cylinder where one
   /// applies. Null: the polyhedron (a mesh body's default, and every primitive).
   std::shared_ptr<const volume::RecoveredSurface> surface;

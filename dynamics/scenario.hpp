@@ -1,6 +1,6 @@
 #pragma once
 // A simulation scenario in memory: bodies, contact pairs with their models, gravity and
-// integration settings. File formats live in formats/scenario_file (dynamics/SCENARIO.md).
+// integration settings. File formats live in formats/scenario_file (docs/SCENARIO.md).
 
 #include <optional>
 #include <string>
@@ -13,13 +13,13 @@
 
 namespace vcontact::dynamics {
 
-/// How a pair's friction force and spin torque are formed (dynamics/SCENARIO.md).
+/// How a pair's friction force and spin torque are formed (docs/SCENARIO.md).
 enum class FrictionMode {
   kLumped,       ///< MODEL.md §3: at the centroid, shared by the Contensou factors
   kDistributed,  ///< pointwise Coulomb friction over the columns δ map (DISTRIBUTED_FRICTION.md)
 };
 
-/// The fixed column grid of a distributed-friction pair, lines per side (DISTRIBUTED_FRICTION.md,
+/// The fixed column grid of a distributed-friction pair, lines per side (docs/DISTRIBUTED_FRICTION.md,
 /// "The grid"): 64 puts ~3,200 columns on a round face, whose V and spin torque are then
 /// within 3.5e-3 of the exact ones, at ~0.4 ms per evaluation (~100× the exact clip).
 constexpr int kDefaultColumnResolution = 64;
@@ -28,7 +28,7 @@ constexpr int kDefaultColumnResolution = 64;
 constexpr int kMinColumnResolution = 8;
 constexpr int kMaxColumnResolution = 512;
 
-/// State slots of a pair whose bodies can touch in several regions (dynamics/SCENARIO.md,
+/// State slots of a pair whose bodies can touch in several regions (docs/SCENARIO.md,
 /// "Contact patches"): one per patch followed (patch_tracker.hpp), up to this many.
 constexpr int kDefaultMaxPatches = 4;
 /// Bounds of that count: each slot carries the model's states in the integrator.
@@ -55,7 +55,7 @@ struct ContactPair {
   int max_patches = kDefaultMaxPatches;
 };
 
-/// The time integrator (dynamics/SCENARIO.md "Integrators").
+/// The time integrator (docs/SCENARIO.md "Integrators").
 enum class Integrator {
   kDopri5,    ///< explicit Dormand–Prince 5(4), Boost.Odeint: cheap steps, step ≲ 3.3/|λ_max|
   kBdf,       ///< implicit variable-order BDF, SUNDIALS CVODE: steps set by accuracy alone

@@ -145,7 +145,7 @@ struct SimulationSummary {
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
 };
 
-/// The state slots of pair p of scenario s (dynamics/SCENARIO.md, "Contact patches"): one for
+/// The state slots of pair p of scenario s (docs/SCENARIO.md, "Contact patches"): one for
 /// a pair that touches in one region only (distributed friction, the analytic method, two
 /// convex shapes), p.max_patches otherwise.
 /// @throws InputError when that count is outside [kMinMaxPatches, kMaxMaxPatches]

@@ -1,4 +1,4 @@
-// The Dormand–Prince run of a scenario (`"integrator": "dopri5"`, dynamics/SCENARIO.md):
+// The Dormand–Prince run of a scenario (`"integrator": "dopri5"`, docs/SCENARIO.md):
 // error-controlled steps shortened to land on the output times, the checks and the pair
 // states' discrete updates after each accepted step. Its attempt and aftermath serve the
 // resolved intervals of the discrete stepper too (simulator_discrete_impacts.cpp).

@@ -1,7 +1,7 @@
 #pragma once
 // A pose trajectory sampled at rows (t, p, q[, v][, ω]) and interpolated between them: the
 // prescribed motion of a body read from a CSV file, or the target of a drive
-// (dynamics/SCENARIO.md, "Prescribed motion from a table").
+// (docs/SCENARIO.md, "Prescribed motion from a table").
 //
 // Position: linear (velocity constant on each interval) or cubic Hermite, whose tangents are
 // the given velocities or, without them, the three-point estimates of the neighbouring rows.

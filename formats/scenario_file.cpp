@@ -119,7 +119,7 @@ io::ParsedShape readShape(const Reader& r, const std::string& shape,
 }
 
 // "surface": "mesh" (the polyhedron, default) or "recovered": the surfaces the mesh was
-// tessellated from, recognised here once (docs/SURFACES.md, dynamics/SCENARIO.md).
+// tessellated from, recognised here once (docs/SURFACES.md, docs/SCENARIO.md).
 void readSurface(const Reader& r, dynamics::RigidBody& body) {
   if (!r.has("surface")) return;
   const std::string surface = r.text("surface");
@@ -211,7 +211,7 @@ std::size_t bodyIndex(const Reader& r, const std::string& key,
   r.fail(key, "no body named '" + name + "'");
 }
 
-// "sleep": false, true (the defaults) or {"speed": m/s, "time": s} (dynamics/SCENARIO.md).
+// "sleep": false, true (the defaults) or {"speed": m/s, "time": s} (docs/SCENARIO.md).
 dynamics::SleepSettings readSleep(const Reader& r) {
   dynamics::SleepSettings s;
   const nlohmann::json& v = r["sleep"];
@@ -317,7 +317,7 @@ void readFriction(const Reader& p, dynamics::ContactPair& pair) {
   }
 }
 
-/// "max_patches": the pair's state slots for its contact patches (dynamics/SCENARIO.md,
+/// "max_patches": the pair's state slots for its contact patches (docs/SCENARIO.md,
 /// "Contact patches"), an integer in [kMinMaxPatches, kMaxMaxPatches].
 void readMaxPatches(const Reader& p, dynamics::ContactPair& pair) {
   if (!p.has("max_patches")) return;

@@ -1,7 +1,7 @@
 #pragma once
 // Scenario files: bodies, contact pairs with their models and volume methods, gravity,
 // duration, output rate, outputs and integration tolerances. The format is documented in
-// dynamics/SCENARIO.md. Relative paths (meshes, model files) are relative to the scenario file.
+// docs/SCENARIO.md. Relative paths (meshes, model files) are relative to the scenario file.
 
 #include <nlohmann/json.hpp>
 #include <string>

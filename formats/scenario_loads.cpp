@@ -7,7 +7,7 @@
 namespace vcontact::formats::detail {
 namespace {
 
-// The limits of springs and drives (dynamics/SCENARIO.md "Loads", "Springs"), kept beside the
+// The limits of springs and drives (docs/SCENARIO.md "Loads", "Springs"), kept beside the
 // keys they bound rather than in io/input_ranges.hpp, which every layer includes: zero (none)
 // up to about the axial stiffness of a steel bar a metre long and a square metre across
 // (~2e11 N/m), dampings and torsional values as wide; a stiffer spring is a joint, which

@@ -1,6 +1,6 @@
 #pragma once
 // The scenario keys of prescribed motion from a table, external loads and springs between
-// bodies (dynamics/SCENARIO.md "Prescribed motion from a table", "Loads", "Springs"); internal
+// bodies (docs/SCENARIO.md "Prescribed motion from a table", "Loads", "Springs"); internal
 // to formats/scenario_file.cpp.
 
 #include <memory>

@@ -1,7 +1,7 @@
 #pragma once
 // The reading of a scenario file's JSON objects, shared by formats/scenario_file.cpp and
 // formats/scenario_loads.cpp (internal to the formats layer): every message names the file,
-// the place in it and what was expected (dynamics/SCENARIO.md).
+// the place in it and what was expected (docs/SCENARIO.md).
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -19,7 +19,7 @@
 namespace vcontact::formats::detail {
 
 /// Why `name` cannot stand in a CSV field or column name, "" when it can. The simulation's CSV
-/// files are written without quoting (dynamics/SCENARIO.md, "Names"): a comma, a double quote,
+/// files are written without quoting (docs/SCENARIO.md, "Names"): a comma, a double quote,
 /// a line break or another control character would split or join fields, so a name holding one
 /// is refused where it is read; so is an empty name.
 inline std::string csvNameProblem(const std::string& name) {

@@ -1,4 +1,4 @@
-// vcontact.Scenario: a scenario file (dynamics/SCENARIO.md) loaded, run, and its body and pair
+// vcontact.Scenario: a scenario file (docs/SCENARIO.md) loaded, run, and its body and pair
 // series handed over as NumPy arrays.
 
 #include <chrono>
@@ -216,7 +216,7 @@ std::vector<std::string> loadNames(const dynamics::Scenario& scenario) {
 }
 
 void bindScenario(py::module_& m) {
-  py::class_<LoadedScenario>(m, "Scenario", "A scenario file (dynamics/SCENARIO.md), loaded.")
+  py::class_<LoadedScenario>(m, "Scenario", "A scenario file (docs/SCENARIO.md), loaded.")
       .def_static("load", &load, py::arg("path"))
       .def_static("from_json", &fromJson, py::arg("text"), py::arg("source"), py::arg("base_dir"))
       .def_readonly("path", &LoadedScenario::path)

@@ -3,7 +3,7 @@
 // pair_<name>.csv per contact pair (volume, centroid, normal, wrench on the payload at the
 // centroid, friction states and, optionally, each effect's share of the wrench), and for a
 // pair with several patch state slots pair_<name>_patches.csv (one row per patch per output
-// time; dynamics/SCENARIO.md).
+// time; docs/SCENARIO.md).
 
 #include <cstdint>
 #include <optional>

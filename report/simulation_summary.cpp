@@ -11,7 +11,7 @@ namespace vcontact::report {
 namespace {
 
 // "surfaces": per body with a recovered surface what recognition found, per pair with one
-// which representation its queries used (dynamics/SCENARIO.md "Recovered surfaces").
+// which representation its queries used (docs/SCENARIO.md "Recovered surfaces").
 nlohmann::json surfacesJson(const dynamics::SimulationSummary& s) {
   nlohmann::json bodies = nlohmann::json::array(), pairs = nlohmann::json::array();
   for (const dynamics::SurfaceBodyUse& b : s.surface_bodies) {

@@ -1,5 +1,5 @@
 """The binary STL writer shared by the scripts that generate the bundled meshes
-(scripts/bin_parts.py, scripts/peg_hole_meshes.py, assets/scenarios/meshes/cad_parts.py).
+(scripts/bin_parts.py, scripts/peg_hole_meshes.py, scripts/cad_parts.py).
 
 Binary STL: an 80-byte header, a little-endian uint32 triangle count, then per triangle a
 normal (written as zeros: vcontact and every reader we use recompute it from the winding),

@@ -1,7 +1,7 @@
 #pragma once
 // The friction map: where the lumped Coulomb + spin + contensou friction (MODEL.md §3) departs
 // from pointwise Coulomb friction integrated over the contact (dynamics/distributed_friction.hpp,
-// dynamics/DISTRIBUTED_FRICTION.md), swept over ε = v/(ωR) for combined sliding and spinning.
+// docs/DISTRIBUTED_FRICTION.md), swept over ε = v/(ωR) for combined sliding and spinning.
 //
 // A body (by default a flat punch) is pressed into a half-space plate; the column method's δ map
 // is taken once; for every ε the lumped model and the distributed integral give the friction

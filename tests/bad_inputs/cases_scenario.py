@@ -165,7 +165,7 @@ CASES = [
                   lambda s: s["bodies"][1].update(motion="prescribed", prescribed={
                       "velocity": [0, 0, -0.01], "amplitude": [0, 0, 0.001], "frequency": 1e8}),
                   ["bodies[1].prescribed.frequency"]),
-    # Prescribed motion from a table, loads and springs (dynamics/SCENARIO.md).
+    # Prescribed motion from a table, loads and springs (docs/SCENARIO.md).
     scenario_case("motion_csv_missing",
                   lambda s: (s["bodies"][1].pop("pose"),
                              s["bodies"][1].update(motion={"csv": "nowhere.csv"})),

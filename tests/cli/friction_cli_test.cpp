@@ -1,5 +1,5 @@
 // vcontact friction-map as a user runs it: the CSV it writes and what its rows must show
-// (dynamics/DISTRIBUTED_FRICTION.md).
+// (docs/DISTRIBUTED_FRICTION.md).
 
 #include <gtest/gtest.h>
 #include <unistd.h>

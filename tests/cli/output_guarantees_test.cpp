@@ -307,7 +307,7 @@ TEST(OutputGuarantees, NanFromAnExpressionEffectKeepsCompleteCsvs) {
 }
 
 // kv = 1e18 N/m³ (the input limit) with tolerances too loose for it: the ball arrives at
-// 0.1 m/s and leaves at metres per second (dynamics/SCENARIO.md, "Stopped runs"), far more
+// 0.1 m/s and leaves at metres per second (docs/SCENARIO.md, "Stopped runs"), far more
 // than ten times the energy of its 0.5 mm fall. Both integrators; with the default tolerances
 // the same impact finishes (OutputGuarantees.AbsurdStiffnessWithDefaultTolerancesFinishes).
 // The BDF's steps of a millisecond reach the plate at 9.7 ms, so rows up to 9 ms are kept.

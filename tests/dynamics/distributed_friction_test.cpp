@@ -1,5 +1,5 @@
 // Distributed (pointwise) Coulomb friction and the flat-punch closed form
-// (dynamics/distributed_friction.hpp, DISTRIBUTED_FRICTION.md):
+// (dynamics/distributed_friction.hpp, docs/DISTRIBUTED_FRICTION.md):
 //   (a) the elliptic closed form against a direct quadrature of the pointwise traction;
 //   (b) the integration over the columns δ map of a tessellated punch against the closed form;
 //   (c) the lumped Coulomb + spin + contensou model against the distributed reference;

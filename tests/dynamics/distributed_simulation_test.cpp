@@ -1,4 +1,4 @@
-// Simulations with "friction": "distributed" (dynamics/DISTRIBUTED_FRICTION.md): a flat punch
+// Simulations with "friction": "distributed" (docs/DISTRIBUTED_FRICTION.md): a flat punch
 // on the fixed 64-line column grid, against the closed forms of pointwise Coulomb friction
 // (flatPunchFriction) and of the lumped Coulomb + spin + contensou model (lumpedPunchFriction)
 // run on the same punch with the exact half-space clip.
@@ -127,7 +127,7 @@ TEST(DistributedSimulation, SlidingPunchDeceleratesAtMuG) {
 
 // Sliding and spinning, sliding dominating (ε ≈ 4.7): the spin decelerates at the closed-form
 // pointwise torque M = μ N R m(ε), while the lumped model's torque is μ N R g²/√(ε² + g²),
-// about twice as high (DISTRIBUTED_FRICTION.md, "Where the lumped model fails").
+// about twice as high (docs/DISTRIBUTED_FRICTION.md, "Where the lumped model fails").
 TEST(DistributedSimulation, SpinDecelerationFollowsThePointwiseTorqueNotTheLumpedOne) {
   constexpr double kW0 = 2.0;  // rad/s: ε = 0.1/(2 × 0.01) = 5 at the start
   const Decelerations dist = decelerations(punchScenario(kW0, FrictionMode::kDistributed));

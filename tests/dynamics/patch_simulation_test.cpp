@@ -1,4 +1,4 @@
-// Contact patches in simulation (dynamics/SCENARIO.md, "Contact patches"): the model runs once
+// Contact patches in simulation (docs/SCENARIO.md, "Contact patches"): the model runs once
 // per patch, each patch's wrench acts at its own centroid, and each patch keeps its friction
 // states as it is followed from step to step.
 

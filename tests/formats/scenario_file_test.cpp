@@ -1,4 +1,4 @@
-// Scenario files (dynamics/SCENARIO.md): the bundled scenarios read; bad input names the file,
+// Scenario files (docs/SCENARIO.md): the bundled scenarios read; bad input names the file,
 // the place and what was expected; a failing run stops with time, pair and quantity and keeps
 // the output up to the stop.
 

@@ -1,5 +1,5 @@
 // The scenario keys of prescribed motion from a table, loads and springs
-// (dynamics/SCENARIO.md): they build the engine's objects, paths are relative to the scenario,
+// (docs/SCENARIO.md): they build the engine's objects, paths are relative to the scenario,
 // bad tables name the file, line and column, and "contacts" pairs a prescribed body with a
 // fixed one, whose contact force the run reports.
 

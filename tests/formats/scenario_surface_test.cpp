@@ -1,4 +1,4 @@
-// "surface": "recovered" on a scenario body (dynamics/SCENARIO.md, "Recovered surfaces"): the
+// "surface": "recovered" on a scenario body (docs/SCENARIO.md, "Recovered surfaces"): the
 // key's checks, what the run's summary records, and the bundled rolling ball from a
 // 2,000-triangle mesh against the analytic sphere.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the CAD-like parts of ../cad_tray_drop.json as binary STL (metres, closed,
+"""Writes the CAD-like parts of assets/scenarios/cad_tray_drop.json as binary STL (metres, closed,
 outward-oriented, every shared edge made of the same vertices):
 
   tray_10k.stl     open-top tray 60 x 40 x 20 mm (4 mm floor, 3 mm walls) with two
@@ -8,14 +8,13 @@ outward-oriented, every shared edge made of the same vertices):
                    1 mm x 1 mm entry chamfers.
 
 The curved features are finely faceted (128 segments), as an STL export of a CAD model is:
-about 10k triangles each. Run: python3 cad_parts.py (writes into this folder)."""
+about 10k triangles each. Run: python3 scripts/cad_parts.py (writes into assets/scenarios/meshes/)."""
 import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
-                                "scripts"))
-from stl_writer import write_binary_stl  # noqa: E402 (the shared writer lives in scripts/)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from stl_writer import write_binary_stl  # noqa: E402 (the shared writer, beside this script)
 
 N_SEG = 128          # segments around every circle
 PIN_X = 0.020        # pins and holes at (±PIN_X, 0)
@@ -204,7 +203,8 @@ def fixture():
 
 
 if __name__ == "__main__":
-    here = os.path.dirname(os.path.abspath(__file__))
+    meshes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "scenarios",
+                          "meshes")
     for name, mesh in (("tray_10k.stl", tray()), ("fixture_10k.stl", fixture())):
-        mesh.write_stl(os.path.join(here, name))
+        mesh.write_stl(os.path.join(meshes, name))
         print(f"{name}: {len(mesh.tris)} triangles, {len(mesh.points)} vertices")

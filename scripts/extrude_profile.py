@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes the battery-box and fixture meshes of ../battery_box_fixture.json as ASCII STL:
+"""Writes the battery-box and fixture meshes of assets/scenarios/battery_box_fixture.json as ASCII STL:
 non-convex x-z profiles extruded along y (closed, outward-oriented; caps by ear clipping).
-Lengths in metres. Run: python3 extrude_profile.py (writes into this folder)."""
+Lengths in metres. Run: python3 scripts/extrude_profile.py (writes into assets/scenarios/meshes/)."""
 import os
 
 # Open-top tray: 4 mm base, 3 mm walls 20 mm high, two 4 mm alignment ribs 6 mm below the base.
@@ -77,6 +77,6 @@ def write_stl(path, tris):
         f.write("endsolid part\n")
 
 
-here = os.path.dirname(os.path.abspath(__file__))
+here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "scenarios", "meshes")
 write_stl(os.path.join(here, "battery_box.stl"), extrude(BOX, 0.04))
 write_stl(os.path.join(here, "fixture.stl"), extrude(FIXTURE, 0.06))

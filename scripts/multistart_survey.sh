@@ -13,7 +13,7 @@
 # diagnose (docs/DIAGNOSIS.md), a gap that can change a verdict. The table lists every fit and
 # the totals; the verdicts of the two diagnose runs are compared too.
 #
-#   bash validation/multistart_survey.sh [OUT_DIR] [VCONTACT_BINARY]
+#   bash scripts/multistart_survey.sh [OUT_DIR] [VCONTACT_BINARY]
 #
 # Takes a few minutes (2 cores). Needs Debian's python3 (/usr/bin/python3, standard library).
 set -euo pipefail

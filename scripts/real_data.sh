@@ -5,8 +5,8 @@
 # never copied; when the folder is absent (a user's clone) the script says so and exits 0.
 # Not part of the README's test command.
 #
-#   bash validation/real_data.sh [OUT_DIR] [VCONTACT_BINARY]
-#   VCONTACT_REALDATA=/path/to/realdata bash validation/real_data.sh
+#   bash scripts/real_data.sh [OUT_DIR] [VCONTACT_BINARY]
+#   VCONTACT_REALDATA=/path/to/realdata bash scripts/real_data.sh
 #
 # OUT_DIR (default /tmp/vcontact-real-data) receives diagnosis.json, model.json,
 # residuals.csv, report.html and the printed log, diagnose.txt; then the payload inertia check
