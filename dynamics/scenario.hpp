@@ -19,9 +19,10 @@ enum class FrictionMode {
   kDistributed,  ///< pointwise Coulomb friction over the columns δ map (DISTRIBUTED_FRICTION.md)
 };
 
-/// The fixed column grid of a distributed-friction pair, lines per side (docs/DISTRIBUTED_FRICTION.md,
-/// "The grid"): 64 puts ~3,200 columns on a round face, whose V and spin torque are then
-/// within 3.5e-3 of the exact ones, at ~0.4 ms per evaluation (~100× the exact clip).
+/// The fixed column grid of a distributed-friction pair, lines per side
+/// (docs/DISTRIBUTED_FRICTION.md, "The grid"): 64 puts ~3,200 columns on a round face, whose V and
+/// spin torque are then within 3.5e-3 of the exact ones, at ~0.4 ms per evaluation (~100× the exact
+/// clip).
 constexpr int kDefaultColumnResolution = 64;
 /// Bounds of that resolution: below 8 lines a face is a few dozen columns (errors of ~10 %);
 /// 512 is the adaptive method's own ceiling (~30 ms per evaluation of a face).
