@@ -137,9 +137,9 @@ void runTrajectoryCompare(const formats::DatasetReadResult& data, const dynamics
             << " % of the payload's size, mean rotation error " << r.rotationDeg
             << " deg, deepest penetration " << r.maxPenetration << " m\n";
   for (const auto& p : r.phases)
-    std::cout << "  " << validation::phaseName(p.phase) << " (" << p.samples << " samples): e_q "
-              << p.e_q << ", position " << 100 * p.positionFraction << " %, rotation "
-              << p.rotationDeg << " deg\n";
+    std::cout << "  " << validation::trajectoryPhaseName(p.phase) << " (" << p.samples
+              << " samples): e_q " << p.e_q << ", position " << 100 * p.positionFraction
+              << " %, rotation " << p.rotationDeg << " deg\n";
   if (!std::isnan(r.partTime))
     std::cout << "the paths part " << r.partTime << " s after the start\n";
   if (!e.path.stopped.empty()) printWarnings({"the simulation stopped: " + e.path.stopped});

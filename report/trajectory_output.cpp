@@ -14,7 +14,7 @@ namespace vcontact::report {
 namespace {
 
 using nlohmann::json;
-using validation::Phase;
+using validation::TrajectoryPhase;
 
 constexpr int kPageWidth = 1060;
 const char* kPageStyle =
@@ -67,18 +67,19 @@ void putTrajectoryCsv(const validation::Trial& trial, const validation::TrialEva
     out << d.samples[i].t;
     for (int k = 0; k < 7; ++k) out << ',' << rec[k] << ',' << sim[k];
     out << ',' << e.errors.dp[i] << ',' << e.errors.dtheta[i] << ",\""
-        << validation::phaseName(trial.phases[i]) << "\"\n";
+        << validation::trajectoryPhaseName(trial.phases[i]) << "\"\n";
   }
 }
 
 json trajectoryErrorsJson(const validation::TrajectoryErrors& e) {
   json phases = json::object();
   for (const auto& p : e.phases) {
-    phases[validation::phaseName(p.phase)] = {{"samples", p.samples},
-                                              {"e_q", p.e_q},
-                                              {"position_error_fraction", p.positionFraction},
-                                              {"rotation_error_deg", p.rotationDeg},
-                                              {"max_penetration_m", p.maxPenetration}};
+    phases[validation::trajectoryPhaseName(p.phase)] = {
+        {"samples", p.samples},
+        {"e_q", p.e_q},
+        {"position_error_fraction", p.positionFraction},
+        {"rotation_error_deg", p.rotationDeg},
+        {"max_penetration_m", p.maxPenetration}};
   }
   return {{"e_q", e.e_q},
           {"e_q_position", e.e_position},
@@ -147,8 +148,8 @@ std::string trajectoryReportHtml(const validation::Trial& trial,
   h << "<table><tr><th>phase</th><th>samples</th><th>e_q</th><th>|Δp| / size</th>"
        "<th>rotation error (°)</th><th>deepest penetration (mm)</th></tr>";
   for (const auto& p : e.errors.phases)
-    h << "<tr><td>" << validation::phaseName(p.phase) << "</td><td>" << p.samples << "</td><td>"
-      << num(p.e_q) << "</td><td>" << num(p.positionFraction, 3) << "</td><td>"
+    h << "<tr><td>" << validation::trajectoryPhaseName(p.phase) << "</td><td>" << p.samples
+      << "</td><td>" << num(p.e_q) << "</td><td>" << num(p.positionFraction, 3) << "</td><td>"
       << num(p.rotationDeg, 3) << "</td><td>" << num(1e3 * p.maxPenetration, 3) << "</td></tr>";
   h << "</table>\n";
   h << lineChart({"Height of the payload origin", "t (s)", "z (m)", kPageWidth},

@@ -89,41 +89,43 @@ double noiseOf(const Dataset& d, const std::string& output) {
 
 }  // namespace
 
-const char* phaseName(Phase p) {
+const char* trajectoryPhaseName(TrajectoryPhase p) {
   switch (p) {
-    case Phase::kFlight:
+    case TrajectoryPhase::kFlight:
       return "flight";
-    case Phase::kImpact:
+    case TrajectoryPhase::kImpact:
       return "impacts";
-    case Phase::kSliding:
+    case TrajectoryPhase::kSliding:
       return "sliding or rolling";
-    case Phase::kRest:
+    case TrajectoryPhase::kRest:
       return "rest";
   }
   return "?";
 }
 
-std::vector<Phase> recordPhases(const Dataset& d) {
+std::vector<TrajectoryPhase> recordPhases(const Dataset& d) {
   const double size = payloadSize(d);
   const double margin = std::max(3.0 * noiseOf(d, "position"), 0.02 * size);
-  std::vector<Phase> phases(d.size(), Phase::kFlight);
+  std::vector<TrajectoryPhase> phases(d.size(), TrajectoryPhase::kFlight);
   int sinceFlight = kImpactSamples;  // a record that starts in contact starts with no impact
   for (std::size_t i = 0; i < d.size(); ++i) {
     if (!inContact(d, d.samples[i].X_BA, margin)) {
-      phases[i] = Phase::kFlight;
+      phases[i] = TrajectoryPhase::kFlight;
       sinceFlight = 0;
       continue;
     }
     if (sinceFlight < kImpactSamples && i > 0) {
-      phases[i] = Phase::kImpact;
+      phases[i] = TrajectoryPhase::kImpact;
       ++sinceFlight;
       continue;
     }
     sinceFlight = kImpactSamples;
     // hysteresis: a payload at rest stays so until it moves at twice the rest speed, so that
     // the noise of a slowing slide does not flicker between the two
-    const double limit = (i > 0 && phases[i - 1] == Phase::kRest ? 2.0 : 1.0) * kRestSpeed;
-    phases[i] = pointSpeed(d, i, 0.5 * size) < limit ? Phase::kRest : Phase::kSliding;
+    const double limit =
+        (i > 0 && phases[i - 1] == TrajectoryPhase::kRest ? 2.0 : 1.0) * kRestSpeed;
+    phases[i] =
+        pointSpeed(d, i, 0.5 * size) < limit ? TrajectoryPhase::kRest : TrajectoryPhase::kSliding;
   }
   return phases;
 }
@@ -234,7 +236,7 @@ TrajectoryErrors trajectoryErrors(const Trial& trial, const SimulatedPath& path,
     PhaseErrors p = per[k];
     if (p.samples == 0) continue;
     const auto m = static_cast<double>(p.samples);
-    p.phase = static_cast<Phase>(k);
+    p.phase = static_cast<TrajectoryPhase>(k);
     p.e_q /= m;
     p.positionFraction /= m;
     p.rotationDeg /= m;

@@ -55,8 +55,9 @@ struct SimulatedPath {
 };
 
 /// What the record does at a sample, read from the record alone (never from the model).
-enum class Phase { kFlight, kImpact, kSliding, kRest };
-const char* phaseName(Phase p);  ///< "flight", "impacts", "sliding or rolling", "rest"
+enum class TrajectoryPhase { kFlight, kImpact, kSliding, kRest };
+/// "flight", "impacts", "sliding or rolling", "rest"
+const char* trajectoryPhaseName(TrajectoryPhase p);
 inline constexpr int kPhaseCount = 4;
 
 /// The record's phase at every sample: flight while the payload's lowest point is more than
@@ -64,7 +65,7 @@ inline constexpr int kPhaseCount = 4;
 /// is zero (other plates); in contact, an impact at the first kImpactSamples samples after
 /// flight; rest while the payload's points move slower than kRestSpeed on average over
 /// kRestWindow (twice that once at rest); sliding or rolling else.
-std::vector<Phase> recordPhases(const Dataset& d);
+std::vector<TrajectoryPhase> recordPhases(const Dataset& d);
 inline constexpr int kImpactSamples = 3;
 inline constexpr double kRestSpeed = 0.02;  ///< m/s: a few mocap noise levels at 148 Hz
 /// s: rest is judged on the mean speed over this window (the poses at its ends), so that the
@@ -72,7 +73,7 @@ inline constexpr double kRestSpeed = 0.02;  ///< m/s: a few mocap noise levels a
 inline constexpr double kRestWindow = 0.1;
 
 struct PhaseErrors {
-  Phase phase = Phase::kFlight;
+  TrajectoryPhase phase = TrajectoryPhase::kFlight;
   std::size_t samples = 0;
   double e_q = 0.0;
   double positionFraction = 0.0;  ///< mean |Δp| over the payload's smallest extent
@@ -91,7 +92,7 @@ struct TrajectoryErrors {
   double maxPenetration = 0.0;
   std::vector<double> dp;           ///< m, per sample
   std::vector<double> dtheta;       ///< rad, per sample
-  std::vector<PhaseErrors> phases;  ///< the phases the record has, in Phase order
+  std::vector<PhaseErrors> phases;  ///< the phases the record has, in TrajectoryPhase order
   /// s after the first sample: the first sample where |Δp| > h/2 or θ > 0.25 rad (they part);
   /// NaN when they never do.
   double partTime = std::numeric_limits<double>::quiet_NaN();
@@ -101,7 +102,7 @@ struct TrajectoryErrors {
 struct Trial {
   Dataset data;
   FlightState start;
-  std::vector<Phase> phases;
+  std::vector<TrajectoryPhase> phases;
 };
 Trial prepareTrial(Dataset data);
 

@@ -235,7 +235,7 @@ std::string worstPhase(const TrajectoryErrors& e) {
     const double share = p.e_q * static_cast<double>(p.samples);
     if (share > worst) {
       worst = share;
-      name = phaseName(p.phase);
+      name = trajectoryPhaseName(p.phase);
     }
   }
   return name;

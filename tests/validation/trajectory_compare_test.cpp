@@ -122,11 +122,11 @@ TEST(TrajectoryCompare, PhasesOfADropThatSlidesToRest) {
   spec.v0 = Eigen::Vector3d(0.6, 0, 0);
   spec.duration = 0.8;
   const Trial t = testing::makeToss(spec, contactModel(), 0.0, 0.0, 0.0, 1, "slide");
-  std::vector<Phase> order;
-  for (Phase p : t.phases)
+  std::vector<TrajectoryPhase> order;
+  for (TrajectoryPhase p : t.phases)
     if (order.empty() || order.back() != p) order.push_back(p);
-  const std::vector<Phase> expected = {Phase::kFlight, Phase::kImpact, Phase::kSliding,
-                                       Phase::kRest};
+  const std::vector<TrajectoryPhase> expected = {TrajectoryPhase::kFlight, TrajectoryPhase::kImpact,
+                                                 TrajectoryPhase::kSliding, TrajectoryPhase::kRest};
   EXPECT_EQ(order, expected);
 }
 
