@@ -33,7 +33,7 @@ validation::Trial toss(double height) {
   validation::Trial t;
   t.data = validation::testing::tossTemplate(spec, "bench");
   t.start = validation::initialState(t.data);
-  t.phases.assign(t.data.size(), validation::Phase::kFlight);
+  t.phases.assign(t.data.size(), validation::TrajectoryPhase::kFlight);
   return t;
 }
 
