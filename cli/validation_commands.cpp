@@ -62,7 +62,8 @@ struct Inputs {
 
 // Reads and checks everything; creates nothing. `outputs` are the names of the files the
 // command writes into --out: none may be one of its inputs.
-Inputs readInputs(const ValidationOptions& o, const std::vector<std::string>& outputs) {
+// The options' own checks, before any file is read (a bad option is named first).
+void checkOptions(const ValidationOptions& o) {
   try {  // the message names the option too
     io::checkOutputFolder(o.out);
   } catch (const InputError& e) {
@@ -70,6 +71,10 @@ Inputs readInputs(const ValidationOptions& o, const std::vector<std::string>& ou
   }
   if (o.maxIterations < 1) throw InputError("--max-iterations", "expected a positive count");
   if (o.starts < 0) throw InputError("--starts", "expected a count >= 0");
+}
+
+Inputs readInputs(const ValidationOptions& o, const std::vector<std::string>& outputs) {
+  checkOptions(o);
   Inputs in{
       formats::readDataset(o.dataset), formats::readModelFile(o.model),
       namingOptions({{"robust loss", "--loss"}}, [&] { return validation::parseLoss(o.loss); })};
@@ -168,6 +173,7 @@ void runCompare(const ValidationOptions& o) {
 
 // Several datasets, a folder or a list, or one dynamic dataset: the trajectory fit.
 bool trajectoryFit(ValidationOptions& o) {
+  checkOptions(o);
   const std::vector<std::string> all = expandDatasets(o.datasets);
   o.dataset = all.front();
   if (all.size() == 1 &&
