@@ -179,8 +179,6 @@ bool trajectoryFit(ValidationOptions& o) {
   if (all.size() == 1 &&
       formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kKinematic)
     return false;
-  if (fs::exists(o.out) && !fs::is_directory(o.out))
-    throw InputError("--out", o.out + " exists and is not a directory");
   runTrajectoryFit(all, formats::readModelFile(o.model), o.trajectory, o.out);
   return true;
 }
