@@ -147,8 +147,9 @@ std::vector<double> optimise(Evaluator& eval, const std::vector<double>& u0) {
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const auto& a, const auto& b) { return a.second < b.second; });
   std::vector<std::vector<double>> starts;
-  for (const auto& [u, loss] : ranked) {
+  for (const auto& point : ranked) {
     if (static_cast<int>(starts.size()) >= o.starts) break;
+    const std::vector<double>& u = point.first;  // a plain name: clang 14 cannot capture a binding
     const bool distinct = std::all_of(starts.begin(), starts.end(), [&](const auto& s) {
       double d2 = 0.0;
       for (unsigned k = 0; k < n; ++k) d2 += (s[k] - u[k]) * (s[k] - u[k]);
