@@ -394,7 +394,7 @@ DiagnosisStage diagnoseStage(const Dataset& dataset, const NoiseLevels& noise, c
   stage.baseline = fit(replayer, noise, start, baselineOptions);
   stage.where = failureWindows(dataset, stage.baseline.comparison, stage.baseline.prediction);
   stage.direct = directEstimates(dataset, noise, stage.baseline.prediction);
-  compareWithFit(dataset, noise, stage.baseline, stage.direct);
+  compareWithFit(dataset, stage.baseline, stage.direct);
   stage.seconds.baseline = lap(t);
   stage.ranking = candidateList(stage.baseline.model, options);
   fitCandidates(replayer, noise, stage.baseline.model, options, label, stage.ranking);

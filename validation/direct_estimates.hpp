@@ -19,8 +19,9 @@
 // A restitution coefficient is not estimated: a kinematic record's motion is prescribed by
 // the rig, so its rebounds say nothing of the contact.
 //
-// Beside a fit (compareWithFit): a fitted value outside the estimate's range (a parameter the
-// model lacks is taken at its neutral value: power_law.p = 1, lag 0) is flagged, with the
+// Beside a fit (compareWithFit): a fitted value outside the estimate's range by more than 2 % of
+// the estimate, the estimate's own precision (a parameter the model lacks is taken at its
+// neutral value: power_law.p = 1, lag 0), is flagged, with the
 // reason the fit moved there: the model is replayed with the parameter at the direct estimate
 // (the others held) and the change of χ² is split by phase and by output: the parts whose χ²
 // would rise pull the fit away from the record's own estimate.
@@ -55,8 +56,7 @@ std::vector<DirectEstimate> directEstimates(const Dataset& dataset, const NoiseL
 
 /// Sets fitted, far and pull of each estimate against `fit` and adds a warning to
 /// fit.warnings for each one far from it (see the header). Costs one replay per far estimate.
-void compareWithFit(const Dataset& dataset, const NoiseLevels& noise, FitResult& fit,
-                    std::vector<DirectEstimate>& estimates);
+void compareWithFit(const Dataset& dataset, FitResult& fit, std::vector<DirectEstimate>& estimates);
 
 /// directEstimates of the fit's own prediction, compared with it (compareWithFit): what
 /// `fit` shows beside its values (the CLI and Python alike).
