@@ -15,8 +15,8 @@ namespace vcontact::volume {
 
 /// Whether a query computes ContactVolume::depth, the deepest column d = max over the plate of
 /// δ(s) (MODEL.md §1), for the one method whose depth is a pass of its own (QueryOptions::depth).
-/// By default it does not: `fast`'s exact depth pass (column_depth.hpp) costs 3–5× the rest of
-/// a query on two curved meshes (benchmarks/README.md, "Depth on demand"), and neither the force
+/// By default it does not: `fast`'s exact depth pass (column_depth.hpp) makes a query on two
+/// curved meshes 3–4× as long (benchmarks/README.md, "Depth on demand"), and neither the force
 /// model nor any other field needs it. Ask for kDeepest where d is shown or used.
 enum class DepthMode {
   kDeepest,  ///< every method fills depth: `fast` runs its exact depth pass

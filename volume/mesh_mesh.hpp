@@ -91,8 +91,8 @@ struct MeshMeshCache {
 ///   region onto the plate, exact when every column along n crosses the region once (as in
 ///   cgal_reference.hpp, so the two methods report the same area);
 ///   depth = max over the plate of δ(s), the longest column along n (column_depth.hpp), only
-///   with `deepest`; NaN by default (the pass costs 3–5× the rest of the query on two curved
-///   meshes, benchmarks/README.md, "Depth on demand").
+///   with `deepest`; NaN by default (the pass makes a query on two curved meshes 3–4×
+///   as long, benchmarks/README.md, "Depth on demand").
 /// Apart, or touching without overlap: V = 0 (inContact() false).
 /// Patches (step 5, mesh_mesh_patches.cpp): the pieces of ∂(A ∩ B) join through their end
 /// nodes (crossings, inside vertices; whole faces through their corners); a face whose region

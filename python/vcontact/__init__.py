@@ -96,7 +96,7 @@ def contact(a, X_WA, b, X_WB, method=None, depth=False):
     relative_error, method, in_contact).
 
     depth=True computes the exact deepest column of the `fast` method (the default for two
-    meshes), a pass that costs 3-5x the rest of its query; without it a `fast` region's
+    meshes), a pass that makes its query 3-4x as long; without it a `fast` region's
     "depth" is None. Every other method fills "depth" either way, and every other field is
     the same either way.
     """
