@@ -10,10 +10,12 @@
 //   torus_*: a non-convex body on a half-space, flat and upright (registerTorus).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
 // the half-space modelled as a box), columns (column integration to 1e-3), fast (exact local
-// surface integration of two meshes, volume/mesh_mesh.hpp), fast_skip (the same without the
-// depth pass, QueryOptions::depth = kSkip: a simulation's force evaluation); dispatch: the default
-// method through volume::computeContact (the method table), to time the dispatch against the direct
-// call (halfspace for a half-space, fast for a pair).
+// surface integration of two meshes, volume/mesh_mesh.hpp, as called by default: depth NaN),
+// fast_depth (the same asked for its exact depth pass, `deepest`: the ratio fast_depth / fast
+// is what the depth costs); dispatch: the default method through volume::computeContact (the
+// method table), to time the dispatch against the direct call (halfspace for a half-space, fast
+// for a pair), and for a pair dispatch_depth (QueryOptions::depth = kDeepest, as `vcontact
+// volume` asks).
 
 #include <benchmark/benchmark.h>
 
@@ -89,6 +91,7 @@ const vcontact::geometry::Shape& sphereShape(int triangles) {
 
 void report(benchmark::State& state, const ContactVolume& cv, const MeshBvh& m) {
   state.counters["V"] = cv.volume;
+  state.counters["depth"] = cv.depth;  // NaN where the query leaves it out
   state.counters["triangles"] = double(m.mesh().triangleCount());
 }
 
@@ -194,32 +197,29 @@ void registerPair(const std::string& size, int triangles, bool withCgal) {
         },
         m);
   })->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((name + "fast").c_str(), [=](benchmark::State& s) {
-    const MeshBvh& m = sphere(triangles);
-    const auto& topo = sphereTopology(triangles);
-    run(
-        s,
-        [&] { return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB).aggregate; },
-        m);
-  })->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((name + "fast_skip").c_str(), [=](benchmark::State& s) {
-    const MeshBvh& m = sphere(triangles);
-    const auto& topo = sphereTopology(triangles);
-    run(
-        s,
-        [&] {
-          return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB, nullptr, false)
-              .aggregate;
-        },
-        m);
-  })->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((name + "dispatch").c_str(), [=](benchmark::State& s) {
-    const MeshBvh& m = sphere(triangles);
-    const vcontact::geometry::Shape& shape = sphereShape(triangles);
-    vcontact::volume::computeContact(shape, X_WA, shape, X_WB);  // the caches, before the loop
-    run(
-        s, [&] { return vcontact::volume::computeContact(shape, X_WA, shape, X_WB).aggregate; }, m);
-  })->Unit(benchmark::kMicrosecond);
+  for (const bool deepest : {false, true}) {
+    const std::string suffix = deepest ? "_depth" : "";
+    benchmark::RegisterBenchmark((name + "fast" + suffix).c_str(), [=](benchmark::State& s) {
+      const MeshBvh& m = sphere(triangles);
+      const auto& topo = sphereTopology(triangles);
+      const auto query = [&] {
+        return vcontact::volume::meshMeshContact(m, topo, X_WA, m, topo, X_WB, nullptr, deepest)
+            .aggregate;
+      };
+      run(s, query, m);
+    })->Unit(benchmark::kMicrosecond);
+    vcontact::volume::QueryOptions options;
+    if (deepest) options.depth = vcontact::volume::DepthMode::kDeepest;
+    benchmark::RegisterBenchmark((name + "dispatch" + suffix).c_str(), [=](benchmark::State& s) {
+      const MeshBvh& m = sphere(triangles);
+      const vcontact::geometry::Shape& shape = sphereShape(triangles);
+      vcontact::volume::computeContact(shape, X_WA, shape, X_WB);  // the caches, before the loop
+      const auto query = [&] {
+        return vcontact::volume::computeContact(shape, X_WA, shape, X_WB, options).aggregate;
+      };
+      run(s, query, m);
+    })->Unit(benchmark::kMicrosecond);
+  }
   if (!withCgal) return;
   benchmark::RegisterBenchmark((name + "cgal").c_str(), [=](benchmark::State& s) {
     const MeshBvh& m = sphere(triangles);

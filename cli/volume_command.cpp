@@ -58,11 +58,13 @@ std::optional<volume::Method> chosenMethod(const VolumeOptions& o, const io::Par
 }
 
 /// The contact by the chosen method; with --field, by a method that samples the δ map (by
-/// default the first the pair allows) and the map in `field`.
+/// default the first the pair allows) and the map in `field`. The table and --json print the
+/// depth, so the query asks for it (DepthMode::kDeepest: for `fast`, a few milliseconds at
+/// most, next to reading and checking the meshes).
 volume::ContactPatches compute(const VolumeOptions& o, const io::ParsedShape& a,
                                const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
                                const Eigen::Isometry3d& X_WB, volume::DepthField& field) {
-  const volume::QueryOptions query{chosenMethod(o, a, b)};
+  const volume::QueryOptions query{chosenMethod(o, a, b), 0, volume::DepthMode::kDeepest};
   if (o.field.empty()) return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query);
   if (query.method && !volume::fillsDepthField(*query.method)) {
     throw InputError("--field",
@@ -192,7 +194,8 @@ void addVolumeCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "volume",
       "Interference of body A (payload, B1) with body B (plate, B2): volume, centroid, "
-      "normal (out of B into A), inertia tensors J_v and J_s, area, r_gyr.");
+      "normal (out of B into A), inertia tensors J_v and J_s, area, r_gyr, depth (the deepest "
+      "column, MODEL.md §1).");
   cmd->add_option("A", opts->a, "shape of body A")->required();
   cmd->add_option("B", opts->b, "shape of body B")->required();
   cmd->add_option("--pose-a", opts->poseA, "pose of A in the world")->capture_default_str();

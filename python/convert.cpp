@@ -1,6 +1,7 @@
 #include "python/convert.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "geometry/error.hpp"
 #include "io/json_file.hpp"
@@ -107,7 +108,8 @@ py::dict contactVolumeDict(const volume::ContactVolume& cv) {
   d["volume"] = cv.volume;
   d["centroid"] = Eigen::Vector3d(cv.p_WC);
   d["normal"] = Eigen::Vector3d(cv.n_W);
-  d["depth"] = cv.depth;
+  // NaN only where the query left the depth out (QueryOptions::depth): not computed, so None
+  d["depth"] = std::isnan(cv.depth) ? py::object(py::none()) : py::float_(cv.depth);
   d["area"] = cv.area;
   d["r_gyr"] = cv.r_gyr;
   d["J_v"] = Eigen::Matrix3d(cv.J_v);
@@ -130,7 +132,9 @@ volume::ContactVolume contactVolumeFrom(const py::dict& d) {
   cv.volume = contactNumber(get("volume"), "volume");
   cv.p_WC = vector3(get("centroid"), "contact['centroid']");
   cv.n_W = vector3(get("normal"), "contact['normal']");
-  cv.depth = contactNumber(get("depth"), "depth");
+  // None: the depth was not asked for (contact(depth=False)); the model does not read it
+  cv.depth = get("depth").is_none() ? std::numeric_limits<double>::quiet_NaN()
+                                    : contactNumber(get("depth"), "depth");
   cv.area = contactNumber(get("area"), "area");
   cv.r_gyr = contactNumber(get("r_gyr"), "r_gyr");
   cv.J_v = contactMatrix(get("J_v"), "J_v");

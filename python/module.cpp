@@ -90,10 +90,13 @@ PyShape meshFromArrays(const py::array_t<double, py::array::c_style | py::array:
           std::move(warnings)};
 }
 
+// depth=False leaves `fast`'s exact depth pass out (QueryOptions::depth): its regions' "depth"
+// is then None (contactVolumeDict), as "relative_error" is where a method has none.
 py::dict contactDict(const PyShape& a, const py::object& X_WA, const PyShape& b,
-                     const py::object& X_WB, const std::optional<std::string>& method) {
+                     const py::object& X_WB, const std::optional<std::string>& method, bool depth) {
   volume::QueryOptions options;
   if (method) options.method = volume::parseMethod(*method);
+  options.depth = depth ? volume::DepthMode::kDeepest : volume::DepthMode::kSkip;
   const volume::ContactPatches c =
       volume::computeContact(a.shape, toPose(X_WA, "X_WA"), b.shape, toPose(X_WB, "X_WB"), options);
   py::list patches;
@@ -123,7 +126,7 @@ void bindShapes(py::module_& m) {
       "pose_matrix", [](const py::object& pose) { return poseMatrix(toPose(pose, "pose")); },
       py::arg("pose"), "The 4x4 matrix of any pose form contact() accepts.");
   m.def("contact", &contactDict, py::arg("a"), py::arg("X_WA"), py::arg("b"), py::arg("X_WB"),
-        py::arg("method") = py::none());
+        py::arg("method") = py::none(), py::arg("depth") = false);
 }
 
 }  // namespace

@@ -33,6 +33,9 @@ PACKAGES=(
   # Studies (docs/STUDY.md): Dask distributed runs them, SciPy's qmc samples the designs,
   # h5py writes the large tables.
   python3-dask python3-distributed python3-scipy python3-h5py
+  # Simbody's elastic foundation, the reference of the mesh–mesh query benchmark (issue 33,
+  # benchmarks/simbody_bench.cpp, vcontact_simbody_bench); the rest of the build does not use it.
+  libsimbody-dev
 )
 # The libFuzzer harnesses (tests/fuzz, -DVCONTACT_FUZZ=ON) need clang and its fuzzer and
 # sanitizer runtimes; a normal build does not.

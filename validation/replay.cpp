@@ -144,9 +144,14 @@ SampleGeometry sampleGeometry(const Dataset& d, const Sample& s, const Model& mo
                               HalfspaceVolumes& halfspace) {
   const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d X_BA = model.adjustPayloadPose(s.X_BA, X_BB);
-  const volume::ContactPatches c = std::holds_alternative<geometry::HalfSpace>(d.plate)
-                                       ? halfspace.at(d.payload, d.payload_surface.get(), X_BA)
-                                       : volume::computeContact(d.payload, X_BA, d.plate, X_BB);
+  // The regimes report d and the direct estimates fit V against it (direct_estimates.cpp), so
+  // a mesh plate's query asks for the exact depth (`fast` leaves it NaN otherwise).
+  volume::QueryOptions query;
+  query.depth = volume::DepthMode::kDeepest;
+  const volume::ContactPatches c =
+      std::holds_alternative<geometry::HalfSpace>(d.plate)
+          ? halfspace.at(d.payload, d.payload_surface.get(), X_BA)
+          : volume::computeContact(d.payload, X_BA, d.plate, X_BB, query);
   SampleGeometry g;
   static_cast<PatchGeometry&>(g) = patchGeometry(c.aggregate, s, X_BA);
   g.X_BA = X_BA;

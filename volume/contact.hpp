@@ -13,10 +13,16 @@
 
 namespace vcontact::volume {
 
-/// Whether a query computes ContactVolume::depth exactly (QueryOptions::depth).
+/// Whether a query computes ContactVolume::depth, the deepest column d = max over the plate of
+/// δ(s) (MODEL.md §1), for the one method whose depth is a pass of its own (QueryOptions::depth).
+/// By default it does not: `fast`'s exact depth pass (column_depth.hpp) makes a query on two
+/// curved meshes 3–4× as long (benchmarks/README.md, "Depth on demand"), and neither the force
+/// model nor any other field needs it. Ask for kDeepest where d is shown or used.
 enum class DepthMode {
-  kDeepest,  ///< every method fills depth: max over the plate of δ(s) (MODEL.md §1)
-  kSkip,     ///< `fast` leaves depth NaN (the others fill it all the same)
+  kDeepest,  ///< every method fills depth: `fast` runs its exact depth pass
+  kSkip,     ///< the default: `fast` leaves depth NaN; every other method fills it all the
+             ///< same (analytic, halfspace, columns: a by-product; cgal: its corefinement
+             ///< dwarfs the pass), and every other field is the same to the bit either way
 };
 
 /// How a query is computed.
@@ -28,10 +34,11 @@ struct QueryOptions {
   /// query costs the same (a simulation's right-hand side) and gives no error estimate;
   /// 0: the method's own refinement. Methods without a grid ignore it.
   int fixed_resolution = 0;
-  /// kSkip spares `fast` its exact depth pass (column_depth.hpp), which costs several times
-  /// the rest of its query (benchmarks/README.md): for callers that do not read depth, such
-  /// as a simulation's force evaluations (the force model uses V, not depth).
-  DepthMode depth = DepthMode::kDeepest;
+  /// kSkip (the default) spares `fast` its exact depth pass, so that ContactVolume::depth of
+  /// a `fast` query is NaN unless kDeepest is asked for. Callers that show or use depth ask:
+  /// `vcontact volume` (table and --json), Python's contact(depth=True), the validation
+  /// replay (its regimes fit V against d), a simulation's output samples (Simulator).
+  DepthMode depth = DepthMode::kSkip;
 };
 
 /// The method used when none is asked for: the first default row of the table that takes
@@ -66,6 +73,8 @@ struct ContactCache {
 /// The contact patches of A (the payload) and B (the plate or other body) and their aggregate
 /// (ContactPatches) by options.method, specks left out (patch_floor.hpp). `fast` takes two meshes
 /// only: a mesh against a half-space is refused (the halfspace clip is the exact method for it).
+/// Every field of every patch is filled, except `depth` of a `fast` query (the default method
+/// for two meshes), which is NaN unless options.depth is DepthMode::kDeepest.
 /// @param field  if not null, filled with the δ samples of the contact (left as it was when
 ///               the bodies are apart); the method must fill depth fields (fillsDepthField)
 /// @param cache  if not null, the pair's memory between queries (ContactCache)

@@ -90,8 +90,9 @@ struct MeshMeshCache {
 ///   area = ½ Σ_faces |n_f·n| A_f over the region's boundary faces, the projection of the
 ///   region onto the plate, exact when every column along n crosses the region once (as in
 ///   cgal_reference.hpp, so the two methods report the same area);
-///   depth = max over the plate of δ(s), the longest column along n (column_depth.hpp), or
-///   NaN without `deepest` (the pass costs several times the rest of the query).
+///   depth = max over the plate of δ(s), the longest column along n (column_depth.hpp), only
+///   with `deepest`; NaN by default (the pass makes a query on two curved meshes 3–4×
+///   as long, benchmarks/README.md, "Depth on demand").
 /// Apart, or touching without overlap: V = 0 (inContact() false).
 /// Patches (step 5, mesh_mesh_patches.cpp): the pieces of ∂(A ∩ B) join through their end
 /// nodes (crossings, inside vertices; whole faces through their corners); a face whose region
@@ -104,7 +105,8 @@ struct MeshMeshCache {
 /// @param a, b        the trees of the two meshes (body frames A and B)
 /// @param topoA, topoB the topology of the same meshes
 /// @param cache        if not null, the pair's leaf pairs kept between queries (MeshMeshCache)
-/// @param deepest      compute depth (false: depth is NaN, everything else the same)
+/// @param deepest      compute depth (false, the default: depth is NaN, everything else the
+///                     same to the bit)
 /// @pre both meshes closed, outward-oriented, without degenerate faces or self-intersections
 ///   (geometry/mesh_check.hpp), without cavities; thread-safe (per-thread scratch memory).
 /// @throws std::logic_error, with both poses to 17 digits, if the crossings do not close
@@ -112,13 +114,14 @@ struct MeshMeshCache {
 ContactPatches meshMeshContact(const geometry::MeshBvh& a, const geometry::MeshTopology& topoA,
                                const Eigen::Isometry3d& X_WA, const geometry::MeshBvh& b,
                                const geometry::MeshTopology& topoB, const Eigen::Isometry3d& X_WB,
-                               MeshMeshCache* cache = nullptr, bool deepest = true);
+                               MeshMeshCache* cache = nullptr, bool deepest = false);
 
 /// The method table's backend of `fast` (methods.hpp): meshMeshContact of two mesh shapes,
-/// their trees and topologies from bvh_cache.hpp and mesh_topology_cache.hpp.
+/// their trees and topologies from bvh_cache.hpp and mesh_topology_cache.hpp; `deepest` as
+/// there (QueryOptions::depth == DepthMode::kDeepest through computeContact).
 /// @pre a and b both meshes
 ContactPatches fastContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                            const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
-                           MeshMeshCache* cache, bool deepest = true);
+                           MeshMeshCache* cache, bool deepest = false);
 
 }  // namespace vcontact::volume

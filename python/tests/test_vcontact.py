@@ -81,6 +81,32 @@ def test_a_mesh_from_arrays_clips_to_the_exact_volume_and_shares_its_storage():
     assert box["aggregate"]["volume"] == pytest.approx(r["aggregate"]["volume"], rel=EXACT)
 
 
+def test_the_exact_depth_of_two_meshes_is_computed_when_asked_for():
+    # A brick pressed 1 mm into a plate, both meshes: the `fast` method, whose exact depth pass
+    # runs only with depth=True (docs/PYTHON.md); the depth is the slab's thickness.
+    brick = vcontact.mesh(*box_arrays(0.02, 0.03, 0.01), name="brick")
+    plate = vcontact.mesh(*box_arrays(0.2, 0.2, 0.05), name="plate")
+    X_WA, X_WB = (0.003, -0.002, 0.004), (0.0, 0.0, -0.025)
+    default = vcontact.contact(brick, X_WA, plate, X_WB)
+    asked = vcontact.contact(brick, X_WA, plate, X_WB, depth=True)
+    for region in [default["aggregate"]] + default["patches"]:
+        assert region["method"] == "fast" and region["depth"] is None
+    assert asked["aggregate"]["depth"] == pytest.approx(0.001, rel=EXACT)
+    assert asked["patches"][0]["depth"] == asked["aggregate"]["depth"]
+    for key in ("volume", "area", "r_gyr"):  # the same query otherwise, to the bit
+        assert default["aggregate"][key] == asked["aggregate"][key]
+    for key in ("centroid", "normal", "J_v", "J_s"):
+        assert np.array_equal(default["aggregate"][key], asked["aggregate"][key])
+    assert asked["aggregate"]["volume"] == pytest.approx(0.02 * 0.03 * 0.001, rel=EXACT)
+    # a region without its depth still gives a wrench (the model does not read depth)
+    model = vcontact.Model.from_dict(
+        {"format": "vcontact.model/1", "effects": {"stiffness": {"kv": 4.2e12}}})
+    assert model.wrench(default["aggregate"])["f_n"] == model.wrench(asked["aggregate"])["f_n"]
+    # the other methods fill the depth either way
+    ball = vcontact.contact(vcontact.sphere(0.01), (0, 0, 0.0095), vcontact.halfspace(), None)
+    assert ball["aggregate"]["depth"] == pytest.approx(0.0005, rel=EXACT)
+
+
 def test_an_open_mesh_is_refused_naming_the_defect():
     v, f = box_arrays(0.02, 0.03, 0.01)
     with pytest.raises(vcontact.InputError, match=r"brick: .*boundary edges"):

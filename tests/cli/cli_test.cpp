@@ -92,6 +92,32 @@ TEST(Cli, VolumeListsEachPatch) {
   fs::remove(file);
 }
 
+// Two meshes take `fast`, whose exact depth pass a library query leaves out by default
+// (QueryOptions::depth): `volume` asks for it, so --json and the table give the depth of a
+// brick pressed 1 mm into a plate (the slab's thickness; OBJ keeps the coordinates' digits).
+TEST(Cli, VolumeOfTwoMeshesGivesTheExactDepth) {
+  const fs::path brick = fs::temp_directory_path() / "vcontact_cli_depth_brick.obj";
+  const fs::path plate = fs::temp_directory_path() / "vcontact_cli_depth_plate.obj";
+  io::writeObj(geometry::tessellateBox({0.02, 0.03, 0.01}), brick.string());
+  io::writeObj(geometry::tessellateBox({0.2, 0.2, 0.05}), plate.string());
+  const std::string args = "volume " + brick.string() + " " + plate.string() +
+                           " --pose-a 0.003,-0.002,0.004 --pose-b 0,0,-0.025";
+  const CommandResult r = run(args + " --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "fast");
+  ASSERT_TRUE(j["depth"].is_number()) << r.out;
+  // exact methods on one polyhedron: rounding of the placed vertices (1e-9 of d with room)
+  EXPECT_NEAR(j["depth"].get<double>(), 0.001, 1e-12);
+  EXPECT_NEAR(j["patches"][0]["depth"].get<double>(), 0.001, 1e-12);
+  const CommandResult table = run(args);
+  ASSERT_EQ(table.exitCode, 0) << table.err;
+  EXPECT_NE(table.out.find("depth           0.001"), std::string::npos) << table.out;
+  EXPECT_EQ(table.out.find("nan"), std::string::npos) << table.out;
+  fs::remove(brick);
+  fs::remove(plate);
+}
+
 TEST(Cli, BadMeshGivesOneMessageNonZeroExitAndNoOutputFile) {
   const fs::path file = fs::temp_directory_path() / "vcontact_cli_open.obj";
   const fs::path out = fs::temp_directory_path() / "vcontact_cli_should_not_exist.json";

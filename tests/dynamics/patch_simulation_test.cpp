@@ -102,8 +102,9 @@ TEST(PatchSimulation, OutputSamplesCarryTheExactDepth) {
   const Eigen::Isometry3d X_WA =
       placed(Vector3d::Zero(), Eigen::AngleAxisd(0.02, Vector3d::UnitX()).toRotationMatrix());
   const PairOutput p = atStart(heldPair(peg, X_WA, hole, volume::Method::kFast));
-  const volume::ContactPatches direct = volume::computeContact(
-      peg, X_WA, hole, Eigen::Isometry3d::Identity(), {volume::Method::kFast});
+  const volume::ContactPatches direct =
+      volume::computeContact(peg, X_WA, hole, Eigen::Isometry3d::Identity(),
+                             {volume::Method::kFast, 0, volume::DepthMode::kDeepest});
   ASSERT_EQ(p.patches.size(), 2u);
   ASSERT_EQ(direct.patches.size(), 2u);
   EXPECT_GT(p.cv.depth, 0.0);
@@ -132,8 +133,9 @@ TEST(PatchSimulation, DiscreteOutputsCarryTheExactDepth) {
   ASSERT_EQ(outputs.size(), 4u);
   for (const dynamics::Snapshot& o : outputs) {
     const PairOutput& p = o.pairs.front();
-    const volume::ContactPatches direct = volume::computeContact(
-        peg, o.bodies[1].X_WB, hole, Eigen::Isometry3d::Identity(), {volume::Method::kFast});
+    const volume::ContactPatches direct =
+        volume::computeContact(peg, o.bodies[1].X_WB, hole, Eigen::Isometry3d::Identity(),
+                               {volume::Method::kFast, 0, volume::DepthMode::kDeepest});
     ASSERT_EQ(p.patches.size(), 2u) << "t = " << o.t;
     ASSERT_EQ(direct.patches.size(), 2u);
     EXPECT_GT(p.cv.depth, 0.0);

@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
+#include <string>
 
+#include "geometry/tessellate.hpp"
 #include "validation/residuals.hpp"
 #include "validation/synthetic.hpp"
 
@@ -50,6 +53,44 @@ TEST(Replay, SlidingBallWrenchAboutTheOriginMatchesTheCapFormulas) {
     EXPECT_NEAR(p.wrench(i, 4) / (-c * fx), 1.0, kAnalyticTolerance);
     EXPECT_NEAR(p.regime[static_cast<std::size_t>(i)].speed, v, 1e-15);
   }
+}
+
+geometry::Shape meshShape(geometry::TriangleMesh m, const std::string& name) {
+  return geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(std::move(m)), name};
+}
+
+// A mesh plate takes `fast`, whose exact depth a query leaves out by default (volume/contact.hpp,
+// QueryOptions::depth): the replay asks for it, since the regimes report it and the direct
+// estimates fit V against it. A brick pressed d into a plate mesh, sliding: d is the slab's
+// thickness (exact methods on one polyhedron: rounding, 1e-9 of d with room).
+TEST(Replay, RegimeDepthOnAMeshPlateIsTheExactDepth) {
+  const Eigen::Vector3d size(0.0213, 0.0171, 0.0103);
+  const double d = 1e-4, kv = 4.1e12;
+  geometry::TriangleMesh plate = geometry::tessellateBox(Eigen::Vector3d(0.2, 0.2, 0.05));
+  plate.vertices.col(2).array() -= 0.025;  // its top face at z = 0
+  Dataset ds;
+  ds.payload = meshShape(geometry::tessellateBox(size), "brick");
+  ds.plate = meshShape(std::move(plate), "plate");
+  ds.outputs = {"fz"};
+  for (int i = 0; i < 3; ++i) {
+    Sample s;
+    s.t = 0.01 * i;
+    s.X_BA.translation() = Eigen::Vector3d(0.001 * i, 0.0003, 0.5 * size.z() - d);
+    s.v_BA = Eigen::Vector3d(0.1, 0.0, 0.0);
+    ds.samples.push_back(s);
+  }
+  dynamics::Model m = dynamics::Model::withEffects({"stiffness"});
+  m.setParameter("stiffness.kv", kv);
+  Replayer replayer(ds);
+  const Prediction p = replayer.run(m);
+  ASSERT_EQ(p.regime.size(), 3u);
+  const double V = size.x() * size.y() * d;
+  for (const RegimeSample& r : p.regime) {
+    EXPECT_TRUE(r.in_contact);
+    EXPECT_NEAR(r.volume, V, 1e-9 * V);
+    EXPECT_NEAR(r.depth, d, 1e-9 * d);
+  }
+  EXPECT_NEAR(p.wrench(0, 2), kv * V, 1e-9 * kv * V);
 }
 
 TEST(Replay, BristleStateReachesTheSteadySlidingForceForAnySampleSpacing) {

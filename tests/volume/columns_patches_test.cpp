@@ -26,7 +26,8 @@ geometry::Shape shape(TriangleMesh mesh, const std::string& name) {
 /// fast and columns on one pose; fast's patch count is the expected one.
 void expectSameAsFast(const geometry::Shape& a, const Isometry3d& X_WA, const geometry::Shape& b,
                       const Isometry3d& X_WB, std::size_t patches, double size) {
-  const ContactPatches fast = computeContact(a, X_WA, b, X_WB, {Method::kFast});
+  const ContactPatches fast =
+      computeContact(a, X_WA, b, X_WB, {Method::kFast, 0, DepthMode::kDeepest});
   const ContactPatches columns = computeContact(a, X_WA, b, X_WB, {Method::kColumns});
   ASSERT_EQ(fast.patches.size(), patches);
   test::expectColumnsAgree(fast, columns, size);

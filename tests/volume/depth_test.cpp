@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/bvh.hpp"
+#include "geometry/mesh_topology.hpp"
 #include "support/test_support.hpp"
 #include "volume/contact.hpp"
 #include "volume/mesh_mesh.hpp"
@@ -56,14 +58,14 @@ std::vector<MethodRun> everyMethod(const Shape& a, const Shape* primitive, const
   std::vector<MethodRun> runs;
   for (const Method m : {Method::kFast, Method::kCgal, Method::kColumns}) {
     DepthField field;
-    ContactPatches c =
-        computeContact(a, X_WA, plate, X_WH, {m}, m == Method::kColumns ? &field : nullptr);
+    ContactPatches c = computeContact(a, X_WA, plate, X_WH, {m, 0, DepthMode::kDeepest},
+                                      m == Method::kColumns ? &field : nullptr);
     runs.push_back({methodName(m) + " vs plate mesh", c, std::sqrt(field.cell_area)});
   }
   for (const Method m : {Method::kHalfspace, Method::kCgal, Method::kColumns}) {
     DepthField field;
-    ContactPatches c =
-        computeContact(a, X_WA, half, X_WH, {m}, m == Method::kColumns ? &field : nullptr);
+    ContactPatches c = computeContact(a, X_WA, half, X_WH, {m, 0, DepthMode::kDeepest},
+                                      m == Method::kColumns ? &field : nullptr);
     runs.push_back({methodName(m) + " vs half-space", c, std::sqrt(field.cell_area)});
   }
   if (primitive) {
@@ -159,7 +161,7 @@ TEST(Depth, PegPressedIntoTheHoleWall) {
   const Isometry3d X_WP = X_WH * test::translation({e, 0.0, 0.0});
   const Vector3d n_ref = -X_WH.linear().col(0);
   for (const Method m : {Method::kFast, Method::kCgal, Method::kColumns}) {
-    const ContactPatches c = computeContact(peg, X_WP, hole, X_WH, {m});
+    const ContactPatches c = computeContact(peg, X_WP, hole, X_WH, {m, 0, DepthMode::kDeepest});
     ASSERT_EQ(c.patches.size(), 1u) << methodName(m);
     const ContactVolume& p = c.patches[0];
     if (m == Method::kColumns) {  // its normal from sampled axis passes; a line on the crest
@@ -193,45 +195,74 @@ TEST(Depth, KeyFlankInAHubBlock) {
   const double x1 = t * std::cos(phi) - a * std::sin(phi), xf = 0.0101 + 0.00355;
   const double d = (xf - x1) * std::sin(phi);
   for (const Method m : {Method::kFast, Method::kCgal}) {
-    const ContactPatches c = computeContact(shaft, X_WS, hub, X_WH, {m});
+    const ContactPatches c = computeContact(shaft, X_WS, hub, X_WH, {m, 0, DepthMode::kDeepest});
     ASSERT_EQ(c.patches.size(), 1u) << methodName(m);
     EXPECT_NEAR(c.patches[0].depth, d, kExact * d) << methodName(m);
   }
 }
 
-// DepthMode::kSkip (a simulation's force evaluations) spares `fast` its depth pass and changes
-// nothing else: on a peg tilted in a round hole (two patches on opposite walls), every other
-// field of every patch and of the aggregate is the same to the bit (the pass only reads the
-// region), depth is NaN; cgal, whose corefinement dwarfs the pass, fills it all the same.
-TEST(Depth, SkipLeavesOnlyFastsDepthOut) {
+/// Every field but depth the same to the bit; depth NaN in `skip` and set in `deep`.
+void expectOnlyDepthLeftOut(const ContactVolume& skip, const ContactVolume& deep) {
+  EXPECT_EQ(skip.volume, deep.volume);
+  EXPECT_EQ(skip.p_WC, deep.p_WC);
+  EXPECT_EQ(skip.n_W, deep.n_W);
+  EXPECT_EQ(skip.J_v, deep.J_v);
+  EXPECT_EQ(skip.J_s, deep.J_s);
+  EXPECT_EQ(skip.area, deep.area);
+  EXPECT_EQ(skip.r_gyr, deep.r_gyr);
+  EXPECT_EQ(skip.method, deep.method);
+  EXPECT_TRUE(std::isnan(skip.depth));
+  EXPECT_GT(deep.depth, 0.0);
+}
+
+// The default query (QueryOptions{}, DepthMode::kSkip; what a library caller gets) spares
+// `fast` its depth pass and changes nothing else: on a peg tilted in a round hole (two patches
+// on opposite walls), every other field of every patch and of the aggregate is the same to the
+// bit (the pass only reads the region), depth is NaN; kDeepest fills it, as cgal (another
+// exact method, the same polyhedron) does by default, whose corefinement dwarfs the pass.
+TEST(Depth, DefaultLeavesOnlyFastsDepthOut) {
   const Shape hole = meshShape(test::tube(0.0101, 0.00505, 0.0103, 64), "hole");
   const Shape peg = meshShape(geometry::tessellateCylinder(0.005, 0.0207, 64), "peg");
   const Isometry3d X_WH = test::randomPose(46);
   const Isometry3d X_WP = X_WH * Isometry3d(Eigen::AngleAxisd(0.02, Vector3d::UnitX()));
-  const auto same = [](const ContactVolume& s, const ContactVolume& d) {
-    EXPECT_EQ(s.volume, d.volume);
-    EXPECT_EQ(s.p_WC, d.p_WC);
-    EXPECT_EQ(s.n_W, d.n_W);
-    EXPECT_EQ(s.J_v, d.J_v);
-    EXPECT_EQ(s.J_s, d.J_s);
-    EXPECT_EQ(s.area, d.area);
-    EXPECT_EQ(s.r_gyr, d.r_gyr);
-    EXPECT_TRUE(std::isnan(s.depth));
-    EXPECT_GT(d.depth, 0.0);
-  };
-  const ContactPatches deep = computeContact(peg, X_WP, hole, X_WH, {Method::kFast});
-  const ContactPatches skip =
-      computeContact(peg, X_WP, hole, X_WH, {Method::kFast, 0, DepthMode::kSkip});
+  EXPECT_EQ(QueryOptions{}.depth, DepthMode::kSkip);
+  const ContactPatches skip = computeContact(peg, X_WP, hole, X_WH);  // the default method: fast
+  const ContactPatches deep =
+      computeContact(peg, X_WP, hole, X_WH, {Method::kFast, 0, DepthMode::kDeepest});
+  ASSERT_EQ(skip.aggregate.method, Method::kFast);
   ASSERT_EQ(deep.patches.size(), 2u);
   ASSERT_EQ(skip.patches.size(), 2u);
-  same(skip.aggregate, deep.aggregate);
-  for (std::size_t i = 0; i < 2; ++i) same(skip.patches[i], deep.patches[i]);
-  const ContactPatches cgal =
-      computeContact(peg, X_WP, hole, X_WH, {Method::kCgal, 0, DepthMode::kSkip});
+  expectOnlyDepthLeftOut(skip.aggregate, deep.aggregate);
+  for (std::size_t i = 0; i < 2; ++i) expectOnlyDepthLeftOut(skip.patches[i], deep.patches[i]);
+  const ContactPatches cgal = computeContact(peg, X_WP, hole, X_WH, {Method::kCgal});
   ASSERT_EQ(cgal.patches.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_NEAR(cgal.patches[i].depth, deep.patches[i].depth, kExact * deep.patches[i].depth);
   }
+}
+
+// The same through the backend's own entry point: meshMeshContact (and fastContact) leave
+// depth out unless `deepest`; asked, it is the closed form of a box face pressed d into a
+// plate (the slab's thickness, BoxFacePressedIntoAWall).
+TEST(Depth, MeshMeshContactAsksForTheDepth) {
+  const Vector3d size(0.0213, 0.0171, 0.0103);
+  const double d = 1e-4;
+  const geometry::MeshBvh box(geometry::tessellateBox(size));
+  geometry::TriangleMesh plate = geometry::tessellateBox(Vector3d(0.2, 0.2, 0.05));
+  plate.vertices.col(2).array() -= 0.025;
+  const geometry::MeshBvh wall(std::move(plate));
+  const geometry::MeshTopology topoBox(box.mesh()), topoWall(wall.mesh());
+  const Isometry3d X_WH = test::randomPose(47);
+  const Isometry3d X_WA = X_WH * test::translation({0.0031, -0.0017, 0.5 * size.z() - d});
+  const ContactPatches skip = meshMeshContact(box, topoBox, X_WA, wall, topoWall, X_WH);
+  const ContactPatches deep =
+      meshMeshContact(box, topoBox, X_WA, wall, topoWall, X_WH, nullptr, true);
+  ASSERT_EQ(deep.patches.size(), 1u);
+  ASSERT_EQ(skip.patches.size(), 1u);
+  expectOnlyDepthLeftOut(skip.aggregate, deep.aggregate);
+  expectOnlyDepthLeftOut(skip.patches[0], deep.patches[0]);
+  EXPECT_NEAR(deep.aggregate.depth, d, kExact * d);
+  EXPECT_NEAR(skip.aggregate.volume, size.x() * size.y() * d, 1e-9 * size.x() * size.y() * d);
 }
 
 }  // namespace

@@ -148,7 +148,9 @@ TEST(FastMeshMeshPatches, KeyedShaftTurnedInItsHub) {
   const Body hub(test::keyedHub(a, gap, w));
   const Isometry3d X_WH = test::randomPose(17);
   const Isometry3d X_WS = X_WH * Isometry3d(Eigen::AngleAxisd(0.03, Vector3d::UnitZ()));
-  const ContactPatches fast = meshMeshContact(shaft.bvh, shaft.topo, X_WS, hub.bvh, hub.topo, X_WH);
+  // with the exact depth pass (`deepest`), whose depths are checked below
+  const ContactPatches fast =
+      meshMeshContact(shaft.bvh, shaft.topo, X_WS, hub.bvh, hub.topo, X_WH, nullptr, true);
   const ContactPatches cgal = cgalMeshMeshContact(shaft.bvh.mesh(), X_WS, hub.bvh.mesh(), X_WH);
   ASSERT_EQ(fast.patches.size(), 4u);
   expectSamePatches(fast, cgal, L);
