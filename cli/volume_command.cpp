@@ -111,7 +111,9 @@ volume::RecoveredContact recoveredContact(const VolumeOptions& o, const io::Pars
   if (!meshB) return volume::recoveredHalfspaceContact(*meshA->mesh, recA, X_WA, X_WB);
   const geometry::SurfaceRecognition recB = recognise(*meshB->mesh, o.b);
   const volume::RecoveredBody bodyA(*meshA->mesh, recA), bodyB(*meshB->mesh, recB);
-  return volume::recoveredMeshMeshContact(bodyA, X_WA, bodyB, X_WB);
+  volume::RefinementOptions refinement;
+  refinement.exact_depth = true;  // the table and --json show the depth
+  return volume::recoveredMeshMeshContact(bodyA, X_WA, bodyB, X_WB, refinement);
 }
 
 /// "refined" when any part of the body was refined, else "mesh" (its faces as they are).

@@ -224,18 +224,24 @@ RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Iso
   addParts(a, za, "A", parts);
   addParts(b, zb, "B", parts);
   const double G = std::max(za.gap, zb.gap);
-  const auto eval = [&](int k) {
+  const auto evalAt = [&](int k, bool deepest) {
     const geometry::SurfaceRefinement ra =
         geometry::refineSurfaces(a.mesh(), a.recognition(), za.faces, bodyLevel(k, za.gap, G));
     const geometry::SurfaceRefinement rb =
         geometry::refineSurfaces(b.mesh(), b.recognition(), zb.faces, bodyLevel(k, zb.gap, G));
     const geometry::MeshBvh ta(ra.mesh), tb(rb.mesh);
     const geometry::MeshTopology topoA(ra.mesh), topoB(rb.mesh);
-    return meshMeshContact(ta, topoA, X_WA, tb, topoB, X_WB, nullptr, false).aggregate;
+    return meshMeshContact(ta, topoA, X_WA, tb, topoB, X_WB, nullptr, deepest).aggregate;
   };
+  const auto eval = [&](int k) { return evalAt(k, false); };
   if (za.curved + zb.curved == 0) {
-    RecoveredContact r{
-        eval(1), "mesh", "no curved recognised surface can reach the other body", 0.0, {}, 1, true};
+    RecoveredContact r{evalAt(1, options.exact_depth),
+                       "mesh",
+                       "no curved recognised surface can reach the other body",
+                       0.0,
+                       {},
+                       1,
+                       true};
     r.parts = std::move(parts);
     const bool freeForm = std::any_of(r.parts.begin(), r.parts.end(),
                                       [](const PatchPart& p) { return p.surface == "free-form"; });
@@ -246,8 +252,9 @@ RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Iso
   Zone both = finer;
   both.curved = za.curved + zb.curved;
   both.residual = std::max(za.residual, zb.residual);
-  return fromConverged(converge(eval, G, 0.0, levelCap(both, options), options.tolerance),
-                       both.residual, std::move(parts));
+  Converged c = converge(eval, G, 0.0, levelCap(both, options), options.tolerance);
+  if (options.exact_depth && c.cv.inContact()) c.cv.depth = evalAt(c.level, true).depth;
+  return fromConverged(c, both.residual, std::move(parts));
 }
 
 RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,

@@ -35,6 +35,10 @@ struct RefinementOptions {
   /// The most faces the split faces of one body may become at one level (memory: ~100 bytes
   /// each with the tree and topology of the mesh–mesh method).
   long max_faces = 2'000'000;
+  /// Whether refinedMeshMeshContact fills ContactVolume::depth: one more query of the converged
+  /// level with `fast`'s exact depth pass (a library query leaves it out, QueryOptions::depth;
+  /// the levels themselves never compute it). The half-space and bore paths fill it always.
+  bool exact_depth = false;
 };
 
 /// The contact of `body` (pose X_WM) on the half-space (pose X_WH, solid z_H ≤ 0) with the

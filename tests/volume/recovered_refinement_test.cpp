@@ -235,5 +235,34 @@ TEST(RecoveredRefinement, PinPressedIntoABoreIsTheDiskOutsideTheBore) {
   }
 }
 
+// Two faceted spheres of r = 10 mm (the bundled 1,440- and 280-face balls) 19.5 mm apart on
+// their recovered surfaces: the deepest column of the lens is along the line of centres,
+// 2r − c = 0.5 mm. A query leaves the depth out unless RefinementOptions::exact_depth asks
+// (one more query of the converged level), and asking changes nothing else. The refined
+// surfaces lie within the chord gap G/k² of the spheres at the converged level k, which keeps
+// V within its 1e-3 tolerance; the depth, a difference of two radii, is held to the same 1e-3.
+TEST(RecoveredRefinement, TheDepthOfTwoRefinedSpheresIsTheirOverlapWhenAsked) {
+  const std::string dir = std::string(VCONTACT_ASSETS_DIR) + "/meshes/";
+  const TriangleMesh fine = io::readMesh(dir + "ball_r10mm.stl").mesh;
+  const TriangleMesh coarse = io::readMesh(dir + "ball_r10mm_2k.stl").mesh;
+  const geometry::SurfaceRecognition fineRec = recogniseSurfaces(fine);
+  const geometry::SurfaceRecognition coarseRec = recogniseSurfaces(coarse);
+  const RecoveredBody a(fine, fineRec), b(coarse, coarseRec);
+  const double r = 0.01, c = 0.0195;
+  Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
+  X_WA.translation().z() = c;
+  const RecoveredContact plain = refinedMeshMeshContact(a, X_WA, b, Eigen::Isometry3d::Identity());
+  RefinementOptions asked;
+  asked.exact_depth = true;
+  const RecoveredContact deep =
+      refinedMeshMeshContact(a, X_WA, b, Eigen::Isometry3d::Identity(), asked);
+  ASSERT_EQ(plain.representation, "refined") << plain.reason;
+  EXPECT_TRUE(std::isnan(plain.cv.depth));
+  EXPECT_NEAR(deep.cv.depth, 2 * r - c, 1e-3 * (2 * r - c));
+  EXPECT_EQ(deep.cv.volume, plain.cv.volume);
+  EXPECT_EQ(deep.cv.p_WC, plain.cv.p_WC);
+  EXPECT_EQ(deep.level, plain.level);
+}
+
 }  // namespace
 }  // namespace vcontact::volume
