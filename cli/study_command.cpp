@@ -58,6 +58,10 @@ std::vector<std::string> pythonArguments(const StudyOptions& o, const std::strin
   const char* old = std::getenv("PYTHONPATH");
   const std::string path = old && *old ? dir + ":" + old : dir;
   ::setenv("PYTHONPATH", path.c_str(), 1);
+  // A fit study's parts run this program (`vcontact fit --fold`, docs/STUDY.md, "Fit studies").
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) ::setenv("VCONTACT_BINARY", self.c_str(), 0);
   std::vector<std::string> args = pythonArguments(o, python);
   std::vector<char*> argv;
   for (std::string& s : args) argv.push_back(s.data());

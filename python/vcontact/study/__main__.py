@@ -2,13 +2,14 @@
 
 Exit status: 0 done (failed runs are rows of the table, not an error of the study), 2 bad input
 (the study file, its scenario, an option, an output folder of another study, an unreachable
-scheduler), 130 interrupted (finished chunks are kept; the same command resumes)."""
+scheduler), 1 a fit study whose parts did not all finish (parts.csv says why; not merged), 130 interrupted (finished chunks are kept; the same command resumes)."""
 
 import argparse
 import signal
 import sys
 
 BAD_INPUT = 2
+PARTS_FAILED = 1  # a fit study with parts that failed: not merged, the rerun resumes
 INTERRUPTED = 130
 
 
@@ -46,7 +47,8 @@ def _stop(signum, frame):
 
 def main(argv=None):
     args = _parser().parse_args(argv)
-    from . import StudyError, Study, run_one, run_study
+    from . import StudyError, run_one, run_study
+    from .fit import read_study, run_fit_study
     from .expr import ExpressionError
     # A batch system's kill ends as an interrupt does; both are remembered (runner.INTERRUPT).
     signal.signal(signal.SIGTERM, _stop)
@@ -57,7 +59,16 @@ def main(argv=None):
         if args.scheduler and args.workers is not None:
             raise StudyError("--scheduler and --workers exclude each other: the cluster's "
                              "workers are its own")
-        study = Study(args.study, chunk_size=args.chunk_size)
+        study = read_study(args.study, chunk_size=args.chunk_size)
+        if study.kind == "fit":
+            for given, option in ((args.run is not None, "--run"), (args.h5, "--h5"),
+                                  (args.threads, "--threads")):
+                if given:
+                    raise StudyError(f"{option}: not an option of a fit study (each part is "
+                                     "`vcontact fit --fold`; docs/STUDY.md, \"Fit studies\")")
+            summary = run_fit_study(study, args.out, workers=args.workers,
+                                    scheduler=args.scheduler, quiet=args.quiet)
+            return 0 if summary["merged"] else PARTS_FAILED
         if args.run is not None:
             result = run_one(study, args.run, args.out)
             status = result["summary"]["status"]

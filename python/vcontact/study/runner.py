@@ -103,8 +103,9 @@ class Progress:
 
     INTERVAL_S = 0.5
 
-    def __init__(self, total_runs, quiet):
+    def __init__(self, total_runs, quiet, unit="runs"):
         self.total = total_runs
+        self.unit = unit
         self.shown = not quiet and sys.stderr.isatty() and not os.environ.get("CI")
         self.start = self.last = time.monotonic()
         self.width = 0
@@ -115,7 +116,7 @@ class Progress:
             return
         self.last = now
         elapsed = now - self.start
-        line = f"study: {done}/{self.total} runs ({100.0 * done / self.total:.0f} %)"
+        line = f"study: {done}/{self.total} {self.unit} ({100.0 * done / self.total:.0f} %)"
         if failed:
             line += f", {failed} failed"
         line += f", {elapsed:.0f} s"
