@@ -78,7 +78,9 @@ void addStudyCommand(CLI::App& app) {
       "study",
       "Run a study (docs/STUDY.md): a scenario many times with parameters varied by grid, list "
       "or a seeded Sobol/Halton sample of distributions, in chunks on Dask (a local cluster, or "
-      "a running scheduler); results.csv (and results.h5), report.html. Rerun to resume.");
+      "a running scheduler); results.csv (and results.h5), report.html. Rerun to resume. A "
+      "study with \"fit\": the k+1 parts of a cross-validated trajectory fit on Dask, merged "
+      "into fit/ as `vcontact fit` writes it.");
   cmd->add_option("STUDY", opts->study, "study JSON file (vcontact.study/1)")->required();
   cmd->add_option("--out", opts->out, "output folder; rerunning into it resumes")->required();
   cmd->add_option("--workers", opts->workers,

@@ -17,7 +17,9 @@ def _parser():
     p = argparse.ArgumentParser(
         prog="vcontact study",
         description="Run a study (vcontact.study/1, docs/STUDY.md): many runs of a scenario "
-                    "with parameters varied, in chunks on Dask; results.csv, report.html.")
+                    "with parameters varied, in chunks on Dask; results.csv, report.html. A "
+                    "study with \"fit\": the parts of a cross-validated trajectory fit on "
+                    "Dask, merged into fit/.")
     p.add_argument("study", metavar="STUDY", help="study JSON file")
     p.add_argument("--out", required=True, help="output folder (rerun to resume)")
     p.add_argument("--workers", type=int, default=None,

@@ -202,7 +202,7 @@ def run_part(program, arguments, part, identity):
     folder; {identity, part, status, message, wall_time, host, fold (fold.json, or None)}.
     Pure but for the wall time and host: a part lost with its worker is run again elsewhere."""
     program = os.environ.get("VCONTACT_BINARY_ON_WORKER") or program
-    host = socket.gethostname()
+    host = f"{socket.gethostname()}:{os.getpid()}"  # the worker process that ran the part
     start = time.monotonic()
     record = {"identity": identity, "part": part, "host": host, "fold": None}
     if not (os.path.isfile(program) and os.access(program, os.X_OK)) and not shutil.which(program):
