@@ -28,6 +28,8 @@ import sys
 import tempfile
 import time
 
+from .runner import (INTERRUPT, MANIFEST_FORMAT, Progress, _number, _package_dir,
+                     _write_atomic, connect, open_folder)
 from .spec import FORMAT, StudyError, _canonical
 
 INTEGRATORS = ("discrete", "dopri5", "bdf")
@@ -39,8 +41,8 @@ OPTIONS = {
     "local_evaluations": ("--local-evaluations", lambda v: _int(v) and v >= 0,
                           "an integer >= 0"),
     "polishes": ("--polishes", lambda v: _int(v) and v >= 0, "an integer >= 0"),
-    "h": ("--h", lambda v: _number(v) and v >= 0, "a length in m >= 0"),
-    "plate_offset": ("--plate-offset", lambda v: _number(v), "a length in m"),
+    "h": ("--h", lambda v: _real(v) and v >= 0, "a length in m >= 0"),
+    "plate_offset": ("--plate-offset", lambda v: _real(v), "a length in m"),
     "integrator": ("--integrator", lambda v: v in INTEGRATORS, " | ".join(INTEGRATORS)),
     "fix_plate": ("--fix-plate", lambda v: isinstance(v, bool), "true or false"),
 }
@@ -51,7 +53,7 @@ def _int(v):
     return isinstance(v, int) and not isinstance(v, bool)
 
 
-def _number(v):
+def _real(v):
     return isinstance(v, (int, float)) and not isinstance(v, bool) and v == v and abs(v) < 1e300
 
 
@@ -239,25 +241,15 @@ class PartsFolder:
         return os.path.join(self.part_dir, f"part_{part}.json")
 
     def open(self):
-        from .runner import MANIFEST_FORMAT, _write_atomic
-        path = os.path.join(self.out, "manifest.json")
-        if os.path.exists(path):
-            with open(path, encoding="utf-8") as f:
-                old = json.load(f)
-            if old.get("identity") != self.study.identity:
-                raise StudyError(
-                    f"{self.out}: holds the results of another study ({old.get('study')}): the "
-                    "study file, its model or a dataset changed since it was started; refusing "
-                    "to mix them: choose another --out, or remove the folder to start again")
-        os.makedirs(self.part_dir, exist_ok=True)
-        if not os.path.exists(path):
-            manifest = {"format": MANIFEST_FORMAT, "kind": "fit",
-                        "identity": self.study.identity,
-                        "study": os.path.abspath(self.study.path),
-                        "datasets": len(self.study.datasets), "parts": self.study.parts}
-            _write_atomic(os.path.join(self.out, "study.json"), self.study.text)
-            _write_atomic(path, json.dumps(manifest, indent=2) + "\n")
-        return {p: self._read(p) for p in self.study.parts if self._read(p) is not None}
+        """Creates the folder, or checks that it holds this study; returns the finished parts."""
+        manifest = {"format": MANIFEST_FORMAT, "kind": "fit", "identity": self.study.identity,
+                    "study": os.path.abspath(self.study.path),
+                    "datasets": len(self.study.datasets), "parts": self.study.parts}
+        open_folder(self.out, self.part_dir, self.study, manifest,
+                    lambda old: f"{old.get('study')}): the study file, its model or a dataset "
+                                "changed")
+        parts = {p: self._read(p) for p in self.study.parts}
+        return {p: doc for p, doc in parts.items() if doc is not None}
 
     def _read(self, part):
         try:
@@ -270,7 +262,6 @@ class PartsFolder:
     def write_part(self, record):
         """The part's fold.json, with the study's identity, status, wall time and host beside
         (the fit's --merge reads the fold's own fields and ignores these)."""
-        from .runner import _write_atomic
         doc = dict(record["fold"])
         doc.update({"study_identity": record["identity"], "status": record["status"],
                     "wall_time_s": record["wall_time"], "host": record["host"]})
@@ -278,7 +269,6 @@ class PartsFolder:
 
     def write_table(self, rows):
         """parts.csv, one row per part in order, written atomically."""
-        from .runner import _number, _write_atomic
         text = io.StringIO()
         w = csv.writer(text, lineterminator="\n")
         w.writerow(["part", "status", "message", "wall_time_s", "evaluations", "host"])
@@ -315,7 +305,6 @@ def _run_parts_dask(study, todo, on_done, client):
             record = future.result()
         except Exception as e:  # the task itself failed, not the fit (which fails as a row)
             part = future.key.rpartition("-")[2]
-            from .runner import _package_dir
             record = {"identity": study.identity, "part": part, "status": "error",
                       "wall_time": 0.0, "host": "", "fold": None,
                       "message": f"the task failed on the cluster: {type(e).__name__}: {e} (do "
@@ -328,7 +317,6 @@ def run_fit_study(study, out, workers=None, scheduler=None, quiet=False, log=Non
     """Runs (or resumes) the fit study into `out`, then merges the parts into out/fit.
     Returns {parts, completed, failed, resumed_parts, merged}; a failed part leaves the fit
     unmerged (the rerun of the same command runs only the parts missing)."""
-    from .runner import INTERRUPT, Progress, connect
     log = log or (lambda text: print(f"vcontact: {text}", file=sys.stderr))
     folder = PartsFolder(out, study)
     finished = folder.open()
