@@ -83,7 +83,8 @@ def main(argv=None):
         print(f"vcontact: error: {e}", file=sys.stderr)
         return BAD_INPUT
     except KeyboardInterrupt:
-        print(f"vcontact: interrupted: the finished chunks are kept in {args.out}; the same "
+        print(f"vcontact: interrupted: the finished chunks (parts, of a fit study) are kept in "
+              f"{args.out}; the same "
               "command resumes", file=sys.stderr)
         return INTERRUPTED
     return 0
