@@ -22,6 +22,7 @@ import io
 import json
 import os
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -199,6 +200,17 @@ class FitStudy:
         return [binary(), *self.fit_arguments(), "--out", out, *extra]
 
 
+def _die_with_parent():
+    """In the part's child process (Linux): killed when the worker that started it dies, so a
+    killed worker leaves no fit running on (the scheduler reruns the part elsewhere)."""
+    try:
+        import ctypes
+        PR_SET_PDEATHSIG = 1
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    except (OSError, AttributeError):
+        pass  # not Linux: the orphan finishes its part and exits
+
+
 def run_part(program, arguments, part, identity):
     """One part on whichever process runs it: `program fit ... --fold part` into a temporary
     folder; {identity, part, status, message, wall_time, host, fold (fold.json, or None)}.
@@ -216,7 +228,7 @@ def run_part(program, arguments, part, identity):
     with tempfile.TemporaryDirectory(prefix="vcontact-fold-") as tmp:
         out = os.path.join(tmp, "out")
         r = subprocess.run([program, *arguments, "--out", out, "--fold", part],
-                           capture_output=True, text=True)
+                           capture_output=True, text=True, preexec_fn=_die_with_parent)
         record["wall_time"] = time.monotonic() - start
         if r.returncode != 0:
             lines = [s for s in r.stderr.splitlines() if s.strip()]
