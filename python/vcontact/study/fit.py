@@ -136,8 +136,9 @@ class FitStudy:
                 self.options[key] = fit[key]
         self.folds = self.options.get("folds", DEFAULT_FOLDS)
         if self.folds > len(self.datasets):
-            self.fail("fit.folds", f"{self.folds} folds need as many trials; "
-                      f"{len(self.datasets)} datasets given")
+            n = len(self.datasets)
+            self.fail("fit.folds", f"{self.folds} folds need as many trials; {n} "
+                      f"dataset{'' if n == 1 else 's'} given")
         self.parts = ["all"] + [str(i) for i in range(self.folds)]
         self.identity = self._identity()
 
