@@ -329,7 +329,15 @@ void checkParts(const std::vector<Trial>& trials, const TrajectoryFitOptions& op
              " parameters)");
   };
   checkOne(all, -1);
-  for (std::size_t f = 0; f < folds.size(); ++f) checkOne(folds[f], static_cast<int>(f));
+  for (std::size_t f = 0; f < folds.size(); ++f) {
+    checkOne(folds[f], static_cast<int>(f));
+    std::vector<std::size_t> members;  // trial i is in fold i mod k
+    for (std::size_t i = f; i < trials.size(); i += folds.size()) members.push_back(i);
+    if (folds[f].heldOut != members || folds[f].heldOutLoss.size() != members.size())
+      refuse("part " + std::to_string(f) + " does not score fold " + std::to_string(f) +
+             "'s trials (" + std::to_string(members.size()) + " of the " +
+             std::to_string(trials.size()) + ")");
+  }
 }
 
 }  // namespace
