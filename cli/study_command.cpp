@@ -58,6 +58,10 @@ std::vector<std::string> pythonArguments(const StudyOptions& o, const std::strin
   const char* old = std::getenv("PYTHONPATH");
   const std::string path = old && *old ? dir + ":" + old : dir;
   ::setenv("PYTHONPATH", path.c_str(), 1);
+  // A fit study's parts run this program (`vcontact fit --fold`, docs/STUDY.md, "Fit studies").
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) ::setenv("VCONTACT_BINARY", self.c_str(), 0);
   std::vector<std::string> args = pythonArguments(o, python);
   std::vector<char*> argv;
   for (std::string& s : args) argv.push_back(s.data());
@@ -74,7 +78,9 @@ void addStudyCommand(CLI::App& app) {
       "study",
       "Run a study (docs/STUDY.md): a scenario many times with parameters varied by grid, list "
       "or a seeded Sobol/Halton sample of distributions, in chunks on Dask (a local cluster, or "
-      "a running scheduler); results.csv (and results.h5), report.html. Rerun to resume.");
+      "a running scheduler); results.csv (and results.h5), report.html. Rerun to resume. A "
+      "study with \"fit\": the k+1 parts of a cross-validated trajectory fit on Dask, merged "
+      "into fit/ as `vcontact fit` writes it.");
   cmd->add_option("STUDY", opts->study, "study JSON file (vcontact.study/1)")->required();
   cmd->add_option("--out", opts->out, "output folder; rerunning into it resumes")->required();
   cmd->add_option("--workers", opts->workers,

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "cli/commands.hpp"
 #include "formats/model_file.hpp"
@@ -87,6 +88,17 @@ void addTrajectoryOptions(CLI::App* cmd, TrajectoryOptions& o, bool fits) {
                 "dynamic datasets: do not fit the plate's offset along its normal");
 }
 
+void addFoldOptions(CLI::App* cmd, TrajectoryOptions& o) {
+  cmd->add_option("--fold", o.fold,
+                  "dynamic datasets: run one of the k+1 fits of the cross-validated fit alone, "
+                  "\"all\" (the fit on all trials) or a fold 0..k-1 (fitted without it, its "
+                  "trials scored), and write OUT/fold.json");
+  cmd->add_option("--merge", o.merge,
+                  "dynamic datasets: assemble the fit from fold.json parts (\"all\" and every "
+                  "fold, made with the same datasets, model and options) instead of searching")
+      ->expected(1, -1);
+}
+
 std::vector<std::string> expandDatasets(const std::vector<std::string>& args) {
   std::vector<std::string> out;
   for (const auto& a : args) {
@@ -155,8 +167,11 @@ void runTrajectoryCompare(const formats::DatasetReadResult& data, const dynamics
   files.commit();
 }
 
-void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::Model& model,
-                      const TrajectoryOptions& o, const std::string& out) {
+namespace {
+
+constexpr const char* kFoldFormat = "vcontact.fit-fold/1";
+
+validation::TrajectoryFitOptions fitOptionsOf(const TrajectoryOptions& o) {
   validation::TrajectoryFitOptions options;
   options.settings = settingsOf(o);
   if (o.folds < 0 || o.folds == 1) throw InputError("--folds", "expected 0 (none) or k >= 2");
@@ -167,6 +182,10 @@ void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::
   options.localEvaluations = o.localEvaluations;
   options.starts = o.polishes;
   options.fitPlateOffset = !o.fixPlate;
+  return options;
+}
+
+std::vector<validation::Trial> readTrials(const std::vector<std::string>& datasets) {
   std::vector<validation::Trial> trials;
   for (const auto& path : datasets) {
     formats::DatasetReadResult r = formats::readDataset(path);
@@ -176,16 +195,147 @@ void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::
                        "\"dynamic\"); this one is kinematic");
     trials.push_back(validation::prepareTrial(std::move(r.dataset)));
   }
-  if (options.folds > static_cast<int>(trials.size()))
-    throw InputError("--folds", std::to_string(options.folds) + " folds need as many trials; " +
-                                    std::to_string(trials.size()) + " given");
-  std::cout << "fitting " << modelLabel(model) << " to " << trials.size() << " trials\n";
-  io::Progress progress("fit", 0.0, "");
-  options.progress = [&](const std::string& what, int done, int total) {
-    progress.update(what, done, total);
-  };
-  const validation::TrajectoryFitResult r = validation::fitTrajectories(trials, model, options);
-  progress.finish();
+  return trials;
+}
+
+// What fixes a fold's result besides its index: the trials in order, the start model and
+// every option of the search. A part made with anything else is refused by --merge.
+nlohmann::json foldIdentity(const std::vector<validation::Trial>& trials,
+                            const dynamics::Model& model, const TrajectoryOptions& o) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const auto& t : trials) names.push_back(t.data.name);
+  return {{"trials", names},
+          {"model", formats::modelToJson(model)},
+          {"options",
+           {{"h", o.h},
+            {"integrator", o.integrator},
+            {"plate_offset", o.plateOffset},
+            {"folds", o.folds},
+            {"global_evaluations", o.globalEvaluations},
+            {"local_evaluations", o.localEvaluations},
+            {"polishes", o.polishes},
+            {"fix_plate", o.fixPlate}}}};
+}
+
+int parseFold(const std::string& text) {
+  if (text == "all") return -1;
+  std::size_t used = 0;
+  int fold = -2;
+  try {
+    fold = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || fold < 0)
+    throw InputError("--fold", "expected \"all\" or a fold number 0..k-1, got \"" + text + "\"");
+  return fold;
+}
+
+// NaN and infinities are written as null (JSON has no such numbers) and read back as NaN.
+double numberOrNaN(const nlohmann::json& j) {
+  return j.is_number() ? j.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+nlohmann::json foldJson(const validation::TrajectoryFoldFit& p,
+                        const std::vector<validation::Trial>& trials,
+                        const nlohmann::json& identity) {
+  nlohmann::json params = nlohmann::json::array(), held = nlohmann::json::array();
+  for (const auto& q : p.parameters)
+    params.push_back(
+        {{"name", q.name},
+         {"unit", q.unit},
+         {"value", q.value},
+         {"std_error", p.fold < 0 && std::isfinite(q.stdError) ? nlohmann::json(q.stdError)
+                                                               : nlohmann::json()}});
+  for (std::size_t j = 0; j < p.heldOut.size(); ++j)
+    held.push_back({{"trial", p.heldOut[j]},
+                    {"name", trials[p.heldOut[j]].data.name},
+                    {"e_q", p.heldOutLoss[j]}});
+  return {{"format", kFoldFormat},
+          {"fold", p.fold < 0 ? nlohmann::json("all") : nlohmann::json(p.fold)},
+          {"folds", p.folds},
+          {"identity", identity},
+          {"u", p.u},
+          {"parameters", params},
+          {"held_out", held},
+          {"evaluations", p.evaluations},
+          {"trial_simulations", p.trialSimulations},
+          {"wall_s", p.seconds},
+          {"cpu_s", p.cpuSeconds}};
+}
+
+validation::TrajectoryFoldFit readFold(const std::string& path, const nlohmann::json& identity,
+                                       const std::vector<validation::Trial>& trials) {
+  const nlohmann::json j = io::readJsonFile(path);
+  if (!j.is_object() || j.value("format", "") != kFoldFormat)
+    throw InputError(path, std::string("not a fold part (expected \"format\": \"") + kFoldFormat +
+                               "\", as `vcontact fit --fold` writes)");
+  const auto& id = j.at("identity");
+  for (const char* key : {"trials", "model", "options"})
+    if (id.value(key, nlohmann::json()) != identity.at(key))
+      throw InputError(path, std::string("made with other ") + key +
+                                 " than this fit's (the same datasets in the same order, model "
+                                 "and options are needed)");
+  validation::TrajectoryFoldFit p;
+  try {
+    p.fold = j.at("fold") == "all" ? -1 : j.at("fold").get<int>();
+    p.folds = j.at("folds").get<int>();
+    for (const auto& v : j.at("u")) p.u.push_back(v.get<double>());
+    for (const auto& q : j.at("parameters")) {
+      validation::TrajectoryParameter tp;
+      tp.name = q.at("name").get<std::string>();
+      tp.value = q.at("value").get<double>();
+      tp.stdError = numberOrNaN(q.at("std_error"));
+      p.parameters.push_back(tp);
+    }
+    for (const auto& h : j.at("held_out")) {
+      const auto trial = h.at("trial").get<std::size_t>();
+      if (trial >= trials.size()) throw InputError(path, "held_out: a trial index out of range");
+      p.heldOut.push_back(trial);
+      p.heldOutLoss.push_back(numberOrNaN(h.at("e_q")));
+    }
+    p.evaluations = j.at("evaluations").get<long>();
+    p.trialSimulations = j.at("trial_simulations").get<long>();
+    p.seconds = j.at("wall_s").get<double>();
+    p.cpuSeconds = j.at("cpu_s").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path,
+                     std::string("a fold part with a missing or mistyped field: ") + e.what());
+  }
+  return p;
+}
+
+// The parts in the order assembleTrajectoryFit takes: "all", then folds 0 … k−1.
+validation::TrajectoryFitResult mergeFolds(const std::vector<validation::Trial>& trials,
+                                           const dynamics::Model& model,
+                                           const validation::TrajectoryFitOptions& options,
+                                           const TrajectoryOptions& o) {
+  const nlohmann::json identity = foldIdentity(trials, model, o);
+  std::optional<validation::TrajectoryFoldFit> all;
+  std::vector<std::optional<validation::TrajectoryFoldFit>> folds(
+      validation::crossValidates(options, trials.size()) ? static_cast<std::size_t>(o.folds) : 0);
+  for (const auto& path : o.merge) {
+    validation::TrajectoryFoldFit p = readFold(path, identity, trials);
+    if (p.fold >= static_cast<int>(folds.size()))
+      throw InputError(path, "fold " + std::to_string(p.fold) + " of " + std::to_string(p.folds) +
+                                 ", beyond this fit's " + std::to_string(folds.size()) + " folds");
+    auto& slot = p.fold < 0 ? all : folds[static_cast<std::size_t>(p.fold)];
+    if (slot)
+      throw InputError(path, "a second part of fold " +
+                                 (p.fold < 0 ? std::string("\"all\"") : std::to_string(p.fold)));
+    slot = std::move(p);
+  }
+  if (!all) throw InputError("--merge", "the fit on all trials (fold \"all\") is missing");
+  std::vector<validation::TrajectoryFoldFit> ordered;
+  for (std::size_t f = 0; f < folds.size(); ++f) {
+    if (!folds[f]) throw InputError("--merge", "fold " + std::to_string(f) + " is missing");
+    ordered.push_back(std::move(*folds[f]));
+  }
+  return validation::assembleTrajectoryFit(trials, model, options, *all, ordered);
+}
+
+void writeFit(const validation::TrajectoryFitResult& r,
+              const validation::TrajectoryFitOptions& options, const std::string& out) {
   std::cout << "mean e_q: start " << r.meanStart << ", fitted " << r.meanFitted;
   if (!std::isnan(r.meanHeldOut))
     std::cout << ", " << options.folds << "-fold cross-validated " << r.meanHeldOut;
@@ -203,6 +353,57 @@ void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::
   files.add(out + "/trials.csv", [&](std::ostream& s) { report::putTrialsCsv(r, s); });
   addText(files, out + "/report.html", report::trajectoryFitReportHtml(r, options));
   files.commit();
+}
+
+}  // namespace
+
+void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::Model& model,
+                      const TrajectoryOptions& o, const std::string& out) {
+  validation::TrajectoryFitOptions options = fitOptionsOf(o);
+  if (!o.fold.empty() && !o.merge.empty())
+    throw InputError("--merge", "excludes --fold (a part is made, or parts are merged)");
+  const int fold = o.fold.empty() ? -2 : parseFold(o.fold);
+  const std::vector<validation::Trial> trials = readTrials(datasets);
+  if (options.folds > static_cast<int>(trials.size()))
+    throw InputError("--folds", std::to_string(options.folds) + " folds need as many trials; " +
+                                    std::to_string(trials.size()) + " given");
+  if (fold >= 0 && fold >= options.folds)
+    throw InputError("--fold", "fold " + std::to_string(fold) + " of a " +
+                                   std::to_string(options.folds) + "-fold cross-validation (" +
+                                   (options.folds ? "folds 0.." + std::to_string(options.folds - 1)
+                                                  : std::string("--folds 0: only \"all\"")) +
+                                   ")");
+  if (!o.merge.empty()) {
+    std::cout << "assembling the fit of " << modelLabel(model) << " to " << trials.size()
+              << " trials from " << o.merge.size() << " parts\n";
+    return writeFit(mergeFolds(trials, model, options, o), options, out);
+  }
+  std::cout << "fitting " << modelLabel(model) << " to " << trials.size() << " trials";
+  if (fold != -2) std::cout << (fold < 0 ? " (all trials alone)" : " (fold " + o.fold + " alone)");
+  std::cout << "\n";
+  io::Progress progress("fit", 0.0, "");
+  options.progress = [&](const std::string& what, int done, int total) {
+    progress.update(what, done, total);
+  };
+  if (fold != -2) {
+    const validation::TrajectoryFoldFit p =
+        validation::fitTrajectoryFold(trials, model, options, fold);
+    progress.finish();
+    for (const auto& q : p.parameters)
+      std::cout << q.name << " = " << q.value << ' ' << q.unit << '\n';
+    for (std::size_t j = 0; j < p.heldOut.size(); ++j)
+      std::cout << "held out " << trials[p.heldOut[j]].data.name << ": e_q " << p.heldOutLoss[j]
+                << '\n';
+    std::cout << p.evaluations << " evaluations in " << p.seconds << " s wall\n";
+    io::OutputSet files(out);
+    files.add(out + "/fold.json", [&](std::ostream& s) {
+      io::putJson(foldJson(p, trials, foldIdentity(trials, model, o)), s);
+    });
+    return files.commit();
+  }
+  const validation::TrajectoryFitResult r = validation::fitTrajectories(trials, model, options);
+  progress.finish();
+  writeFit(r, options, out);
 }
 
 }  // namespace vcontact::cli

@@ -20,10 +20,17 @@ struct TrajectoryOptions {
   int polishes = 2;
   bool fixPlate = false;
   double plateOffset = 0.0;  ///< m, compare only: the plate's offset along its normal
+  /// fit only: run one of the k + 1 fits of a cross-validated fit alone ("all" or a fold
+  /// 0 … k−1) and write OUT/fold.json; empty: the whole fit
+  std::string fold;
+  std::vector<std::string> merge;  ///< fit only: fold.json parts to assemble, no search
 };
 
 /// The options above on a command (compare: h, integrator, plate offset; fit: all).
 void addTrajectoryOptions(CLI::App* cmd, TrajectoryOptions& o, bool fits);
+
+/// --fold and --merge on `fit` (docs/DIAGNOSIS.md, "One fold at a time").
+void addFoldOptions(CLI::App* cmd, TrajectoryOptions& o);
 
 /// DATASET arguments to sidecar paths: a folder gives its *.json dataset sidecars (sorted by
 /// name), a file whose name ends in .txt or .list one path per line (relative to it), anything

@@ -185,6 +185,10 @@ bool trajectoryFit(ValidationOptions& o) {
 
 void runFit(ValidationOptions o) {
   if (trajectoryFit(o)) return;
+  if (!o.trajectory.fold.empty() || !o.trajectory.merge.empty())
+    throw InputError(o.trajectory.fold.empty() ? "--merge" : "--fold",
+                     "applies to a trajectory fit of dynamic datasets; " + o.dataset +
+                         " is kinematic (its fit has no folds)");
   const Inputs in = readInputs(o, {"model.json", "fit.json", "residuals.csv", "report.html"});
   const validation::Dataset& d = in.data.dataset;
   const auto noise = validation::noiseLevels(d);
@@ -437,6 +441,7 @@ void addValidationCommands(CLI::App& app) {
                                    "Fit the model's free parameters to a dataset: model.json, "
                                    "fit.json, residuals.csv, report.html.");
   addValidationOptions(f, fit, true);
+  addFoldOptions(f, fit->trajectory);
   f->callback([fit] { runFit(*fit); });
 
   auto diag = std::make_shared<ValidationOptions>();

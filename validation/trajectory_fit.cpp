@@ -99,7 +99,7 @@ struct Evaluator {
   const std::vector<Dimension>& dims;
   const dynamics::Model& start;
   const TrajectoryFitOptions& options;
-  TrajectoryFitResult& result;
+  TrajectoryFoldFit& part;
   std::string stage;
   int total = 0;
   int done = 0;
@@ -112,8 +112,8 @@ struct Evaluator {
       loss = meanTrialLoss(trials, subset, p.model, p.settings);
     } catch (const InputError&) {
     }
-    ++result.evaluations;
-    result.trialSimulations += static_cast<long>(subset.size());
+    ++part.evaluations;
+    part.trialSimulations += static_cast<long>(subset.size());
     seen.emplace_back(u, loss);
     if (options.progress) options.progress(stage, ++done, total);
     return loss;
@@ -258,31 +258,115 @@ double meanTrialLoss(const std::vector<Trial>& trials, const std::vector<std::si
   return which.empty() ? 0.0 : sum / static_cast<double>(which.size());
 }
 
-TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dynamics::Model& start,
-                                    const TrajectoryFitOptions& options) {
+bool crossValidates(const TrajectoryFitOptions& options, std::size_t trials) {
+  return options.folds >= 2 && static_cast<std::size_t>(options.folds) <= trials;
+}
+
+TrajectoryFoldFit fitTrajectoryFold(const std::vector<Trial>& trials, const dynamics::Model& start,
+                                    const TrajectoryFitOptions& options, int fold) {
+  const int k = options.folds;
+  if (fold < -1 || (fold >= 0 && (!crossValidates(options, trials.size()) || fold >= k)))
+    throw InputError("--fold", "expected \"all\" or a fold in [0, " + std::to_string(k) +
+                                   ") of a " + std::to_string(k) + "-fold cross-validation of " +
+                                   std::to_string(trials.size()) + " trials, got " +
+                                   std::to_string(fold));
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpuNow();
-  TrajectoryFitResult result;
+  TrajectoryFoldFit part;
+  part.fold = fold;
+  part.folds = k;
   const std::vector<Dimension> dims =
       searchSpace(start, options.fitPlateOffset, options.settings.plateOffset);
   std::vector<double> u0(dims.size());
-  for (std::size_t k = 0; k < dims.size(); ++k) u0[k] = toUnit(dims[k], dims[k].start);
+  for (std::size_t d = 0; d < dims.size(); ++d) u0[d] = toUnit(dims[d], dims[d].start);
+  std::vector<std::size_t> train;
+  for (std::size_t i = 0; i < trials.size(); ++i)
+    (fold >= 0 && static_cast<int>(i % static_cast<std::size_t>(k)) == fold ? part.heldOut : train)
+        .push_back(i);
+  const std::string stage =
+      fold < 0 ? "fit"
+               : "cross-validation fold " + std::to_string(fold + 1) + "/" + std::to_string(k);
+  Evaluator eval{trials, train, dims, start, options, part, stage, 0, 0, {}};
+  part.u = optimise(eval, u0);
+  for (std::size_t d = 0; d < dims.size(); ++d)
+    part.parameters.push_back({dims[d].name, dims[d].unit, dims[d].start,
+                               fromUnit(dims[d], part.u[d]), dims[d].lower, dims[d].upper, 0.0,
+                               dims[d].log});
+  if (fold < 0) standardErrors(trials, dims, part.u, start, options.settings, part.parameters);
+  if (fold >= 0) {
+    const Point p = place(dims, part.u, start, options.settings);
+    part.heldOutLoss.resize(part.heldOut.size());
+    tbb::parallel_for(std::size_t{0}, part.heldOut.size(), [&](std::size_t j) {
+      part.heldOutLoss[j] = evaluateTrial(p.model, trials[part.heldOut[j]], p.settings).loss;
+    });
+  }
+  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  part.cpuSeconds = cpuNow() - cpu0;
+  return part;
+}
 
-  Evaluator all{trials, allTrials(trials.size()), dims, start, options, result, "fit", 0, 0, {}};
-  const std::vector<double> best = optimise(all, u0);
+namespace {
+
+void checkParts(const std::vector<Trial>& trials, const TrajectoryFitOptions& options,
+                const std::vector<Dimension>& dims, const TrajectoryFoldFit& all,
+                const std::vector<TrajectoryFoldFit>& folds) {
+  auto refuse = [](const std::string& what) { throw InputError("--merge", what); };
+  if (all.fold != -1) refuse("the first part must be the fit on all trials (fold \"all\")");
+  const bool cv = crossValidates(options, trials.size());
+  if (folds.size() != (cv ? static_cast<std::size_t>(options.folds) : 0u))
+    refuse("expected " + std::to_string(cv ? options.folds : 0) +
+           " fold parts besides the fit "
+           "on all trials, got " +
+           std::to_string(folds.size()));
+  auto checkOne = [&](const TrajectoryFoldFit& p, int fold) {
+    bool named = p.parameters.size() == dims.size();
+    for (std::size_t d = 0; named && d < dims.size(); ++d)
+      named = p.parameters[d].name == dims[d].name;
+    if (p.fold != fold || p.folds != options.folds || p.u.size() != dims.size() || !named)
+      refuse("part " + std::to_string(p.fold) + " of " + std::to_string(p.folds) +
+             " folds does not fit here (expected fold " + std::to_string(fold) + " of " +
+             std::to_string(options.folds) + " over " + std::to_string(dims.size()) +
+             " parameters)");
+  };
+  checkOne(all, -1);
+  for (std::size_t f = 0; f < folds.size(); ++f) {
+    checkOne(folds[f], static_cast<int>(f));
+    std::vector<std::size_t> members;  // trial i is in fold i mod k
+    for (std::size_t i = f; i < trials.size(); i += folds.size()) members.push_back(i);
+    if (folds[f].heldOut != members || folds[f].heldOutLoss.size() != members.size())
+      refuse("part " + std::to_string(f) + " does not score fold " + std::to_string(f) +
+             "'s trials (" + std::to_string(members.size()) + " of the " +
+             std::to_string(trials.size()) + ")");
+  }
+}
+
+}  // namespace
+
+TrajectoryFitResult assembleTrajectoryFit(const std::vector<Trial>& trials,
+                                          const dynamics::Model& start,
+                                          const TrajectoryFitOptions& options,
+                                          const TrajectoryFoldFit& all,
+                                          const std::vector<TrajectoryFoldFit>& folds) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpuNow();
+  const std::vector<Dimension> dims =
+      searchSpace(start, options.fitPlateOffset, options.settings.plateOffset);
+  checkParts(trials, options, dims, all, folds);
+  TrajectoryFitResult result;
+  const std::vector<double>& best = all.u;
   const Point fitted = place(dims, best, start, options.settings);
   result.model = fitted.model;
   result.plateOffset = fitted.settings.plateOffset;
   for (std::size_t k = 0; k < dims.size(); ++k) {
     const auto& d = dims[k];
-    result.parameters.push_back(
-        {d.name, d.unit, d.start, fromUnit(d, best[k]), d.lower, d.upper, 0.0, d.log});
     const double u = best[k];
+    result.parameters.push_back({d.name, d.unit, d.start, fromUnit(d, u), d.lower, d.upper,
+                                 all.parameters[k].stdError, d.log});
     if (u < 1e-3 || u > 1 - 1e-3)
-      result.warnings.push_back(d.name + " ended at the edge of its search box [" +
-                                std::to_string(d.lower) + ", " + std::to_string(d.upper) + "]");
+      result.warnings.push_back(dims[k].name + " ended at the edge of its search box [" +
+                                std::to_string(dims[k].lower) + ", " +
+                                std::to_string(dims[k].upper) + "]");
   }
-  standardErrors(trials, dims, best, start, options.settings, result.parameters);
 
   result.trials.resize(trials.size());
   TrajectorySettings startSettings = options.settings;
@@ -300,40 +384,38 @@ TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dyna
     result.meanStart += s.e_q_start / static_cast<double>(trials.size());
     result.meanFitted += s.e_q_fitted / static_cast<double>(trials.size());
   }
-
-  const int k = options.folds;
-  if (k >= 2 && static_cast<int>(trials.size()) >= k) {
+  result.evaluations = all.evaluations;
+  result.trialSimulations = all.trialSimulations;
+  result.seconds = all.seconds;
+  result.cpuSeconds = all.cpuSeconds;
+  if (!folds.empty()) {
     double heldOut = 0.0;
-    for (int fold = 0; fold < k; ++fold) {
-      std::vector<std::size_t> train, test;
-      for (std::size_t i = 0; i < trials.size(); ++i)
-        (static_cast<int>(i % static_cast<std::size_t>(k)) == fold ? test : train).push_back(i);
-      Evaluator e{trials,
-                  train,
-                  dims,
-                  start,
-                  options,
-                  result,
-                  "cross-validation fold " + std::to_string(fold + 1) + "/" + std::to_string(k),
-                  0,
-                  0,
-                  {}};
-      const Point p = place(dims, optimise(e, u0), start, options.settings);
-      std::vector<double> loss(test.size());
-      tbb::parallel_for(std::size_t{0}, test.size(), [&](std::size_t j) {
-        loss[j] = evaluateTrial(p.model, trials[test[j]], p.settings).loss;
-      });
-      for (std::size_t j = 0; j < test.size(); ++j) {
-        result.trials[test[j]].e_q_heldOut = loss[j];
-        result.trials[test[j]].fold = fold;
-        heldOut += loss[j];
+    for (const auto& f : folds) {  // in fold order, then trial order: the single-process sum
+      for (std::size_t j = 0; j < f.heldOut.size(); ++j) {
+        result.trials[f.heldOut[j]].e_q_heldOut = f.heldOutLoss[j];
+        result.trials[f.heldOut[j]].fold = f.fold;
+        heldOut += f.heldOutLoss[j];
       }
+      result.evaluations += f.evaluations;
+      result.trialSimulations += f.trialSimulations;
+      result.seconds += f.seconds;
+      result.cpuSeconds += f.cpuSeconds;
     }
     result.meanHeldOut = heldOut / static_cast<double>(trials.size());
   }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  result.cpuSeconds = cpuNow() - cpu0;
+  result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  result.cpuSeconds += cpuNow() - cpu0;
   return result;
+}
+
+TrajectoryFitResult fitTrajectories(const std::vector<Trial>& trials, const dynamics::Model& start,
+                                    const TrajectoryFitOptions& options) {
+  const TrajectoryFoldFit all = fitTrajectoryFold(trials, start, options, -1);
+  std::vector<TrajectoryFoldFit> folds;
+  if (crossValidates(options, trials.size()))
+    for (int fold = 0; fold < options.folds; ++fold)
+      folds.push_back(fitTrajectoryFold(trials, start, options, fold));
+  return assembleTrajectoryFit(trials, start, options, all, folds);
 }
 
 }  // namespace vcontact::validation

@@ -23,6 +23,11 @@
 // Cross-validation by trial: the trials are dealt into k folds (trial i into fold i mod k, in
 // the order given); each fold's trials are scored by the model fitted on the others, and the
 // mean of those held-out e_q is reported beside the fitted one.
+//
+// The cross-validated fit is k + 1 independent, deterministic fits (the one on all trials and
+// one per fold): fitTrajectoryFold runs one of them alone (on any process or machine), and
+// assembleTrajectoryFit makes the result from them, the same to the bit as fitTrajectories,
+// which is the two in one process (docs/STUDY.md, "Fit studies").
 
 #include <functional>
 #include <string>
@@ -80,6 +85,40 @@ struct TrajectoryFitResult {
   double cpuSeconds = 0.0;  ///< process CPU time
   std::vector<std::string> warnings;
 };
+
+/// One of the k + 1 fits of a cross-validated trajectory fit. fold −1: the fit on all trials;
+/// fold i in [0, k): the fit on the trials not in fold i (trial j is in fold j mod k), which
+/// then scores fold i's trials.
+struct TrajectoryFoldFit {
+  int fold = -1;
+  int folds = 0;                                ///< k
+  std::vector<double> u;                        ///< the best point, in the unit search box
+  std::vector<TrajectoryParameter> parameters;  ///< its values; standard errors: fold −1's only
+  std::vector<std::size_t> heldOut;             ///< fold i's trials (indices), in order
+  std::vector<double> heldOutLoss;              ///< their e_q with this fold's model
+  long evaluations = 0;
+  long trialSimulations = 0;
+  double seconds = 0.0, cpuSeconds = 0.0;  ///< wall and process CPU time
+};
+
+/// Fold `fold` of `options.folds` (−1: all trials). @throws InputError when the fold is not in
+/// [−1, k) or k is not a cross-validation of these trials (k < 2 or more folds than trials).
+TrajectoryFoldFit fitTrajectoryFold(const std::vector<Trial>& trials, const dynamics::Model& start,
+                                    const TrajectoryFitOptions& options, int fold);
+
+/// The result of the fit on all trials (fold −1) and, when options.folds >= 2 and the trials
+/// are enough, every fold's fit, ordered 0 … k−1: the standard errors, the trial scores and the
+/// held-out e_q (the standard errors are fold −1's). evaluations and seconds are the parts' sums
+/// plus this assembly's time.
+/// @throws InputError when the parts are not those folds
+TrajectoryFitResult assembleTrajectoryFit(const std::vector<Trial>& trials,
+                                          const dynamics::Model& start,
+                                          const TrajectoryFitOptions& options,
+                                          const TrajectoryFoldFit& all,
+                                          const std::vector<TrajectoryFoldFit>& folds);
+
+/// True when options.folds cross-validates these many trials (k >= 2 and k <= trials).
+bool crossValidates(const TrajectoryFitOptions& options, std::size_t trials);
 
 /// The mean e_q of `model` with the plate offset over the trials whose index is in `subset`
 /// (all when empty), trials in parallel, summed in index order.

@@ -149,6 +149,19 @@ DATASET_CASES += [
          ["rig.json", "folder"], folders=["rig.json"], outputs=["out"]),
 ]
 
+
+def fold_case(name, extra, expect):
+    """fit --fold / --merge of a kinematic record: a trajectory fit's options, refused."""
+    c = dataset_case(name, expect, command="fit")
+    c.args += extra
+    return c
+
+
+DATASET_CASES += [
+    fold_case("fold_of_kinematic", ["--fold", "0"], ["--fold", "rig.json", "kinematic"]),
+    fold_case("merge_of_kinematic", ["--merge", "part.json"], ["--merge", "kinematic"]),
+]
+
 MODEL_CASES = [
     model_case("kv_negative", effects(stiffness={"kv": -1.0}), ["kv"]),
     model_case("kv_nan_text", effects(stiffness={"kv": "nan"}), ["kv", "number"]),

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "geometry/error.hpp"
 #include "toss_fixtures.hpp"
 
 namespace vcontact::validation {
@@ -129,6 +130,46 @@ TEST(TrajectoryFit, CrossValidationScoresEachTrialByAModelFittedWithoutIt) {
   }
   EXPECT_TRUE(std::isfinite(r.meanHeldOut));
   EXPECT_LT(r.meanHeldOut, r.meanStart);
+}
+
+// The k + 1 fits run alone, in another order and on one thread (as parts on a cluster's workers
+// would), assemble to the fit in one process to the bit; a fold outside [0, k) is refused.
+TEST(TrajectoryFit, FoldsRunAloneAssembleToTheFitInOneProcess) {
+  const std::vector<Trial> trials = tosses(truth(), 0.0, 1e-4);
+  dynamics::Model start = truth();
+  start.setParameter("damping.a", 1.5);
+  start.setFixed({"stiffness.kv", "coulomb.mu", "coulomb.v_s"});
+  TrajectoryFitOptions o = quickOptions();
+  o.globalEvaluations = 8;
+  o.localEvaluations = 6;
+  o.folds = 2;
+  const TrajectoryFitResult whole = fitTrajectories(trials, start, o);
+  std::vector<TrajectoryFoldFit> folds(2);
+  TrajectoryFoldFit all;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    folds[1] = fitTrajectoryFold(trials, start, o, 1);
+    folds[0] = fitTrajectoryFold(trials, start, o, 0);
+    all = fitTrajectoryFold(trials, start, o, -1);
+  }
+  const TrajectoryFitResult merged = assembleTrajectoryFit(trials, start, o, all, folds);
+  ASSERT_EQ(merged.parameters.size(), whole.parameters.size());
+  for (std::size_t k = 0; k < whole.parameters.size(); ++k) {
+    EXPECT_EQ(merged.parameters[k].value, whole.parameters[k].value);
+    EXPECT_EQ(merged.parameters[k].stdError, whole.parameters[k].stdError);
+  }
+  ASSERT_EQ(merged.trials.size(), trials.size());
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    EXPECT_EQ(merged.trials[i].fold, whole.trials[i].fold);
+    EXPECT_TRUE(std::isfinite(merged.trials[i].e_q_heldOut));
+    EXPECT_EQ(merged.trials[i].e_q_heldOut, whole.trials[i].e_q_heldOut);
+    EXPECT_EQ(merged.trials[i].e_q_fitted, whole.trials[i].e_q_fitted);
+  }
+  EXPECT_EQ(merged.meanHeldOut, whole.meanHeldOut);
+  EXPECT_EQ(merged.evaluations, whole.evaluations);
+  EXPECT_THROW(fitTrajectoryFold(trials, start, o, 2), InputError);
+  EXPECT_THROW(fitTrajectoryFold(trials, start, o, -2), InputError);
+  EXPECT_THROW(assembleTrajectoryFit(trials, start, o, all, {folds[1], folds[0]}), InputError);
 }
 
 }  // namespace

@@ -1,12 +1,19 @@
-"""Shared fixtures of the study tests: a tiny study of ball_drop and the command to run it."""
+"""Shared fixtures of the study tests: a tiny study of ball_drop, the command to run it, and the
+scaffolding of the cluster tests (a scheduler and workers on 127.0.0.1, started and stopped by
+the test)."""
 
 import json
 import os
 import shutil
+import signal
+import socket
 import subprocess
 import sys
+import time
 
 import pytest
+
+import vcontact
 
 SOURCE = os.environ.get("VCONTACT_SOURCE_DIR",
                         os.path.join(os.path.dirname(__file__), "..", "..", ".."))
@@ -83,3 +90,61 @@ def dask_command(which):
     if exe:
         return [exe, which]
     return [sys.executable, "-m", f"distributed.cli.dask_{which}"]
+
+
+POLL_S = 0.05  # how often a test looks for a chunk file or a process's end
+
+
+def wait_for(predicate, what, limit_s=300):
+    """Polls until predicate() holds; fails naming `what` after limit_s (a hang, not a timing
+    assertion: the tests never depend on how fast a run is)."""
+    end = time.monotonic() + limit_s
+    while not predicate():
+        if time.monotonic() > end:
+            pytest.fail(f"waited {limit_s} s for {what}")
+        time.sleep(POLL_S)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Services:
+    """Processes a test starts, each in its own session, all stopped at the end, even when the
+    test fails."""
+
+    def __init__(self):
+        self.procs = []
+
+    def start(self, command, **kw):
+        p = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                             start_new_session=True, **kw)
+        self.procs.append(p)
+        return p
+
+    def stop(self):
+        for p in self.procs:
+            if p.poll() is None:
+                os.killpg(p.pid, signal.SIGTERM)
+        for p in self.procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+
+@pytest.fixture
+def services():
+    s = Services()
+    yield s
+    s.stop()
+
+
+def worker_env():
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([os.path.dirname(os.path.dirname(vcontact.__file__)),
+                                         env.get("PYTHONPATH", "")])
+    return env

@@ -8,8 +8,6 @@ import os
 import signal
 import socket
 import subprocess
-import sys
-import time
 
 import numpy as np
 import pytest
@@ -19,9 +17,9 @@ from vcontact import batch
 from vcontact.study import Expression, ExpressionError, Study, StudyError
 from vcontact.study.report import first_order_index, wilson
 
-from conftest import BALL_DROP, dask_command, run_study, small_study
+from conftest import (BALL_DROP, dask_command, free_port, run_study, small_study,
+                      wait_for, worker_env)
 
-POLL_S = 0.05  # how often a test looks for a chunk file or a process's end
 
 
 def table(out):
@@ -226,64 +224,9 @@ def test_a_study_in_one_process_gives_its_table_and_report(tmp_path, inline_ball
     assert repr(float(bodies[bodies["body"] == "ball"]["z"][-1])) == body[0][3]
 
 
-def wait_for(predicate, what, limit_s=300):
-    """Polls until predicate() holds; fails naming `what` after limit_s (a hang, not a timing
-    assertion: the tests never depend on how fast a run is)."""
-    end = time.monotonic() + limit_s
-    while not predicate():
-        if time.monotonic() > end:
-            pytest.fail(f"waited {limit_s} s for {what}")
-        time.sleep(POLL_S)
-
-
 def chunk_files(out):
     d = out / "chunks"
     return sorted(p.name for p in d.glob("chunk_*.json")) if d.exists() else []
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-class Services:
-    """Processes a test starts, each in its own session, all stopped at the end, even when the
-    test fails."""
-
-    def __init__(self):
-        self.procs = []
-
-    def start(self, command, **kw):
-        p = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                             start_new_session=True, **kw)
-        self.procs.append(p)
-        return p
-
-    def stop(self):
-        for p in self.procs:
-            if p.poll() is None:
-                os.killpg(p.pid, signal.SIGTERM)
-        for p in self.procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
-
-
-@pytest.fixture
-def services():
-    s = Services()
-    yield s
-    s.stop()
-
-
-def worker_env():
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([os.path.dirname(os.path.dirname(vcontact.__file__)),
-                                         env.get("PYTHONPATH", "")])
-    return env
 
 
 # Runs of ~20-60 ms each (ball_drop over 2 s: the ball bounces, then rests under dopri5's

@@ -2,13 +2,14 @@
 
 Exit status: 0 done (failed runs are rows of the table, not an error of the study), 2 bad input
 (the study file, its scenario, an option, an output folder of another study, an unreachable
-scheduler), 130 interrupted (finished chunks are kept; the same command resumes)."""
+scheduler), 1 a fit study whose parts did not all finish (parts.csv says why; not merged), 130 interrupted (finished chunks are kept; the same command resumes)."""
 
 import argparse
 import signal
 import sys
 
 BAD_INPUT = 2
+PARTS_FAILED = 1  # a fit study with parts that failed: not merged, the rerun resumes
 INTERRUPTED = 130
 
 
@@ -16,7 +17,9 @@ def _parser():
     p = argparse.ArgumentParser(
         prog="vcontact study",
         description="Run a study (vcontact.study/1, docs/STUDY.md): many runs of a scenario "
-                    "with parameters varied, in chunks on Dask; results.csv, report.html.")
+                    "with parameters varied, in chunks on Dask; results.csv, report.html. A "
+                    "study with \"fit\": the parts of a cross-validated trajectory fit on "
+                    "Dask, merged into fit/.")
     p.add_argument("study", metavar="STUDY", help="study JSON file")
     p.add_argument("--out", required=True, help="output folder (rerun to resume)")
     p.add_argument("--workers", type=int, default=None,
@@ -46,7 +49,8 @@ def _stop(signum, frame):
 
 def main(argv=None):
     args = _parser().parse_args(argv)
-    from . import StudyError, Study, run_one, run_study
+    from . import StudyError, run_one, run_study
+    from .fit import read_study, run_fit_study
     from .expr import ExpressionError
     # A batch system's kill ends as an interrupt does; both are remembered (runner.INTERRUPT).
     signal.signal(signal.SIGTERM, _stop)
@@ -57,7 +61,16 @@ def main(argv=None):
         if args.scheduler and args.workers is not None:
             raise StudyError("--scheduler and --workers exclude each other: the cluster's "
                              "workers are its own")
-        study = Study(args.study, chunk_size=args.chunk_size)
+        study = read_study(args.study, chunk_size=args.chunk_size)
+        if study.kind == "fit":
+            for given, option in ((args.run is not None, "--run"), (args.h5, "--h5"),
+                                  (args.threads, "--threads")):
+                if given:
+                    raise StudyError(f"{option}: not an option of a fit study (each part is "
+                                     "`vcontact fit --fold`; docs/STUDY.md, \"Fit studies\")")
+            summary = run_fit_study(study, args.out, workers=args.workers,
+                                    scheduler=args.scheduler, quiet=args.quiet)
+            return 0 if summary["merged"] else PARTS_FAILED
         if args.run is not None:
             result = run_one(study, args.run, args.out)
             status = result["summary"]["status"]
@@ -70,7 +83,8 @@ def main(argv=None):
         print(f"vcontact: error: {e}", file=sys.stderr)
         return BAD_INPUT
     except KeyboardInterrupt:
-        print(f"vcontact: interrupted: the finished chunks are kept in {args.out}; the same "
+        print(f"vcontact: interrupted: the finished chunks (parts, of a fit study) are kept in "
+              f"{args.out}; the same "
               "command resumes", file=sys.stderr)
         return INTERRUPTED
     return 0

@@ -43,6 +43,26 @@ def _write_atomic(path, text):
     os.replace(tmp, path)
 
 
+def open_folder(out, sub, study, manifest, changed):
+    """Creates the output folder `out` with its folder `sub` of finished pieces, or checks that
+    it holds this study (its manifest's identity); the first time writes the study file as read
+    and the manifest. changed(old manifest) says, for the refusal, what study it holds and
+    what changed."""
+    path = os.path.join(out, "manifest.json")
+    if os.path.exists(path):
+        with open(path, encoding="utf-8") as f:
+            old = json.load(f)
+        if old.get("identity") != study.identity:
+            raise StudyError(
+                f"{out}: holds the results of another study ({changed(old)} since it was "
+                "started; refusing to mix them: choose another --out, or remove the folder to "
+                "start again")
+    os.makedirs(sub, exist_ok=True)
+    if not os.path.exists(path):
+        _write_atomic(os.path.join(out, "study.json"), study.text)
+        _write_atomic(path, json.dumps(manifest, indent=2) + "\n")
+
+
 class Folder:
     """The output folder of one study."""
 
@@ -60,21 +80,13 @@ class Folder:
                     "study": os.path.abspath(self.study.path), "runs": self.study.runs,
                     "chunk_size": self.study.chunk_size, "chunks": self.study.chunks,
                     "seed": self.study.seed}
-        path = os.path.join(self.out, "manifest.json")
-        if os.path.exists(path):
-            with open(path, encoding="utf-8") as f:
-                old = json.load(f)
-            if old.get("identity") != self.study.identity:
-                why = ("the chunk size differs" if old.get("chunk_size") != self.study.chunk_size
-                       else "the study file, its base scenario or the sampled design changed")
-                raise StudyError(
-                    f"{self.out}: holds the results of another study ({old.get('study')}, "
-                    f"{old.get('runs')} runs): {why} since it was started; refusing to mix "
-                    "them: choose another --out, or remove the folder to start again")
-        os.makedirs(self.chunk_dir, exist_ok=True)
-        if not os.path.exists(path):
-            _write_atomic(os.path.join(self.out, "study.json"), self.study.text)
-            _write_atomic(path, json.dumps(manifest, indent=2) + "\n")
+
+        def changed(old):
+            why = ("the chunk size differs" if old.get("chunk_size") != self.study.chunk_size
+                   else "the study file, its base scenario or the sampled design changed")
+            return f"{old.get('study')}, {old.get('runs')} runs): {why}"
+
+        open_folder(self.out, self.chunk_dir, self.study, manifest, changed)
         return {c for c in range(self.study.chunks) if self._finished(c)}
 
     def _finished(self, c):
@@ -103,8 +115,9 @@ class Progress:
 
     INTERVAL_S = 0.5
 
-    def __init__(self, total_runs, quiet):
+    def __init__(self, total_runs, quiet, unit="runs"):
         self.total = total_runs
+        self.unit = unit
         self.shown = not quiet and sys.stderr.isatty() and not os.environ.get("CI")
         self.start = self.last = time.monotonic()
         self.width = 0
@@ -115,7 +128,7 @@ class Progress:
             return
         self.last = now
         elapsed = now - self.start
-        line = f"study: {done}/{self.total} runs ({100.0 * done / self.total:.0f} %)"
+        line = f"study: {done}/{self.total} {self.unit} ({100.0 * done / self.total:.0f} %)"
         if failed:
             line += f", {failed} failed"
         line += f", {elapsed:.0f} s"

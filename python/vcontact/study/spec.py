@@ -63,6 +63,8 @@ class Study:
     `outputs` the named quantities and expressions; `identity` a digest of everything that fixes
     the results (study, base scenario text, design, chunk size), for resuming."""
 
+    kind = "runs"
+
     def __init__(self, path, chunk_size=None):
         self.path = os.fspath(path)
         self.dir = os.path.dirname(os.path.abspath(self.path))
