@@ -13,12 +13,12 @@ namespace vcontact::validation {
 namespace {
 
 // Fewest samples an estimate is made from: below, a median or a slope is noise.
+constexpr std::size_t kMinSamples = 5;
 // A direct estimate is itself a measurement to a few percent (a median of noisy ratios, a slope
 // of noisy logarithms): a fitted value within this fraction of the estimate beyond its range
 // agrees with it. Without it the bundled `loading` record, which follows the volumetric law
 // (p = 1.00045, range 1.00008 .. 1.00086 from its two halves), flagged the law's own p = 1.
 constexpr double kEstimateSlack = 0.02;
-constexpr std::size_t kMinSamples = 5;
 // F_n below this many σ of f_z is no load to divide by (the ratio is noise).
 constexpr double kLoadSigmas = 3.0;
 // f_z below this many σ is left out of the log–log slope (log of noise).
