@@ -363,9 +363,8 @@ TrajectoryFitResult assembleTrajectoryFit(const std::vector<Trial>& trials,
     result.parameters.push_back({d.name, d.unit, d.start, fromUnit(d, u), d.lower, d.upper,
                                  all.parameters[k].stdError, d.log});
     if (u < 1e-3 || u > 1 - 1e-3)
-      result.warnings.push_back(dims[k].name + " ended at the edge of its search box [" +
-                                std::to_string(dims[k].lower) + ", " +
-                                std::to_string(dims[k].upper) + "]");
+      result.warnings.push_back(d.name + " ended at the edge of its search box [" +
+                                std::to_string(d.lower) + ", " + std::to_string(d.upper) + "]");
   }
 
   result.trials.resize(trials.size());
