@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "cli/commands.hpp"
+#include "formats/candidates_file.hpp"
 #include "formats/model_file.hpp"
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
@@ -161,6 +162,7 @@ void runTrajectoryCompare(const formats::DatasetReadResult& data, const dynamics
   files.add(out + "/compare.json", [&](std::ostream& s) {
     auto j = report::trajectoryCompareJson(trial, e);
     j["model"] = modelPath;
+    j["plate_offset_m"] = settings.plateOffset;
     io::putJson(j, s);
   });
   addText(files, out + "/report.html", report::trajectoryReportHtml(trial, e, modelLabel(model)));
@@ -404,6 +406,54 @@ void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::
   const validation::TrajectoryFitResult r = validation::fitTrajectories(trials, model, options);
   progress.finish();
   writeFit(r, options, out);
+}
+
+void runTrajectoryDiagnose(const std::vector<std::string>& datasets, const dynamics::Model& model,
+                           const TrajectoryOptions& o, const std::string& candidates,
+                           const std::string& out) {
+  validation::TrajectoryDiagnoseOptions options;
+  options.fit = fitOptionsOf(o);
+  if (!candidates.empty()) options.candidates = formats::readCandidatesFile(candidates);
+  const std::vector<validation::Trial> trials = readTrials(datasets);
+  std::cout << "diagnosing " << modelLabel(model) << " on " << trials.size() << " trials, "
+            << options.fit.folds << "-fold cross-validated\n";
+  io::Progress progress("diagnose", 0.0, "");
+  options.progress = [&](const std::string& what, int done, int total) {
+    progress.update(what, done, total);
+  };
+  const validation::TrajectoryDiagnosis d =
+      validation::diagnoseTrajectories(trials, model, options);
+  progress.finish();
+  std::cout << "baseline: mean e_q fitted " << d.baseline.meanFitted << ", held out "
+            << d.baseline.meanHeldOut << "\n";
+  for (const auto& c : d.ranking) {
+    std::cout << "  " << c.effect << ": ";
+    if (!c.error.empty()) {
+      std::cout << "failed: " << c.error << "\n";
+      continue;
+    }
+    std::cout << "held out " << c.fit.meanHeldOut << ", change " << c.meanDelta << " ± "
+              << c.deltaStdError << " per trial" << (c.accepted ? " (accepted)" : "") << "\n";
+  }
+  std::cout << "verdict: " << d.verdict << "\n";
+  for (const auto& u : d.unexplained)
+    std::cout << "unexplained: " << u.name << " (e_q " << u.e_q << " at best, by " << u.model
+              << "; fails in " << u.phase << "): " << u.hint << "\n";
+  std::cout << "in " << d.seconds << " s wall\n";
+  const auto best =
+      std::find_if(d.ranking.begin(), d.ranking.end(),
+                   [](const validation::TrajectoryCandidate& c) { return c.accepted; });
+  const validation::TrajectoryFitResult& chosen = best == d.ranking.end() ? d.baseline : best->fit;
+  printWarnings(chosen.warnings);
+  io::OutputSet files(out);
+  files.add(out + "/diagnosis.json", [&](std::ostream& s) {
+    io::putJson(report::trajectoryDiagnosisJson(d, options.fit), s);
+  });
+  files.add(out + "/model.json",
+            [&](std::ostream& s) { io::putJson(formats::modelToJson(chosen.model), s); });
+  files.add(out + "/trials.csv", [&](std::ostream& s) { report::putTrialsCsv(chosen, s); });
+  addText(files, out + "/report.html", report::trajectoryDiagnosisReportHtml(d, options.fit));
+  files.commit();
 }
 
 }  // namespace vcontact::cli

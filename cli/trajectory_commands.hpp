@@ -44,4 +44,11 @@ void runTrajectoryCompare(const formats::DatasetReadResult& data, const dynamics
 void runTrajectoryFit(const std::vector<std::string>& datasets, const dynamics::Model& model,
                       const TrajectoryOptions& o, const std::string& out);
 
+/// Ranks the candidate effects (a candidates file, or the library's when empty) by the
+/// cross-validated e_q of the trials: diagnosis.json, model.json (the accepted candidate's fit,
+/// else the baseline's), trials.csv and report.html in `out`.
+void runTrajectoryDiagnose(const std::vector<std::string>& datasets, const dynamics::Model& model,
+                           const TrajectoryOptions& o, const std::string& candidates,
+                           const std::string& out);
+
 }  // namespace vcontact::cli

@@ -263,13 +263,15 @@ void printStage(const validation::DiagnosisStage& s) {
 }
 
 void runDiagnose(ValidationOptions o) {
+  checkOptions(o);
   const std::vector<std::string> all = expandDatasets(o.datasets);
-  if (all.size() != 1) throw InputError("DATASET", "diagnose takes one dataset");
   o.dataset = all.front();
+  if (all.size() > 1 ||
+      formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kDynamic) {
+    return runTrajectoryDiagnose(all, formats::readModelFile(o.model), o.trajectory, o.candidates,
+                                 o.out);
+  }
   const Inputs in = readInputs(o, {"diagnosis.json", "model.json", "residuals.csv", "report.html"});
-  if (in.data.dataset.mode == validation::DatasetMode::kDynamic)
-    throw InputError(o.dataset,
-                     "diagnose reads kinematic datasets; fit a dynamic one with `vcontact fit`");
   validation::DiagnoseOptions options{fitOptions(o, in.loss), o.iterate};
   if (!o.candidates.empty()) options.candidates = formats::readCandidatesFile(o.candidates);
   const validation::Dataset& d = in.data.dataset;
@@ -447,7 +449,9 @@ void addValidationCommands(CLI::App& app) {
   auto diag = std::make_shared<ValidationOptions>();
   CLI::App* g = app.add_subcommand(
       "diagnose",
-      "Fit, then rank every missing effect by delta BIC: diagnosis.json, model.json, report.html.");
+      "Fit, then rank every missing effect by delta BIC (a kinematic dataset) or by "
+      "cross-validated e_q (dynamic datasets, several at once): diagnosis.json, model.json, "
+      "report.html.");
   addValidationOptions(g, diag, true);
   g->add_flag("--iterate", diag->iterate,
               "add the best effect and repeat until the verdict is none");

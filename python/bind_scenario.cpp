@@ -197,11 +197,12 @@ LoadedScenario fromJson(const std::string& text, const std::string& source,
 }
 
 std::vector<std::string> view(const std::string& outDir, const std::string& html,
-                              const std::string& scenario) {
+                              const std::string& scenario, const std::string& dataset) {
   std::vector<std::string> warnings;
   report::ViewOptions o;
   o.out_dir = outDir;
   o.scenario = scenario;
+  o.dataset = dataset;
   report::writeViewHtml(o, html, warnings);
   return warnings;
 }
@@ -236,7 +237,8 @@ void bindScenario(py::module_& m) {
       .def_property_readonly(
           "duration", [](const LoadedScenario& s) { return s.file.scenario.settings.duration; })
       .def("run", &run, py::arg("out") = py::none());
-  m.def("view", &view, py::arg("out_dir"), py::arg("html"), py::arg("scenario") = "");
+  m.def("view", &view, py::arg("out_dir"), py::arg("html"), py::arg("scenario") = "",
+        py::arg("dataset") = "");
 }
 
 }  // namespace vcontact::python

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -108,6 +109,8 @@ json trajectoryCompareJson(const validation::Trial& trial, const validation::Tri
       {"v_cm", {s.v_BAcm.x(), s.v_BAcm.y(), s.v_BAcm.z()}},
       {"w", {s.w_BA.x(), s.w_BA.y(), s.w_BA.z()}}};
   j["stopped"] = e.path.stopped.empty() ? json(nullptr) : json(e.path.stopped);
+  // What `vcontact view` needs to draw the run again: the shapes are the dataset's.
+  j["dataset"] = std::filesystem::absolute(trial.data.sidecarPath).string();
   return j;
 }
 
@@ -254,6 +257,87 @@ std::string trajectoryFitReportHtml(const validation::TrajectoryFitResult& r,
       << num(t.e_q_heldOut) << "</td><td>" << num(t.e_q_fitted) << "</td><td>"
       << escapeXml(t.worstPhase) << "</td><td>" << num(t.errors.partTime, 3) << "</td></tr>";
   }
+  h << "</table>\n</body></html>\n";
+  return h.str();
+}
+
+json trajectoryDiagnosisJson(const validation::TrajectoryDiagnosis& d,
+                             const validation::TrajectoryFitOptions& o) {
+  json ranking = json::array();
+  for (const auto& c : d.ranking) {
+    json params = json::array();
+    for (const auto& p : c.fit.parameters)
+      params.push_back(
+          {{"name", p.name}, {"value", p.value}, {"std_error", finiteOrNull(p.stdError)}});
+    ranking.push_back(
+        {{"effect", c.effect},
+         {"added", c.added},
+         {"mean_e_q_fitted", c.error.empty() ? json(c.fit.meanFitted) : json()},
+         {"mean_e_q_held_out", c.error.empty() ? finiteOrNull(c.fit.meanHeldOut) : json()},
+         {"mean_change", finiteOrNull(c.meanDelta)},
+         {"change_std_error", finiteOrNull(c.deltaStdError)},
+         {"accepted", c.accepted},
+         {"rejected", c.rejected},
+         {"error", c.error},
+         {"parameters", params}});
+  }
+  json unexplained = json::array();
+  for (const auto& u : d.unexplained)
+    unexplained.push_back({{"trial", u.name},
+                           {"index", u.index},
+                           {"e_q_held_out", u.e_q},
+                           {"best_model", u.model},
+                           {"fails_in", u.phase},
+                           {"hint", u.hint}});
+  return {{"verdict", d.verdict},
+          {"folds", o.folds},
+          {"trials_count", d.baseline.trials.size()},
+          {"acceptance",
+           {{"paired_sigmas", validation::kPairedSigmas},
+            {"unexplained_factor", validation::kUnexplainedFactor},
+            {"unexplained_floor", validation::kUnexplainedFloor}}},
+          {"baseline",
+           {{"effects", d.baseline.model.effectIds()},
+            {"mean_e_q_fitted", d.baseline.meanFitted},
+            {"mean_e_q_held_out", finiteOrNull(d.baseline.meanHeldOut)}}},
+          {"ranking", ranking},
+          {"median_best_e_q_held_out", d.medianBest},
+          {"unexplained", unexplained},
+          {"wall_s", d.seconds}};
+}
+
+std::string trajectoryDiagnosisReportHtml(const validation::TrajectoryDiagnosis& d,
+                                          const validation::TrajectoryFitOptions& o) {
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vcontact diagnose: "
+    << d.baseline.trials.size() << " trials</title><style>" << kPageStyle
+    << "</style></head><body>\n<h1>vcontact diagnose: " << d.baseline.trials.size()
+    << " dynamic trials</h1>\n<p><b>verdict: " << escapeXml(d.verdict)
+    << "</b>. Baseline mean e_q: fitted " << num(d.baseline.meanFitted) << ", " << o.folds
+    << "-fold cross-validated (held out) " << num(d.baseline.meanHeldOut) << "; "
+    << num(d.seconds, 3) << " s wall. A candidate is accepted when its held-out e_q, paired by "
+    << "trial, is lower than the baseline's by more than " << validation::kPairedSigmas
+    << " standard errors.</p>\n<table><tr><th>candidate</th><th>adds</th><th>e_q held out</th>"
+       "<th>change per trial</th><th>± std. error</th><th>accepted</th><th>why not</th></tr>";
+  for (const auto& c : d.ranking) {
+    std::string adds;
+    for (const auto& a : c.added) adds += (adds.empty() ? "" : ", ") + a;
+    h << "<tr><td>" << escapeXml(c.effect) << "</td><td>" << escapeXml(adds) << "</td><td>"
+      << (c.error.empty() ? num(c.fit.meanHeldOut) : std::string("failed")) << "</td><td>"
+      << num(c.meanDelta) << "</td><td>" << num(c.deltaStdError, 2) << "</td><td>"
+      << (c.accepted ? "yes" : "no") << "</td><td>"
+      << escapeXml(c.error.empty() ? c.rejected : c.error) << "</td></tr>";
+  }
+  h << "</table>\n<h2>Trials no model explains</h2>\n<p>best held-out e_q of any model above "
+    << validation::kUnexplainedFactor << " times the median (" << num(d.medianBest) << ") and "
+    << validation::kUnexplainedFloor << ": " << d.unexplained.size() << " of "
+    << d.baseline.trials.size()
+    << "</p><table><tr><th>trial</th><th>best e_q held out</th>"
+       "<th>by</th><th>fails in</th><th>what the record says</th></tr>";
+  for (const auto& u : d.unexplained)
+    h << "<tr><td>" << escapeXml(u.name) << "</td><td>" << num(u.e_q) << "</td><td>"
+      << escapeXml(u.model) << "</td><td>" << escapeXml(u.phase) << "</td><td>" << escapeXml(u.hint)
+      << "</td></tr>";
   h << "</table>\n</body></html>\n";
   return h.str();
 }

@@ -1,13 +1,15 @@
 #pragma once
-// What `vcontact compare` and `fit` write for dynamic datasets (docs/DATASET.md, "Dynamic
-// datasets"): trajectory.csv, compare.json, the trajectory fit's fit.json and trials.csv, and
-// their HTML reports (recorded against simulated height, speed and angle error).
+// What `vcontact compare`, `fit` and `diagnose` write for dynamic datasets (docs/DATASET.md,
+// "Dynamic datasets"): trajectory.csv, compare.json, the trajectory fit's fit.json and
+// trials.csv, the diagnosis's diagnosis.json, and their HTML reports (recorded against
+// simulated height, speed and angle error).
 
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "validation/trajectory_diagnose.hpp"
 #include "validation/trajectory_fit.hpp"
 
 namespace vcontact::report {
@@ -39,5 +41,15 @@ void putTrialsCsv(const validation::TrajectoryFitResult& r, std::ostream& out);
 /// and the trials ranked by held-out e_q with the phase where each fails.
 std::string trajectoryFitReportHtml(const validation::TrajectoryFitResult& r,
                                     const validation::TrajectoryFitOptions& o);
+
+/// diagnosis.json of a trajectory diagnosis: the baseline's mean e_q, the candidates ranked by
+/// held-out e_q with the paired change and its standard error, the verdict, the trials no
+/// model explains with their phase and hint.
+nlohmann::json trajectoryDiagnosisJson(const validation::TrajectoryDiagnosis& d,
+                                       const validation::TrajectoryFitOptions& o);
+
+/// report.html of a trajectory diagnosis: the ranking table and the unexplained trials.
+std::string trajectoryDiagnosisReportHtml(const validation::TrajectoryDiagnosis& d,
+                                          const validation::TrajectoryFitOptions& o);
 
 }  // namespace vcontact::report

@@ -68,11 +68,18 @@
       geometry.setIndex(b.faces);
       geometry.computeVertexNormals();
     }
+    // A ghost (a dynamic compare's record) is grey and faint, and does not hide what is behind.
     const material = new THREE.MeshPhongMaterial({
-      color: palette[k % palette.length], flatShading: !b.halfspace, side: THREE.DoubleSide,
-      transparent: true, opacity: b.halfspace ? 0.55 : 0.85 });
+      color: b.ghost ? 0x9e9e9e : palette[k % palette.length], flatShading: !b.halfspace,
+      side: THREE.DoubleSide, transparent: true,
+      opacity: b.ghost ? 0.3 : b.halfspace ? 0.55 : 0.85, depthWrite: !b.ghost });
     const mesh = new THREE.Mesh(geometry, material);
     mesh.userData.body = b.name;
+    if (b.ghost) {
+      mesh.renderOrder = 1;
+      mesh.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry),
+        new THREE.LineBasicMaterial({ color: 0x616161 })));
+    }
     scene.add(mesh);
     return mesh;
   });
@@ -170,7 +177,8 @@
     document.body.dataset.markers = String(shown);
     showLoads();
     slider.value = String(frame);
-    clock.textContent = 't = ' + times[frame].toFixed(4) + ' s';
+    clock.textContent = 't = ' + times[frame].toFixed(4) + ' s' +
+      (data.trajectory ? ', ' + data.trajectory.phase[frame] : '');
     drawPlot();
   };
 
@@ -236,24 +244,31 @@
     return lo;
   };
 
-  // --- plot of the chosen pair's wrench against time ------------------------------------------
+  // --- plot against time: the chosen pair's wrench, or a dynamic compare's heights -----------
   const plot = document.getElementById('plot');
   const pairSelect = document.getElementById('pair');
-  data.pairs.forEach((p, k) => {
+  const wrench = [['fx', '#d62728'], ['fy', '#2ca02c'], ['fz', '#1f77b4'], ['f_n', '#333333']];
+  const plots = data.pairs.map((p) => ({ name: p.name, unit: 'N', series: wrench, values: p.wrench }));
+  if (data.trajectory) {
+    plots.push({ name: 'height and position error', unit: 'm', values: data.trajectory,
+      series: [['z', '#9e9e9e'], ['z_sim', '#1f77b4'], ['dp', '#d62728']],
+      mark: data.trajectory.part_time });
+  }
+  plots.forEach((p, k) => {
     const o = document.createElement('option'); o.value = String(k); o.textContent = p.name;
     pairSelect.appendChild(o);
   });
   pairSelect.addEventListener('change', () => drawPlot());
-  const series = [['fx', '#d62728'], ['fy', '#2ca02c'], ['fz', '#1f77b4'], ['f_n', '#333333']];
   function drawPlot() {
     const ctx = plot.getContext('2d');
     const w = plot.width = plot.clientWidth * (window.devicePixelRatio || 1);
     const h = plot.height = plot.clientHeight * (window.devicePixelRatio || 1);
     ctx.clearRect(0, 0, w, h);
-    if (!data.pairs.length) return;
-    const pair = data.pairs[Number(pairSelect.value) || 0];
+    if (!plots.length) return;
+    const chosen = plots[Number(pairSelect.value) || 0];
+    const series = chosen.series;
     let lo = Infinity, hi = -Infinity;
-    series.forEach(([key]) => pair.wrench[key].forEach((v) => { lo = Math.min(lo, v); hi = Math.max(hi, v); }));
+    series.forEach(([key]) => chosen.values[key].forEach((v) => { lo = Math.min(lo, v); hi = Math.max(hi, v); }));
     if (!(hi > lo)) { hi = lo + 1; }
     const m = { l: 70 * w / plot.clientWidth, r: 10, t: 10, b: 24 * h / plot.clientHeight };
     const X = (t) => m.l + (w - m.l - m.r) * (t - times[0]) / Math.max(duration, 1e-12);
@@ -261,17 +276,23 @@
     ctx.font = (12 * w / plot.clientWidth) + 'px sans-serif';
     ctx.strokeStyle = '#999'; ctx.strokeRect(m.l, m.t, w - m.l - m.r, h - m.t - m.b);
     ctx.fillStyle = '#333';
-    ctx.fillText(hi.toPrecision(3) + ' N', 2, m.t + 10);
-    ctx.fillText(lo.toPrecision(3) + ' N', 2, h - m.b);
+    ctx.fillText(hi.toPrecision(3) + ' ' + chosen.unit, 2, m.t + 10);
+    ctx.fillText(lo.toPrecision(3) + ' ' + chosen.unit, 2, h - m.b);
     ctx.fillText(times[0].toFixed(3) + ' s', m.l, h - 4);
     ctx.fillText(times[frames - 1].toFixed(3) + ' s', w - m.r - 60, h - 4);
     if (lo < 0 && hi > 0) { ctx.strokeStyle = '#ccc'; ctx.beginPath(); ctx.moveTo(m.l, Y(0)); ctx.lineTo(w - m.r, Y(0)); ctx.stroke(); }
     series.forEach(([key, color], s) => {
       ctx.strokeStyle = color; ctx.lineWidth = 1.5; ctx.beginPath();
-      pair.wrench[key].forEach((v, i) => { if (i) ctx.lineTo(X(times[i]), Y(v)); else ctx.moveTo(X(times[i]), Y(v)); });
+      chosen.values[key].forEach((v, i) => { if (i) ctx.lineTo(X(times[i]), Y(v)); else ctx.moveTo(X(times[i]), Y(v)); });
       ctx.stroke();
-      ctx.fillStyle = color; ctx.fillText(key, m.l + 8 + 40 * s * w / plot.clientWidth, m.t + 14);
+      ctx.fillStyle = color; ctx.fillText(key, m.l + 8 + 48 * s * w / plot.clientWidth, m.t + 14);
     });
+    if (typeof chosen.mark === 'number') {  // where the simulated path parts from the record
+      const x = X(times[0] + chosen.mark);
+      ctx.strokeStyle = '#d62728'; ctx.setLineDash([4, 4]);
+      ctx.beginPath(); ctx.moveTo(x, m.t); ctx.lineTo(x, h - m.b); ctx.stroke();
+      ctx.setLineDash([]); ctx.fillStyle = '#d62728'; ctx.fillText('part', x + 3, h - m.b - 4);
+    }
     ctx.strokeStyle = '#000'; ctx.beginPath(); ctx.moveTo(X(times[frame]), m.t); ctx.lineTo(X(times[frame]), h - m.b); ctx.stroke();
   }
 

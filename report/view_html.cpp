@@ -47,7 +47,7 @@ constexpr const char* kHead = R"HTML(<!DOCTYPE html>
   <input id="slider" type="range" min="0" max="0" step="1" value="0">
   <span id="clock"></span>
   <label>speed <select id="speed"></select></label>
-  <label>pair <select id="pair"></select></label>
+  <label>plot <select id="pair"></select></label>
 </div>
 <canvas id="plot"></canvas>
 )HTML";

@@ -1,7 +1,7 @@
 #pragma once
 // `vcontact view OUT_DIR`: one self-contained HTML page that plays a simulation back in 3D
-// (three.js inlined), from the folder `vcontact simulate` wrote and the scenario it ran
-// (docs/VIEWER.md).
+// (three.js inlined), from the folder `vcontact simulate` wrote and the scenario it ran, or
+// from the folder `vcontact compare` wrote for a dynamic dataset (docs/VIEWER.md).
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -13,8 +13,10 @@ namespace vcontact::report {
 inline constexpr const char* kDebianThreeJs = "/usr/share/javascript/three/three.min.js";
 
 struct ViewOptions {
-  std::string out_dir;   ///< what `vcontact simulate --out` wrote
+  std::string
+      out_dir;  ///< what `vcontact simulate --out` (or `compare` of a dynamic dataset) wrote
   std::string scenario;  ///< the scenario file; empty: the "scenario" key of summary.json
+  std::string dataset;   ///< a dynamic compare's dataset; empty: the "dataset" key of compare.json
   std::string three_js = kDebianThreeJs;
 };
 
@@ -22,6 +24,9 @@ struct ViewOptions {
 /// frames, their poses at every output time, and per pair the wrench series and the contact
 /// patches at every time (from pair_<name>_patches.csv when present, else the aggregate
 /// columns of pair_<name>.csv). Notes on what was left out go to `warnings`.
+/// A folder of `vcontact compare` on a dynamic dataset (compare.json and trajectory.csv, no
+/// summary.json) gives the plate, the payload as simulated and the payload as recorded, drawn
+/// as a ghost, and the heights and position error of trajectory.csv for the plot.
 /// @throws InputError naming the file, the line and what was expected
 nlohmann::json viewData(const ViewOptions& options, std::vector<std::string>& warnings);
 

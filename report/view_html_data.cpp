@@ -1,11 +1,13 @@
 // viewData: reads a simulation output folder and its scenario into the JSON the viewer plays.
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "formats/dataset_file.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
 #include "geometry/tessellate.hpp"
@@ -107,7 +109,9 @@ std::string scenarioPath(const ViewOptions& o) {
   if (!o.scenario.empty()) return o.scenario;
   const fs::path summary = fs::path(o.out_dir) / "summary.json";
   if (!fs::exists(summary)) {
-    throw InputError(o.out_dir, "no summary.json: not a folder written by vcontact simulate");
+    throw InputError(o.out_dir,
+                     "no summary.json: not a folder written by vcontact simulate (nor by "
+                     "vcontact compare on a dynamic dataset: compare.json and trajectory.csv)");
   }
   const nlohmann::json j = io::readJsonFile(summary.string());
   if (!j.contains("scenario") || !j["scenario"].is_string()) {
@@ -218,11 +222,129 @@ nlohmann::json loadsJson(const fs::path& file, std::size_t frames) {
   return out;
 }
 
+// A folder `vcontact compare` wrote for a dynamic dataset, not one of `simulate`.
+bool isTrajectoryCompare(const fs::path& dir) {
+  return !fs::exists(dir / "summary.json") && fs::exists(dir / "compare.json") &&
+         fs::exists(dir / "trajectory.csv");
+}
+
+std::string datasetPath(const ViewOptions& o, const nlohmann::json& compare,
+                        const std::string& comparePath) {
+  if (!o.dataset.empty()) return o.dataset;
+  if (!compare.contains("dataset") || !compare["dataset"].is_string()) {
+    throw InputError(comparePath,
+                     "no \"dataset\" key (written by vcontact compare since the viewer plays "
+                     "trajectories); name the dataset with --dataset FILE");
+  }
+  return compare["dataset"].get<std::string>();
+}
+
+// The 7 pose columns of trajectory.csv ending in `suffix` ("" recorded, "_sim" simulated), as
+// one flat [x y z qw qx qy qz ...] per row.
+std::vector<double> trajectoryPoses(const CsvTable& t, const std::string& suffix) {
+  std::vector<int> cols;
+  for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"})
+    cols.push_back(t.requireColumn(c + suffix));
+  std::vector<double> poses;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    for (int c : cols) poses.push_back(t.number(r, c));
+  }
+  return poses;
+}
+
+// trajectory.csv's series for the plot (heights and the position error, m) and each row's
+// phase, with where the paths part (compare.json's part_time_s, null when they never do).
+nlohmann::json trajectorySeries(const CsvTable& t, const nlohmann::json& compare) {
+  nlohmann::json series = nlohmann::json::object();
+  for (const char* name : {"z", "z_sim", "dp"}) {
+    const int c = t.requireColumn(name);
+    std::vector<double> s;
+    for (std::size_t r = 0; r < t.rows.size(); ++r) s.push_back(t.number(r, c));
+    series[name] = s;
+  }
+  const int phase = t.requireColumn("phase");
+  std::vector<std::string> phases;
+  for (const auto& row : t.rows) {
+    std::string p = row[static_cast<std::size_t>(phase)];
+    if (p.size() >= 2 && p.front() == '"' && p.back() == '"') p = p.substr(1, p.size() - 2);
+    phases.push_back(p);
+  }
+  series["phase"] = phases;
+  const auto part = compare.find("part_time_s");
+  series["part_time"] = part != compare.end() && part->is_number() ? *part : nlohmann::json();
+  return series;
+}
+
+// The plate at its pose (moved by the compare's plate offset along its normal), the payload as
+// simulated, and the payload as recorded, drawn as a ghost.
+nlohmann::json trajectoryViewData(const ViewOptions& o) {
+  const fs::path dir(o.out_dir);
+  const std::string comparePath = (dir / "compare.json").string();
+  const nlohmann::json compare = io::readJsonFile(comparePath);
+  const std::string path = datasetPath(o, compare, comparePath);
+  const validation::Dataset d = formats::readDataset(path).dataset;
+  const CsvTable t = readCsv(dir / "trajectory.csv");
+  if (t.rows.empty()) throw InputError(t.path, "no rows after the header");
+  std::vector<double> times;
+  const int tc = t.requireColumn("t");
+  for (std::size_t r = 0; r < t.rows.size(); ++r) times.push_back(t.number(r, tc));
+
+  Eigen::Isometry3d X_BP = d.X_BP;
+  X_BP.translation() += compare.value("plate_offset_m", 0.0) * d.X_BP.linear().col(2);
+  const Eigen::Quaterniond q(X_BP.linear());
+  const std::vector<double> platePose = {X_BP.translation().x(),
+                                         X_BP.translation().y(),
+                                         X_BP.translation().z(),
+                                         q.w(),
+                                         q.x(),
+                                         q.y(),
+                                         q.z()};
+  nlohmann::json plate = bodyShapeJson(d.plate);
+  plate["name"] = "plate";
+  plate["fixed"] = true;
+  std::vector<double> platePoses;
+  for (std::size_t r = 0; r < times.size(); ++r)
+    platePoses.insert(platePoses.end(), platePose.begin(), platePose.end());
+  plate["poses"] = platePoses;
+
+  const std::string name = d.name.empty() ? "payload" : d.name;
+  nlohmann::json simulated = bodyShapeJson(d.payload);
+  simulated["name"] = name + " (simulated)";
+  simulated["fixed"] = false;
+  simulated["poses"] = trajectoryPoses(t, "_sim");
+  nlohmann::json recorded = bodyShapeJson(d.payload);
+  recorded["name"] = name + " (record)";
+  recorded["fixed"] = false;
+  recorded["ghost"] = true;
+  recorded["poses"] = trajectoryPoses(t, "");
+
+  nlohmann::json data;
+  data["scenario"] = fs::path(path).filename().string();
+  std::ostringstream description;
+  description.precision(4);
+  description << "the record (grey ghost) against the model " << compare.value("model", "?")
+              << ", e_q " << compare.value("e_q", std::nan(""));
+  data["description"] = description.str();
+  data["bodies"] = {plate, simulated, recorded};
+  data["times"] = times;
+  data["pairs"] = nlohmann::json::array();
+  data["loads"] = nlohmann::json::array();
+  data["trajectory"] = trajectorySeries(t, compare);
+  return data;
+}
+
 }  // namespace
 
 nlohmann::json viewData(const ViewOptions& o, std::vector<std::string>& warnings) {
   const fs::path dir(o.out_dir);
   if (!fs::is_directory(dir)) throw InputError(o.out_dir, "not a folder");
+  if (!o.scenario.empty() && !o.dataset.empty()) {
+    throw InputError("--dataset",
+                     "names a dynamic compare's dataset and --scenario a "
+                     "simulation's scenario: give one of them");
+  }
+  if (!o.dataset.empty() || (o.scenario.empty() && isTrajectoryCompare(dir)))
+    return trajectoryViewData(o);
   const std::string path = scenarioPath(o);
   const formats::ScenarioFile file = formats::readScenarioFile(path);
   nlohmann::json data;

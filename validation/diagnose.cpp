@@ -41,16 +41,6 @@ void closure(const Model& model, const CandidateSet& set, const std::string& id,
   for (auto req : effect->requiredEffects()) closure(model, set, std::string(req), out);
 }
 
-// The candidate's model: the baseline's fitted values, the new effects at the values of the
-// candidate set (the defaults for the library's); a relation such as μ_S ≥ μ_C is kept by the
-// fit's parametrisation (fit.hpp).
-Model candidateModel(const Model& baseline, const CandidateSet& set, const Candidate& c) {
-  Model m = baseline;
-  for (const auto& id : c.added) m.add(set.create(id));
-  m.setFixed(baseline.fixed());
-  return m;
-}
-
 // The parameters of the added effects: what the candidate's multistart explores.
 std::vector<std::string> addedParameters(const Model& m, const Candidate& c) {
   std::vector<std::string> out;
@@ -466,6 +456,13 @@ std::vector<FailureWindow> failureWindows(const Dataset& dataset, const Comparis
   std::vector<FailureWindow> out;
   for (std::size_t i = 0; i < std::min(all.size(), kMaxWindows); ++i) out.push_back(all[i].second);
   return out;
+}
+
+Model candidateModel(const Model& baseline, const CandidateSet& set, const Candidate& c) {
+  Model m = baseline;
+  for (const auto& id : c.added) m.add(set.create(id));
+  m.setFixed(baseline.fixed());
+  return m;
 }
 
 std::vector<Candidate> candidateList(const Model& model, const DiagnoseOptions& options) {

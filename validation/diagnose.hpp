@@ -170,6 +170,12 @@ struct DiagnoseOptions {
 /// effects it requires. @throws InputError on an unknown id
 std::vector<Candidate> candidateList(const dynamics::Model& model, const DiagnoseOptions& options);
 
+/// The candidate's model: the baseline's values, the added effects at the values of the
+/// candidate set (the defaults for the library's), the baseline's fixed parameters held; a
+/// relation such as μ_S ≥ μ_C is kept by the fit's parametrisation (fit.hpp).
+dynamics::Model candidateModel(const dynamics::Model& baseline, const CandidateSet& set,
+                               const Candidate& c);
+
 struct Diagnosis {
   std::vector<DiagnosisStage> stages;  ///< one without iterate
   /// The last stage's baseline: the final model when iterating.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "dynamics/simulator.hpp"
@@ -103,9 +104,23 @@ const char* trajectoryPhaseName(TrajectoryPhase p) {
   return "?";
 }
 
+double contactMargin(const Dataset& d) {
+  return std::max(3.0 * noiseOf(d, "position"), 0.02 * payloadSize(d));
+}
+
+double recordedSink(const Dataset& d) {
+  double sink = -std::numeric_limits<double>::infinity();
+  for (const Sample& s : d.samples) {
+    const double c = clearance(d, s.X_BA);
+    if (std::isnan(c)) return c;
+    sink = std::max(sink, -c);
+  }
+  return sink;
+}
+
 std::vector<TrajectoryPhase> recordPhases(const Dataset& d) {
   const double size = payloadSize(d);
-  const double margin = std::max(3.0 * noiseOf(d, "position"), 0.02 * size);
+  const double margin = contactMargin(d);
   std::vector<TrajectoryPhase> phases(d.size(), TrajectoryPhase::kFlight);
   int sinceFlight = kImpactSamples;  // a record that starts in contact starts with no impact
   for (std::size_t i = 0; i < d.size(); ++i) {
@@ -123,7 +138,7 @@ std::vector<TrajectoryPhase> recordPhases(const Dataset& d) {
     // hysteresis: a payload at rest stays so until it moves at twice the rest speed, so that
     // the noise of a slowing slide does not flicker between the two
     const double limit =
-        (i > 0 && phases[i - 1] == TrajectoryPhase::kRest ? 2.0 : 1.0) * kRestSpeed;
+        (i > 0 && phases[i - 1] == TrajectoryPhase::kRest ? 2.0 : 1.0) * kTossRestSpeed;
     phases[i] =
         pointSpeed(d, i, 0.5 * size) < limit ? TrajectoryPhase::kRest : TrajectoryPhase::kSliding;
   }

@@ -63,11 +63,16 @@ inline constexpr int kPhaseCount = 4;
 /// The record's phase at every sample: flight while the payload's lowest point is more than
 /// max(3 σ_position, 2 % of its size) above the plate (half-space) or the interference volume
 /// is zero (other plates); in contact, an impact at the first kImpactSamples samples after
-/// flight; rest while the payload's points move slower than kRestSpeed on average over
+/// flight; rest while the payload's points move slower than kTossRestSpeed on average over
 /// kRestWindow (twice that once at rest); sliding or rolling else.
 std::vector<TrajectoryPhase> recordPhases(const Dataset& d);
+/// m: the contact margin of the phases, max(3 σ_position, 2 % of the payload's smallest extent).
+double contactMargin(const Dataset& d);
+/// m: how far the recorded payload's lowest point goes below a half-space plate at its deepest
+/// (negative when it never reaches it); NaN for another plate.
+double recordedSink(const Dataset& d);
 inline constexpr int kImpactSamples = 3;
-inline constexpr double kRestSpeed = 0.02;  ///< m/s: a few mocap noise levels at 148 Hz
+inline constexpr double kTossRestSpeed = 0.02;  ///< m/s: a few mocap noise levels at 148 Hz
 /// s: rest is judged on the mean speed over this window (the poses at its ends), so that the
 /// ringing of a resting body on its contact and the markers' noise do not read as motion.
 inline constexpr double kRestWindow = 0.1;

@@ -148,9 +148,11 @@ def _scenario_run(self, out=None, check=True):
 Scenario.run = _scenario_run
 
 
-def view(out_dir, html, scenario=""):
-    """Writes the 3D playback page of a simulation output folder (docs/VIEWER.md)."""
-    return _vcontact.view(os.fspath(out_dir), os.fspath(html), os.fspath(scenario))
+def view(out_dir, html, scenario="", dataset=""):
+    """Writes the 3D playback page of a simulation output folder, or of the folder `vcontact
+    compare` wrote for a dynamic dataset (the record as a ghost; docs/VIEWER.md)."""
+    return _vcontact.view(os.fspath(out_dir), os.fspath(html), os.fspath(scenario),
+                          os.fspath(dataset))
 
 
 # --- datasets -----------------------------------------------------------------------------------

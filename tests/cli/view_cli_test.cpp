@@ -1,8 +1,10 @@
-// `vcontact view`: the page it writes for a simulation folder, loaded in headless Chromium.
+// `vcontact view`: the page it writes for a simulation folder, and for a dynamic compare's
+// folder, loaded in headless Chromium.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -139,6 +141,79 @@ TEST_F(ViewCli, PegInsertionShowsItsDriveForce) {
   EXPECT_EQ(attribute(end.out, "errors"), "0") << attribute(end.out, "error-text");
   EXPECT_EQ(attribute(end.out, "loads"), "1");
   EXPECT_EQ(attribute(end.out, "frame"), "120");
+}
+
+// A dynamic dataset whose record cannot be a free body's: the box moves at 0.5 m/s along x
+// 0.3 m above the plate and never falls. `compare` releases it from the record's first state
+// (the velocity columns), so the simulated box falls g t²/2 = 0.196 m in 0.2 s, still in flight.
+void writeLevitatingBox(const fs::path& dir) {
+  std::ofstream csv(dir / "levitating.csv");
+  csv << "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  for (int i = 0; i <= 20; ++i) {
+    const double t = 0.01 * i;
+    csv << t << ',' << 0.5 * t << ",0,0.3,1,0,0,0,0.5,0,0,0,0,0\n";
+  }
+  std::ofstream(dir / "levitating.json")
+      << R"({"format": "vcontact.dataset/1", "name": "levitating", "data": "levitating.csv",
+ "mode": "dynamic", "payload": {"shape": "box", "size": [0.1, 0.1, 0.1]},
+ "plate": {"shape": "halfspace"}, "payload_inertia": {"mass": 0.37, "inertia": [6e-4, 6e-4, 6e-4]},
+ "outputs": ["position", "attitude"]})";
+  std::ofstream(dir / "model.json")
+      << R"({"format": "vcontact.model/1", "effects": {"stiffness": {"kv": 2e6}}})";
+}
+
+TEST_F(ViewCli, DynamicComparePlaysTheRecordAsAGhost) {
+  if (!fs::exists(kChromium) || !fs::exists(kThreeJs))
+    GTEST_SKIP() << "chromium or libjs-three is not installed (scripts/setup.sh installs both)";
+  writeLevitatingBox(dir_);
+  const CommandResult c =
+      vcontact("compare " + (dir_ / "levitating.json").string() + " --model " +
+               (dir_ / "model.json").string() + " --out " + (dir_ / "cmp").string());
+  ASSERT_EQ(c.exitCode, 0) << c.err;
+  const CommandResult v =
+      vcontact("view " + (dir_ / "cmp").string() + " --out " + (dir_ / "view.html").string());
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  const std::string html = readText(dir_ / "view.html");
+  EXPECT_NE(html.find("\"name\":\"levitating (record)\""), std::string::npos);
+  EXPECT_NE(html.find("\"ghost\":true"), std::string::npos);
+
+  const CommandResult start = chromium("--virtual-time-budget=3000 --dump-dom", "#t=0");
+  ASSERT_EQ(start.exitCode, 0) << start.err;
+  const CommandResult end = chromium("--virtual-time-budget=3000 --dump-dom", "#t=0.2");
+  ASSERT_EQ(end.exitCode, 0) << end.err;
+  for (const auto* r : {&start, &end}) {
+    EXPECT_EQ(attribute(r->out, "ready"), "1") << r->out.substr(0, 400);
+    EXPECT_EQ(attribute(r->out, "errors"), "0") << attribute(r->out, "error-text");
+    EXPECT_EQ(attribute(r->out, "body-meshes"), "3");  // plate, simulated box, recorded ghost
+    EXPECT_EQ(attribute(r->out, "markers"), "0");
+    EXPECT_EQ(r->err.find("Uncaught"), std::string::npos) << r->err;
+  }
+  EXPECT_EQ(attribute(end.out, "frames"), "21");
+  EXPECT_EQ(attribute(end.out, "frame"), "20");
+  // Screen positions of [plate, simulated, record]: together at the start; at the end the
+  // simulated box lies below its ghost (screen y grows downwards), at the same x on screen
+  // within the perspective's shift.
+  const std::regex three(
+      "\\[\\[(-?\\d+),(-?\\d+)\\],\\[(-?\\d+),(-?\\d+)\\],\\[(-?\\d+),(-?\\d+)\\]\\]");
+  std::smatch a, b;
+  const std::string s0 = attribute(start.out, "screen"), s1 = attribute(end.out, "screen");
+  ASSERT_TRUE(std::regex_search(s0, a, three)) << s0;
+  ASSERT_TRUE(std::regex_search(s1, b, three)) << s1;
+  EXPECT_EQ(a[3], a[5]) << s0;
+  EXPECT_EQ(a[4], a[6]) << s0;
+  EXPECT_GT(std::stoi(b[4]) - std::stoi(b[6]), 20) << s1;
+  EXPECT_LT(std::abs(std::stoi(b[3]) - std::stoi(b[5])), std::stoi(b[4]) - std::stoi(b[6])) << s1;
+}
+
+TEST_F(ViewCli, ACompareFolderWithoutItsDatasetNamesTheOption) {
+  fs::create_directories(dir_ / "cmp");
+  std::ofstream(dir_ / "cmp" / "compare.json") << R"({"e_q": 0.1})";
+  std::ofstream(dir_ / "cmp" / "trajectory.csv") << "t,x,x_sim\n0,0,0\n";
+  const CommandResult r =
+      vcontact("view " + (dir_ / "cmp").string() + " --out " + (dir_ / "view.html").string());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--dataset"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "view.html"));
 }
 
 TEST_F(ViewCli, RefusesAFolderWithoutASimulation) {

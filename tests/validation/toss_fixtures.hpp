@@ -3,7 +3,10 @@
 // over a half-space from a known state, simulated with a known model, recorded at a fixed
 // rate with optional Gaussian noise on position and attitude.
 
+#include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "dynamics/model.hpp"
 #include "validation/trajectory_compare.hpp"
@@ -86,6 +89,25 @@ inline Trial makeToss(const TossSpec& spec, const dynamics::Model& truth, double
                   {"attitude", std::max(sigmaAttitude, 1e-12)}};
   t.phases = recordPhases(t.data);
   return t;
+}
+
+/// Four tosses of `duration` s that land sliding in different directions and spins, with the
+/// plate at `offset`, recorded with noise σ_position = sigma and σ_attitude = 10 sigma.
+inline std::vector<Trial> fourTosses(const dynamics::Model& model, double offset, double sigma,
+                                     double duration) {
+  std::vector<Trial> out;
+  for (int k = 0; k < 4; ++k) {
+    TossSpec spec;
+    const double a = 0.7 * k;
+    spec.X0.translation() = Eigen::Vector3d(0, 0, 0.09 + 0.01 * k);
+    spec.X0.linear() = Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    spec.v0 = Eigen::Vector3d(0.8 * std::cos(a), 0.8 * std::sin(a), -0.2);
+    spec.w0 = Eigen::Vector3d(0, 0, 1.0 + k);
+    spec.duration = duration;
+    out.push_back(
+        makeToss(spec, model, offset, sigma, 10 * sigma, 11 + k, "toss" + std::to_string(k)));
+  }
+  return out;
 }
 
 }  // namespace vcontact::validation::testing

@@ -13,25 +13,11 @@
 namespace vcontact::validation {
 namespace {
 
-using testing::TossSpec;
-
 dynamics::Model truth() { return testing::tossModel(); }
 
-// Four tosses that land sliding in different directions and spins.
+// Four tosses that land sliding in different directions and spins, 0.5 s each.
 std::vector<Trial> tosses(const dynamics::Model& model, double offset, double sigma) {
-  std::vector<Trial> out;
-  for (int k = 0; k < 4; ++k) {
-    TossSpec spec;
-    const double a = 0.7 * k;
-    spec.X0.translation() = Eigen::Vector3d(0, 0, 0.09 + 0.01 * k);
-    spec.X0.linear() = Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    spec.v0 = Eigen::Vector3d(0.8 * std::cos(a), 0.8 * std::sin(a), -0.2);
-    spec.w0 = Eigen::Vector3d(0, 0, 1.0 + k);
-    spec.duration = 0.5;
-    out.push_back(testing::makeToss(spec, model, offset, sigma, 10 * sigma, 11 + k,
-                                    "toss" + std::to_string(k)));
-  }
-  return out;
+  return testing::fourTosses(model, offset, sigma, 0.5);
 }
 
 TrajectoryFitOptions quickOptions() {
