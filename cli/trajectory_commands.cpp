@@ -343,7 +343,8 @@ void writeFit(const validation::TrajectoryFitResult& r,
     std::cout << ", " << options.folds << "-fold cross-validated " << r.meanHeldOut;
   std::cout << "\n";
   for (const auto& p : r.parameters)
-    std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << '\n';
+    std::cout << p.name << " = " << p.value << " ± " << p.stdError << ' ' << p.unit << " ("
+              << report::standardErrorMethod(p) << ")" << '\n';
   std::cout << r.evaluations << " evaluations (" << r.trialSimulations << " trial simulations) in "
             << r.seconds << " s wall, " << r.cpuSeconds << " s CPU\n";
   printWarnings(r.warnings);

@@ -167,6 +167,13 @@ std::string trajectoryReportHtml(const validation::Trial& trial,
   return h.str();
 }
 
+// Which error TrajectoryParameter::stdError is (trajectory_fit.hpp).
+const char* standardErrorMethod(const validation::TrajectoryParameter& p) {
+  if (std::isnan(p.jackknifeError)) return "gauss-newton";
+  return p.stdError == p.jackknifeError ? "jackknife over the folds"
+                                        : "gauss-newton (above the jackknife)";
+}
+
 json trajectoryFitJson(const validation::TrajectoryFitResult& r,
                        const validation::TrajectoryFitOptions& o) {
   json params = json::array();
@@ -176,6 +183,9 @@ json trajectoryFitJson(const validation::TrajectoryFitResult& r,
                       {"start", p.start},
                       {"value", p.value},
                       {"std_error", finiteOrNull(p.stdError)},
+                      {"std_error_method", standardErrorMethod(p)},
+                      {"std_error_gauss_newton", finiteOrNull(p.gaussNewtonError)},
+                      {"std_error_jackknife", finiteOrNull(p.jackknifeError)},
                       {"search", {p.lower, p.upper}},
                       {"scale", p.logScale ? "log" : "linear"}});
   json trials = json::array();
@@ -228,13 +238,17 @@ std::string trajectoryFitReportHtml(const validation::TrajectoryFitResult& r,
     << num(r.meanHeldOut) << "; " << r.evaluations << " evaluations, " << r.trialSimulations
     << " trial simulations, " << num(r.seconds, 3) << " s wall, " << num(r.cpuSeconds, 3)
     << " s CPU</p>\n<table><tr><th>parameter</th><th>start</th><th>fitted</th><th>± std. error</th>"
-       "<th>unit</th><th>search box</th></tr>";
+       "<th>(Gauss–Newton)</th><th>unit</th><th>search box</th></tr>";
   for (const auto& p : r.parameters)
     h << "<tr><td>" << escapeXml(p.name) << "</td><td>" << num(p.start) << "</td><td>"
-      << num(p.value) << "</td><td>" << num(p.stdError, 2) << "</td><td>" << escapeXml(p.unit)
-      << "</td><td>[" << num(p.lower, 3) << ", " << num(p.upper, 3) << "] "
-      << (p.logScale ? "log" : "linear") << "</td></tr>";
-  h << "</table>\n";
+      << num(p.value) << "</td><td>" << num(p.stdError, 2) << "</td><td>"
+      << num(p.gaussNewtonError, 2) << "</td><td>" << escapeXml(p.unit) << "</td><td>["
+      << num(p.lower, 3) << ", " << num(p.upper, 3) << "] " << (p.logScale ? "log" : "linear")
+      << "</td></tr>";
+  h << "</table>\n<p>The standard error is the larger of the jackknife's over the folds (the "
+       "fits without one fold's trials) and Gauss–Newton's when the fit is cross-validated, "
+       "else Gauss–Newton's, which takes every sample as independent and so understates the "
+       "error of a trajectory fit.</p>\n";
   for (const auto& w : r.warnings) h << "<p class=\"warnings\">" << escapeXml(w) << "</p>\n";
   std::vector<double> index, fitted, heldOut;
   for (std::size_t i = 0; i < r.trials.size(); ++i) {

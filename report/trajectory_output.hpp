@@ -37,6 +37,10 @@ nlohmann::json trajectoryFitJson(const validation::TrajectoryFitResult& r,
 /// trials.csv: name, fold, e_q start, fitted, held out, worst phase, where they part.
 void putTrialsCsv(const validation::TrajectoryFitResult& r, std::ostream& out);
 
+/// "jackknife over the folds", "gauss-newton (above the jackknife)" or "gauss-newton": which
+/// error the parameter's stdError is.
+const char* standardErrorMethod(const validation::TrajectoryParameter& p);
+
 /// report.html of a trajectory fit: e_q per trial (fitted against held out), the parameters,
 /// and the trials ranked by held-out e_q with the phase where each fails.
 std::string trajectoryFitReportHtml(const validation::TrajectoryFitResult& r,

@@ -340,6 +340,17 @@ void checkParts(const std::vector<Trial>& trials, const TrajectoryFitOptions& op
   }
 }
 
+// The delete-a-group jackknife's standard error of parameter k from the fold fits (each
+// without one fold's trials): sqrt((n − 1)/n Σ_f (θ_f − θ̄)²) over the n folds.
+double jackknifeError(const std::vector<TrajectoryFoldFit>& folds, std::size_t k) {
+  const auto n = static_cast<double>(folds.size());
+  double mean = 0.0;
+  for (const auto& f : folds) mean += f.parameters[k].value / n;
+  double ss = 0.0;
+  for (const auto& f : folds) ss += (f.parameters[k].value - mean) * (f.parameters[k].value - mean);
+  return std::sqrt((n - 1.0) / n * ss);
+}
+
 }  // namespace
 
 TrajectoryFitResult assembleTrajectoryFit(const std::vector<Trial>& trials,
@@ -360,13 +371,27 @@ TrajectoryFitResult assembleTrajectoryFit(const std::vector<Trial>& trials,
   for (std::size_t k = 0; k < dims.size(); ++k) {
     const auto& d = dims[k];
     const double u = best[k];
-    result.parameters.push_back({d.name, d.unit, d.start, fromUnit(d, u), d.lower, d.upper,
-                                 all.parameters[k].stdError, d.log});
+    TrajectoryParameter p{
+        d.name, d.unit, d.start, fromUnit(d, u), d.lower, d.upper, all.parameters[k].stdError,
+        d.log};
+    p.gaussNewtonError = all.parameters[k].stdError;
+    if (!folds.empty()) {
+      p.jackknifeError = jackknifeError(folds, k);
+      // the larger: fold fits that all stop on one point of the loss's jumps scatter by
+      // nothing, and Gauss-Newton's error is then the only one left
+      p.stdError = std::isnan(p.gaussNewtonError) ? p.jackknifeError
+                                                  : std::max(p.jackknifeError, p.gaussNewtonError);
+    }
+    result.parameters.push_back(p);
     if (u < 1e-3 || u > 1 - 1e-3)
       result.warnings.push_back(d.name + " ended at the edge of its search box [" +
                                 std::to_string(d.lower) + ", " + std::to_string(d.upper) + "]");
   }
 
+  if (folds.empty() && !dims.empty())
+    result.warnings.push_back(
+        "the standard errors are Gauss-Newton's, which take every sample as independent and "
+        "understate a trajectory fit's error; cross-validate (--folds k) for the jackknife's");
   result.trials.resize(trials.size());
   TrajectorySettings startSettings = options.settings;
   tbb::parallel_for(std::size_t{0}, trials.size(), [&](std::size_t i) {

@@ -22,7 +22,10 @@
 //
 // Cross-validation by trial: the trials are dealt into k folds (trial i into fold i mod k, in
 // the order given); each fold's trials are scored by the model fitted on the others, and the
-// mean of those held-out e_q is reported beside the fitted one.
+// mean of those held-out e_q is reported beside the fitted one. The fold fits also give each
+// parameter's standard error, by the delete-a-group jackknife: the trials, not the samples,
+// are the independent units of a trajectory record, and the jackknife's scatter takes in the
+// loss's jumps that a local (Gauss–Newton) error cannot see.
 //
 // The cross-validated fit is k + 1 independent, deterministic fits (the one on all trials and
 // one per fold): fitTrajectoryFold runs one of them alone (on any process or machine), and
@@ -30,6 +33,7 @@
 // which is the two in one process (docs/STUDY.md, "Fit studies").
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -55,10 +59,19 @@ struct TrajectoryFitOptions {
 struct TrajectoryParameter {
   std::string name, unit;
   double start = 0.0, value = 0.0, lower = 0.0, upper = 0.0;
-  /// Gauss–Newton standard error from the residuals' finite-difference Jacobian at the
-  /// optimum, σ² (JᵀJ)⁻¹ with σ² = RSS / (N − p); NaN when JᵀJ is singular.
+  /// The standard error reported: when the fit is cross-validated the larger of the
+  /// jackknife's over the folds (jackknifeError) and Gauss–Newton's, else Gauss–Newton's
+  /// (gaussNewtonError).
   double stdError = 0.0;
   bool logScale = false;
+  /// Gauss–Newton standard error from the residuals' finite-difference Jacobian at the
+  /// optimum, σ² (JᵀJ)⁻¹ with σ² = RSS / (N − p); NaN when JᵀJ is singular. It takes the
+  /// samples as independent; those of one trajectory are not (an impact a step late shifts
+  /// every later sample), so it understates the error by about √(samples per trial).
+  double gaussNewtonError = std::numeric_limits<double>::quiet_NaN();
+  /// Delete-a-group jackknife over the k fold fits (each without one fold's trials):
+  /// sqrt((k − 1)/k Σ_f (θ_f − θ̄)²), trials as the independent units; NaN without folds.
+  double jackknifeError = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct TrialScore {
