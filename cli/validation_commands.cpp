@@ -268,6 +268,10 @@ void runDiagnose(ValidationOptions o) {
   o.dataset = all.front();
   if (all.size() > 1 ||
       formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kDynamic) {
+    if (o.iterate)
+      throw InputError("--iterate",
+                       "applies to a kinematic dataset; for dynamic datasets diagnose again from "
+                       "the model.json a verdict writes");
     return runTrajectoryDiagnose(all, formats::readModelFile(o.model), o.trajectory, o.candidates,
                                  o.out);
   }

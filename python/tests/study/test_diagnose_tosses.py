@@ -1,6 +1,6 @@
 """`vcontact diagnose` on a folder of dynamic datasets (docs/DIAGNOSIS.md, "Trajectory
 diagnosis"): tosses the engine made with damping, diagnosed from a start without it, give the
-verdict damping and its fit; a diagnosis without cross-validation is refused."""
+verdict damping and its fit; a diagnosis without cross-validation, or iterated, is refused."""
 
 import csv
 import json
@@ -20,11 +20,11 @@ START = {"format": "vcontact.model/1",
 CANDIDATES = {"format": "vcontact.candidates/1", "candidates": {"viscous": {}, "damping": {}}}
 
 
-def diagnose(folder, out, folds=2):
+def diagnose(folder, out, folds=2, extra=()):
     return subprocess.run([BINARY, "diagnose", str(folder), "--model",
                            str(folder.parent / "start.json"), "--candidates",
                            str(folder.parent / "candidates.json"), *OPTIONS, "--folds",
-                           str(folds), "--out", str(out)], capture_output=True, text=True)
+                           str(folds), *extra, "--out", str(out)], capture_output=True, text=True)
 
 
 def test_damping_hidden_from_the_start_is_the_verdict(tmp_path):
@@ -60,4 +60,8 @@ def test_a_diagnosis_without_cross_validation_is_refused(tmp_path):
     r = diagnose(folder, tmp_path / "out", folds=0)
     assert r.returncode == 2, r.stderr
     assert "--folds" in r.stderr and "held-out" in r.stderr, r.stderr
+    assert not os.path.exists(tmp_path / "out" / "diagnosis.json")
+    r = diagnose(folder, tmp_path / "out", extra=["--iterate"])
+    assert r.returncode == 2, r.stderr
+    assert "--iterate" in r.stderr and "kinematic" in r.stderr, r.stderr
     assert not os.path.exists(tmp_path / "out" / "diagnosis.json")
