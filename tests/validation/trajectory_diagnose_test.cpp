@@ -51,6 +51,7 @@ TrajectoryDiagnoseOptions quickOptions() {
 TEST(TrajectoryDiagnose, FindsTheDampingTheStartLacks) {
   const std::vector<Trial> trials = tosses(slidingTruth());
   dynamics::Model start = dynamics::Model::withEffects({"stiffness", "coulomb"});
+  start.settings = slidingTruth().settings;
   start.setParameter("stiffness.kv", 2e6);
   start.setParameter("coulomb.mu", 0.1);
   start.setFixed({"stiffness.kv", "coulomb.mu", "coulomb.v_s"});

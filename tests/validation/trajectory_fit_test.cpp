@@ -46,9 +46,10 @@ const TrajectoryParameter& named(const TrajectoryFitResult& r, const std::string
 // Gauss-Newton one at the stop was 10-12 times too small (mu 0.29829 +/- 0.00014 for 0.3;
 // offset -1.674 +/- 0.018 mm for -1.5 mm), since it takes the samples of a trajectory as
 // independent and does not see the loss's jumps (an impact a step earlier or later).
-// DISABLED (issue 34 open): with four folds the jackknife is 0 here: the fits on all four
-// tosses and on every three of them stop on the same point, mu = 0.2982852 for a truth of 0.3,
-// so the reported error is Gauss-Newton's 0.00014, 12 of which from the truth. What bounds
+// DISABLED (issue 34 open): with four folds the jackknife was 0 here: the fits on all four
+// tosses and on every three of them stopped on the same point, mu = 0.2982852 for a truth of
+// 0.3 (friction regularised at 1e-5 and at 1e-4 m/s alike), so the reported error is
+// Gauss-Newton's 0.00014, 12 of which from the truth. What bounds
 // the fitted mu is where the search stops among the loss's jumps, the same for every subset
 // of these tosses; neither error measures it.
 TEST(TrajectoryFit, DISABLED_RecoversFrictionWithinItsStandardError) {
