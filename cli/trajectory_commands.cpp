@@ -441,10 +441,7 @@ void runTrajectoryDiagnose(const std::vector<std::string>& datasets, const dynam
     std::cout << "unexplained: " << u.name << " (e_q " << u.e_q << " at best, by " << u.model
               << "; fails in " << u.phase << "): " << u.hint << "\n";
   std::cout << "in " << d.seconds << " s wall\n";
-  const auto best =
-      std::find_if(d.ranking.begin(), d.ranking.end(),
-                   [](const validation::TrajectoryCandidate& c) { return c.accepted; });
-  const validation::TrajectoryFitResult& chosen = best == d.ranking.end() ? d.baseline : best->fit;
+  const validation::TrajectoryFitResult& chosen = d.final();
   printWarnings(chosen.warnings);
   io::OutputSet files(out);
   files.add(out + "/diagnosis.json", [&](std::ostream& s) {

@@ -171,14 +171,20 @@ void runCompare(const ValidationOptions& o) {
   files.commit();
 }
 
-// Several datasets, a folder or a list, or one dynamic dataset: the trajectory fit.
-bool trajectoryFit(ValidationOptions& o) {
+// The DATASET arguments expanded into `all` (o.dataset the first); true when they are
+// trajectories: several datasets, a folder or a list, or one dynamic dataset.
+bool trajectoryDatasets(ValidationOptions& o, std::vector<std::string>& all) {
   checkOptions(o);
-  const std::vector<std::string> all = expandDatasets(o.datasets);
+  all = expandDatasets(o.datasets);
   o.dataset = all.front();
-  if (all.size() == 1 &&
-      formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kKinematic)
-    return false;
+  return all.size() > 1 ||
+         formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kDynamic;
+}
+
+// Trajectories: the trajectory fit.
+bool trajectoryFit(ValidationOptions& o) {
+  std::vector<std::string> all;
+  if (!trajectoryDatasets(o, all)) return false;
   runTrajectoryFit(all, formats::readModelFile(o.model), o.trajectory, o.out);
   return true;
 }
@@ -263,11 +269,8 @@ void printStage(const validation::DiagnosisStage& s) {
 }
 
 void runDiagnose(ValidationOptions o) {
-  checkOptions(o);
-  const std::vector<std::string> all = expandDatasets(o.datasets);
-  o.dataset = all.front();
-  if (all.size() > 1 ||
-      formats::readDataset(all.front()).dataset.mode == validation::DatasetMode::kDynamic) {
+  std::vector<std::string> all;
+  if (trajectoryDatasets(o, all)) {
     if (o.iterate)
       throw InputError("--iterate",
                        "applies to a kinematic dataset; for dynamic datasets diagnose again from "

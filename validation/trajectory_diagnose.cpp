@@ -148,9 +148,7 @@ TrajectoryDiagnosis diagnoseTrajectories(const std::vector<Trial>& trials,
     if (a.error.empty() != b.error.empty()) return a.error.empty();
     return a.fit.meanHeldOut < b.fit.meanHeldOut;
   });
-  const auto best = std::find_if(d.ranking.begin(), d.ranking.end(),
-                                 [](const TrajectoryCandidate& c) { return c.accepted; });
-  d.verdict = best == d.ranking.end() ? "none" : best->effect;
+  d.verdict = d.accepted() ? d.accepted()->effect : "none";
   findUnexplained(trials, d);
   d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return d;

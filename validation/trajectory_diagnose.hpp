@@ -80,6 +80,15 @@ struct TrajectoryDiagnosis {
   std::vector<UnexplainedTrial> unexplained;  ///< worst first
   double medianBest = 0.0;                    ///< median over trials of the best held-out e_q
   double seconds = 0.0;                       ///< wall
+
+  /// The verdict's candidate: the first accepted in the ranking; null for "none".
+  const TrajectoryCandidate* accepted() const {
+    for (const auto& c : ranking)
+      if (c.accepted) return &c;
+    return nullptr;
+  }
+  /// The fit the verdict leaves: the accepted candidate's, else the baseline's.
+  const TrajectoryFitResult& final() const { return accepted() ? accepted()->fit : baseline; }
 };
 
 struct TrajectoryDiagnoseOptions {
