@@ -185,7 +185,8 @@ void registerScenario(const std::string& name) {
     const bool with_reference = std::string(name) != "bin_of_ten";
     for (const auto& [suffix, h] : {std::pair{"1ms", 1e-3}, std::pair{"0.5ms", 5e-4}}) {
       for (const auto& [mode_suffix, mode] :
-           {std::pair{"", ImpactMode::kResolve}, std::pair{"_implicit", ImpactMode::kImplicit}}) {
+           {std::pair{"", ImpactMode::kAuto}, std::pair{"_resolve", ImpactMode::kResolve},
+            std::pair{"_implicit", ImpactMode::kImplicit}}) {
         const std::string full = "simulate/" + std::string(name) + "/discrete_" + suffix;
         benchmark::RegisterBenchmark((full + mode_suffix).c_str(), discrete, std::string(name), h,
                                      with_reference, mode, true, true, false)

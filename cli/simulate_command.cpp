@@ -29,8 +29,27 @@ struct SimulateOptions {
   std::string outputThread = "off";  ///< "on": the CSVs are written on a thread of their own
 };
 
+// A discrete run's impacts that "auto" left to the plain step: what a user who needs their
+// rebounds should change.
+void printPlainImpacts(const dynamics::SimulationSummary& s,
+                       const dynamics::SimulationSettings& settings) {
+  long resolved = 0, plain = 0;
+  for (const dynamics::ImpactRecord& r : s.impacts) {
+    if (r.resolution == "plain" || r.resolution == "partly") ++plain;
+    if (r.resolution == "resolved") ++resolved;
+  }
+  if (plain == 0 || settings.impacts != dynamics::ImpactMode::kAuto) return;
+  std::cerr << "vcontact: " << plain << " of " << (plain + resolved)
+            << " fast impacts were left to the plain step, which dissipates them (predicted "
+               "rebound below restitution_threshold = "
+            << settings.restitution_threshold
+            << " m/s); lower it, or set \"impacts\": \"resolve\", to resolve them "
+               "(docs/DISCRETE.md §5; summary.json impacts[].resolution)\n";
+}
+
 // The run's figures on standard error, for a person at a terminal.
-void printSummary(const dynamics::SimulationSummary& s) {
+void printSummary(const dynamics::SimulationSummary& s,
+                  const dynamics::SimulationSettings& settings) {
   std::cerr << "vcontact: simulated " << s.simulated_time << " s in " << s.wall_time
             << " s wall (real-time factor " << s.realTimeFactor() << "), " << s.steps << " steps ("
             << s.rejected_steps << " rejected), " << s.contact_evaluations
@@ -46,6 +65,7 @@ void printSummary(const dynamics::SimulationSummary& s) {
                  "or set it to 1 to lump each pair's patches into one region "
                  "(docs/SCENARIO.md, Contact patches; summary.json patches.without_slot)\n";
   }
+  printPlainImpacts(s, settings);
   for (const dynamics::SurfacePairUse& p : s.surface_pairs) {
     std::cerr << "vcontact: pair '" << p.pair << "': ";
     if (!p.polyhedral_reason.empty()) {
@@ -132,14 +152,14 @@ void runSimulate(const SimulateOptions& o) {
   } catch (const dynamics::SimulationError& e) {
     progress.finish();
     report::finishSimulationOutput(writer, o.out, summary, o.scenario, report::StopInfo{e});
-    printSummary(summary);
+    printSummary(summary, file.scenario.settings);
     std::cerr << "vcontact: error: " << o.scenario << ": simulation stopped: " << e.what()
               << "; output up to then is in " << o.out << '\n';
     throw CLI::RuntimeError(kSimulationFailedExitCode);
   }
   progress.finish();
   report::finishSimulationOutput(writer, o.out, summary, o.scenario, std::nullopt);
-  printSummary(summary);
+  printSummary(summary, file.scenario.settings);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "dynamics/impact_tracker.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dynamics/simulator.hpp"
@@ -18,13 +19,46 @@ double exitTime(double d, double v, double step) {
 
 }  // namespace
 
-void ImpactTracker::reset(const Scenario& scenario, double settle_speed, double settle_time) {
+void ImpactTracker::reset(const Scenario& scenario, double settle_speed, double settle_time,
+                          bool discrete) {
   scenario_ = &scenario;
   settle_speed_ = settle_speed;
   settle_time_ = settle_time;
+  discrete_ = discrete;
+  step_ = -1;
+  resolved_ = false;
+  marks_.assign(scenario.pairs.size(), StepMark{});
   last_kin_.clear();
   open_.assign(scenario.pairs.size(), Open{});
   impacts_.clear();
+}
+
+void ImpactTracker::beginStep(bool resolved) {
+  ++step_;
+  resolved_ = resolved;
+  std::fill(marks_.begin(), marks_.end(), StepMark{});
+}
+
+void ImpactTracker::markPlain(std::size_t k, double rebound) {
+  marks_[k].plain = true;
+  marks_[k].rebound = std::max(marks_[k].rebound, rebound);
+}
+
+void ImpactTracker::markResolved(std::size_t k, double rebound) {
+  marks_[k].rebound = std::max(marks_[k].rebound, rebound);
+}
+
+// The step under way, once per open impact of pair k that its states show.
+void ImpactTracker::countStep(std::size_t k) {
+  Open& o = open_[k];
+  if (!discrete_ || o.counted_step == step_) return;
+  o.counted_step = step_;
+  if (resolved_) {
+    ++o.resolved_steps;
+  } else if (marks_[k].plain) {
+    ++o.plain_steps;
+  }
+  if (o.predicted_rebound == 0.0) o.predicted_rebound = marks_[k].rebound;  // the deciding step's
 }
 
 // −δ̇_c: the normal relative speed of A against B at p along n, > 0 separating.
@@ -55,6 +89,13 @@ void ImpactTracker::close(std::size_t k, double end, double impulse, double sepa
   r.separation_speed = separation;
   r.restitution = o.approach > 0.0 ? separation / o.approach : 0.0;
   r.outcome = outcome;
+  if (discrete_) {
+    r.resolved_steps = o.resolved_steps;
+    r.plain_steps = o.plain_steps;
+    r.predicted_rebound = o.predicted_rebound;
+    r.resolution = o.resolved_steps > 0 ? (o.plain_steps > 0 ? "partly" : "resolved")
+                                        : (o.plain_steps > 0 ? "plain" : "slow");
+  }
   impacts_.push_back(r);
   o.active = false;
 }
@@ -67,6 +108,7 @@ void ImpactTracker::observe(double t, const std::vector<BodyKinematics>& kin,
     const volume::ContactVolume& cv = pairs[k].cv;
     if (!cv.inContact()) {
       if (o.active) {  // separated: back from the first state apart to the last in contact
+        countStep(k);
         const double v = normalSpeed(k, kin, o.p, o.n) - gravityAlong(k, o.n) * (t - o.last_t);
         const double end = o.last_t + exitTime(o.last_depth, v, t - o.last_t);
         const double impulse =
@@ -93,6 +135,7 @@ void ImpactTracker::observe(double t, const std::vector<BodyKinematics>& kin,
     } else {
       o.impulse += step_impulse ? (*step_impulse)[k] : 0.5 * (o.last_fn + f_n) * (t - o.last_t);
     }
+    countStep(k);
     o.last_t = t;
     o.last_fn = f_n;
     o.last_depth = cv.volume / cv.area;

@@ -71,9 +71,15 @@ constexpr double kMaxDiscreteStep = 1e-2;
 
 /// What the discrete integrator does with an impact shorter than its step (docs/DISCRETE.md §5).
 enum class ImpactMode {
-  kResolve,  ///< integrate such a step's interval by Dormand–Prince, then resume fixed steps
-  kImplicit  ///< the plain linearly implicit step throughout (dissipates the impact)
+  /// resolve an impact whose predicted rebound reaches SimulationSettings::restitution_threshold;
+  /// the plain step takes the others (and dissipates them)
+  kAuto,
+  kResolve,  ///< integrate every such step's interval by Dormand–Prince, then resume fixed steps
+  kImplicit  ///< the plain linearly implicit step throughout (dissipates every impact)
 };
+
+/// m/s, the default SimulationSettings::restitution_threshold (docs/DISCRETE.md §5).
+constexpr double kDefaultRestitutionThreshold = 0.05;
 
 /// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/SLEEP.md); dopri5
 /// and bdf ignore them (an error-controlled integrator freezes nothing).
@@ -98,8 +104,11 @@ struct SimulationSettings {
   /// s, the fixed step of Integrator::kDiscrete, in [kMinDiscreteStep, kMaxDiscreteStep]
   /// (shortened only to land on output times and the end).
   double step = 1e-3;
-  /// Integrator::kDiscrete only ("impacts": "resolve" or "implicit").
-  ImpactMode impacts = ImpactMode::kResolve;
+  /// Integrator::kDiscrete only ("impacts": "auto", "resolve" or "implicit").
+  ImpactMode impacts = ImpactMode::kAuto;
+  /// m/s, ImpactMode::kAuto only: the least predicted rebound speed e v_in of an impact worth
+  /// resolving (a rebound slower than this hops less than v² / 2g, 0.13 mm at the default).
+  double restitution_threshold = kDefaultRestitutionThreshold;
   /// Integrator::kDiscrete only ("sleep": false or {"speed", "time"}).
   SleepSettings sleep;
   /// Stop when a pair's mean penetration V/A exceeds this fraction of the smaller body's size.

@@ -506,7 +506,8 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
   // An impact settles once the normal speed stays below the speed at which the discrete
   // stepper resolves impacts (at h = 1 ms at least) for five such steps.
   const double scale = std::max(scenario_.settings.step, 1e-3);
-  impacts_.reset(scenario_, impactThreshold(scale), 5.0 * scale);
+  impacts_.reset(scenario_, impactThreshold(scale), 5.0 * scale,
+                 scenario_.settings.integrator == Integrator::kDiscrete);
   impacts_.observe(t, kin_, last_pairs_);
   try {
     if (scenario_.settings.integrator == Integrator::kBdf) {

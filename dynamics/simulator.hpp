@@ -135,9 +135,13 @@ struct SimulationSummary {
   /// The impacts of the pairs (dynamics/impact_tracker.hpp); dopri5 and discrete runs.
   std::vector<ImpactRecord> impacts;
   /// Discrete runs: the steps whose interval was integrated by Dormand–Prince to resolve an
-  /// impact, and the accepted Dormand–Prince steps they took (docs/DISCRETE.md §5).
+  /// impact or a missed linearisation, and the accepted Dormand–Prince steps they took
+  /// (docs/DISCRETE.md §5); of those steps, the ones for a missed linearisation alone, and the
+  /// contact queries all of them made.
   long resolved_steps = 0;
   long resolution_substeps = 0;
+  long resolved_for_linearisation = 0;
+  long resolution_queries = 0;
   /// Discrete runs with sleep (dynamics/sleep.hpp): the bodies falling asleep and waking, in
   /// order, and the contact queries not made because a pair's bodies slept.
   std::vector<SleepEvent> sleep_events;
@@ -210,8 +214,17 @@ class Simulator {
                         SimulationSummary& summary);
   double impactThreshold(double h) const;
   double impactDuration(std::size_t k, const volume::ContactVolume& cv, double f_n) const;
-  bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
-                   double h) const;
+  // A contact region in an impact to resolve over a step (impactAhead): its pair, its
+  // predicted rebound speed e v_in, and whether the step is to be resolved for it.
+  struct FastRegion {
+    std::size_t pair = 0;
+    double rebound = 0.0;
+    bool resolve = false;
+  };
+  double predictedRebound(std::size_t k, double approach) const;
+  bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only, double h,
+                   std::vector<FastRegion>& fast) const;
+  void markImpacts(bool resolved);
   bool linearisationMissed(double h) const;
   void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
   // A Dormand–Prince attempt of dt from (x, t) for runDopri5 and resolveInterval: a rejection is
@@ -336,6 +349,7 @@ class Simulator {
   State start_x_, start_dxdt_;
   std::vector<BodyKinematics> start_kin_;
   std::vector<double> step_impulse_;
+  std::vector<FastRegion> fast_regions_;  ///< the fast regions of the step under way
   double resolve_dt_ = 0.0;
   ImpactTracker impacts_;
   // Sleeping islands (simulator_sleep.cpp): the tracker, its per-pair inputs, and the queries

@@ -1,7 +1,7 @@
 // Impacts in the discrete stepper (docs/DISCRETE.md §5): a fixed step of backward Euler takes
 // the energy of any contact mode faster than 1/h, so an impact of 25 µs stepped at 1 ms does
-// not rebound at all. With "impacts": "resolve" (the default) a step is instead integrated by
-// Dormand–Prince at the scenario's tolerances, from its start to its end, when
+// not rebound at all. A step is instead integrated by Dormand–Prince at the scenario's
+// tolerances, from its start to its end, when
 //
 //   - a contact region at its start moves along its normal faster than the impact threshold
 //     (either way: the compression and the rebound both need resolving), or
@@ -16,13 +16,21 @@
 // kResolvedSteps steps. The threshold 2 |g| h is twice the speed at which a step out of contact
 // lands a resting body (g h): resting contact and its hop (§5) stay on the fixed step. Outputs
 // stay on the fixed grid; the Dormand–Prince steps inside are not output.
-
+//
+// "impacts": "resolve" resolves every such step. "auto" (the default) resolves one only for a
+// region whose predicted rebound e v_in reaches the scenario's restitution_threshold: a
+// resolution costs at least six queries per Dormand–Prince step and max(1, h / max_step) steps
+// against the plain step's one query, and a rebound slower than the threshold is a hop below
+// v² / 2g that the plain step may dissipate. The safety net of a plain step whose linearisation
+// missed (linearisationMissed) resolves in either mode, except for a pair whose impact "auto"
+// left to the plain step.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "dynamics/dopri5_control.hpp"
+#include "dynamics/restitution.hpp"
 #include "dynamics/simulator.hpp"
 
 namespace vcontact::dynamics {
@@ -70,35 +78,70 @@ double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv,
   return std::numbers::pi * std::sqrt(1.0 / (inverse_mass * k_n));
 }
 
+// The rebound speed e v_in predicted for an impact of pair k at approach speed v_in: the exact
+// relation of docs/MODEL.md §5 with the pair's damping, e = 1 without it. Other dissipation
+// (a Maxwell element, friction) only lowers the rebound: the prediction errs towards resolving.
+double Simulator::predictedRebound(std::size_t k, double approach) const {
+  const Model& model = scenario_.pairs[k].model;
+  if (!model.has("damping")) return approach;
+  return dampedRestitution(model.parameter("damping.a") * approach) * approach;
+}
+
 // Whether a contact region of a pair at the latest query is in an impact to resolve over a
-// step h, its normal speed at the region's centroid taken from speed_kin. The regions are the
-// pair's single-region contact (the aggregate) and, for a pair with several slots, each of its
-// patches with its own normal and centroid: a tray's base landing while its pins touch the
-// hole walls is fast where the aggregate is slow, and a peg driven down a hole whose wall
-// patches slide along their normals' planes is fast only in the aggregate. approaching_only: the
-// check after a plain step, which takes any region approaching faster than the threshold at the
-// step's start (a pair apart then, or a patch that appeared or stiffened in the step).
+// step h, its normal speed at the region's centroid taken from speed_kin; each fast region is
+// appended to `fast`. The regions are the pair's single-region contact (the aggregate) and, for
+// a pair with several slots, each of its patches with its own normal and centroid: a tray's
+// base landing while its pins touch the hole walls is fast where the aggregate is slow, and a
+// peg driven down a hole whose wall patches slide along their normals' planes is fast only in
+// the aggregate. approaching_only: the check after a plain step, which takes any region
+// approaching faster than the threshold at the step's start (a pair apart then, or a patch that
+// appeared or stiffened in the step). A fast region's rebound is predicted from the larger of
+// its speed and the approach speed of its pair's open impact, and an open impact is taken as
+// its first fast step was (resolved or left to the plain step); every estimate errs towards
+// resolving.
 bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
-                            double h) const {
+                            double h, std::vector<FastRegion>& fast) const {
+  const SimulationSettings& set = scenario_.settings;
   const double threshold = impactThreshold(h);
-  const auto fast = [&](std::size_t k, const volume::ContactVolume& cv, double f_n) {
-    if (!cv.inContact()) return false;
+  const double gravity = scenario_.gravity_W.norm();
+  bool resolve = false;
+  const auto check = [&](std::size_t k, const volume::ContactVolume& cv, double f_n) {
+    if (!cv.inContact()) return;
     const ContactPair& pair = scenario_.pairs[k];
     const double speed = cv.n_W.dot(speed_kin[pair.a].pointVelocity(cv.p_WC) -
                                     speed_kin[pair.b].pointVelocity(cv.p_WC));
     const bool quick = approaching_only ? -speed > threshold : std::abs(speed) > threshold;
-    return quick && impactDuration(k, cv, f_n) < kResolvedSteps * h;
+    if (!quick || !(impactDuration(k, cv, f_n) < kResolvedSteps * h)) return;
+    // after a plain step, the region touched within it: its speed at the touch is at most
+    // |g| h above the start's (gravity alone acts before it)
+    const double approach = std::abs(speed) + (approaching_only ? gravity * h : 0.0);
+    const double rebound = predictedRebound(k, std::max(approach, impacts_.openApproach(k)));
+    // one impact is taken one way throughout: as its first fast step was
+    const bool worth = set.impacts == ImpactMode::kResolve || impacts_.openAndResolved(k) ||
+                       (!impacts_.openAndPlain(k) && rebound >= set.restitution_threshold);
+    fast.push_back({k, rebound, worth});
+    resolve = resolve || worth;
   };
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
     if (!out.cv.inContact()) continue;
-    if (fast(k, out.cv, out.result.f_n)) return true;
+    check(k, out.cv, out.result.f_n);
     if (slots_[k] == 1) continue;
-    for (const PatchOutput& p : out.patches) {
-      if (fast(k, p.cv, p.result.f_n)) return true;
+    for (const PatchOutput& p : out.patches) check(k, p.cv, p.result.f_n);
+  }
+  return resolve;
+}
+
+// Tells the impact tracker what the step under way does with its fast regions.
+void Simulator::markImpacts(bool resolved) {
+  impacts_.beginStep(resolved);
+  for (const FastRegion& r : fast_regions_) {
+    if (resolved || r.resolve) {
+      impacts_.markResolved(r.pair, r.rebound);
+    } else {
+      impacts_.markPlain(r.pair, r.rebound);
     }
   }
-  return false;
 }
 
 // Whether the plain step just taken applied, to some pair in contact at its end, a normal
@@ -106,12 +149,20 @@ bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool a
 // describe the step. Backward Euler with h² k/m ≫ 1 moves a body to where the linearised force
 // balances the others in one step, so a stiffness off by more than twice overshoots further
 // than it started, and a resting part rocks or hops in a cycle about its rest (a 5,400-triangle
-// housing on its rim: 3 to 19 times its weight at the queries, docs/DISCRETE.md §5).
+// housing on its rim: 3 to 19 times its weight at the queries, docs/DISCRETE.md §5). A pair
+// whose impact "auto" leaves to the plain step (below the restitution threshold: a fast region
+// of this step, or the open impact of earlier ones) misses by design until that impact is over:
+// the plain step lands it from apart and dissipates it.
 bool Simulator::linearisationMissed(double h) const {
   const double g = scenario_.gravity_W.norm();
+  const auto left_to_the_step = [&](std::size_t k) {
+    return impacts_.openAndPlain(k) ||
+           std::any_of(fast_regions_.begin(), fast_regions_.end(),
+                       [k](const FastRegion& r) { return r.pair == k && !r.resolve; });
+  };
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
-    if (!out.cv.inContact() || sleep_.frozen(k)) continue;  // a frozen pair was not stepped
+    if (!out.cv.inContact() || sleep_.frozen(k) || left_to_the_step(k)) continue;
     const ContactPair& pair = scenario_.pairs[k];
     double lighter = std::numeric_limits<double>::infinity();
     for (const std::size_t b : {pair.a, pair.b}) {
@@ -132,8 +183,9 @@ bool Simulator::linearisationMissed(double h) const {
 // at t1 (checked, settled, observed by the impact tracker) on return.
 void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, double t1, bool lands,
                                  SimulationSummary& summary) {
-  const bool resolve = scenario_.settings.impacts == ImpactMode::kResolve;
-  if (resolve && impactAhead(kin_, false, h)) {
+  const bool resolve = scenario_.settings.impacts != ImpactMode::kImplicit;
+  fast_regions_.clear();
+  if (resolve && impactAhead(kin_, false, h, fast_regions_)) {
     resolveInterval(x, dxdt, t, t1, summary);
     return;
   }
@@ -154,13 +206,19 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   rhs(x, dxdt, t);
   query_depths_ = false;
   keep_contexts_ = false;
-  if (resolve && (impactAhead(start_kin_, true, h) || linearisationMissed(h))) {
-    x = start_x_;
-    dxdt = start_dxdt_;
-    t = t0;
-    resolveInterval(x, dxdt, t, t1, summary);
-    return;
+  if (resolve) {
+    const bool impact = impactAhead(start_kin_, true, h, fast_regions_);
+    const bool missed = !impact && linearisationMissed(h);
+    if (impact || missed) {
+      if (missed) ++summary.resolved_for_linearisation;
+      x = start_x_;
+      dxdt = start_dxdt_;
+      t = t0;
+      resolveInterval(x, dxdt, t, t1, summary);
+      return;
+    }
   }
+  markImpacts(false);
   check(x, t);
   if (settlePairs(x, t)) {
     reuse_contacts_ = keep_contexts_ = true;
@@ -176,6 +234,8 @@ void Simulator::resolveInterval(State& x, State& dxdt, double& t, double t1,
                                 SimulationSummary& summary) {
   const SimulationSettings& set = scenario_.settings;
   ++summary.resolved_steps;
+  markImpacts(true);
+  const long queries_before = contact_count_;
   Dopri5Control control(set.abs_tol, set.rel_tol);
   double dt = std::min(resolve_dt_ > 0.0 ? resolve_dt_ : set.initial_step, set.max_step);
   const double span = t1 - t;
@@ -192,6 +252,7 @@ void Simulator::resolveInterval(State& x, State& dxdt, double& t, double t1,
     afterDopri5Step(x, dxdt, t);
   }
   resolve_dt_ = dt;
+  summary.resolution_queries += contact_count_ - queries_before;
 }
 
 // The normal impulse of each pair over the step just solved: h n·f⁺ of its patches, with the

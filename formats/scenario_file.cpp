@@ -248,13 +248,23 @@ dynamics::SimulationSettings readSettings(const Reader& r) {
   s.step = r.number("step", s.step, dynamics::kMinDiscreteStep, dynamics::kMaxDiscreteStep);
   if (r.has("impacts")) {
     const std::string mode = r.text("impacts");
-    if (mode == "resolve") {
+    if (mode == "auto") {
+      s.impacts = dynamics::ImpactMode::kAuto;
+    } else if (mode == "resolve") {
       s.impacts = dynamics::ImpactMode::kResolve;
     } else if (mode == "implicit") {
       s.impacts = dynamics::ImpactMode::kImplicit;
     } else {
-      r.fail("impacts", "expected \"resolve\" or \"implicit\"");
+      r.fail("impacts", "expected \"auto\", \"resolve\" or \"implicit\"");
     }
+  }
+  if (r.has("restitution_threshold")) {
+    if (s.impacts != dynamics::ImpactMode::kAuto) {
+      r.fail("restitution_threshold",
+             "applies to \"impacts\": \"auto\" only (\"resolve\" resolves every impact, "
+             "\"implicit\" none)");
+    }
+    s.restitution_threshold = r.number("restitution_threshold", s.restitution_threshold, 0.0, 1e3);
   }
   if (r.has("sleep")) s.sleep = readSleep(r);
   if (!r.has("tolerances")) return s;
@@ -503,9 +513,9 @@ ScenarioFile scenarioFromJson(const nlohmann::json& j, const std::string& source
                               const std::string& base_dir) {
   if (!j.is_object()) throw InputError(source, "top level: expected a scenario object");
   const Reader r(j, source, "");
-  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "impacts", "sleep",
-               "gravity", "tolerances", "bodies", "models", "pairs", "contacts", "loads", "springs",
-               "outputs", "description"});
+  r.allowOnly({"format", "duration", "output_rate", "integrator", "step", "impacts",
+               "restitution_threshold", "sleep", "gravity", "tolerances", "bodies", "models",
+               "pairs", "contacts", "loads", "springs", "outputs", "description"});
   if (!r.has("format") || r["format"] != kFormat) {
     r.fail("format", std::string("expected \"") + kFormat + "\"");
   }

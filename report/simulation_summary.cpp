@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "io/json_file.hpp"
 #include "report/async_simulation_csv.hpp"
@@ -36,14 +37,21 @@ nlohmann::json surfacesJson(const dynamics::SimulationSummary& s) {
 nlohmann::json impactsJson(const dynamics::SimulationSummary& s) {
   nlohmann::json out = nlohmann::json::array();
   for (const dynamics::ImpactRecord& r : s.impacts) {
-    out.push_back({{"pair", r.pair},
-                   {"start_s", r.start},
-                   {"duration_s", r.duration},
-                   {"normal_impulse_Ns", r.impulse},
-                   {"approach_speed_m_s", r.approach_speed},
-                   {"separation_speed_m_s", r.separation_speed},
-                   {"restitution", r.restitution},
-                   {"outcome", r.outcome}});
+    nlohmann::json j = {{"pair", r.pair},
+                        {"start_s", r.start},
+                        {"duration_s", r.duration},
+                        {"normal_impulse_Ns", r.impulse},
+                        {"approach_speed_m_s", r.approach_speed},
+                        {"separation_speed_m_s", r.separation_speed},
+                        {"restitution", r.restitution},
+                        {"outcome", r.outcome}};
+    if (!r.resolution.empty()) {  // discrete runs: how the stepper took it
+      j["resolution"] = r.resolution;
+      j["resolved_steps"] = r.resolved_steps;
+      j["plain_steps"] = r.plain_steps;
+      j["predicted_rebound_m_s"] = r.predicted_rebound;
+    }
+    out.push_back(std::move(j));
   }
   return out;
 }
@@ -80,6 +88,8 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
   if (s.resolved_steps > 0) {
     j["resolved_steps"] = s.resolved_steps;
     j["resolution_substeps"] = s.resolution_substeps;
+    j["resolved_for_linearisation"] = s.resolved_for_linearisation;
+    j["resolution_queries"] = s.resolution_queries;
   }
   if (!s.sleep_events.empty()) j["sleep"] = sleepJson(s);
   if (stop) {

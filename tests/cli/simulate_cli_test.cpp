@@ -182,4 +182,39 @@ TEST(SimulateCli, StoppedRunExitsWithThreeAndKeepsOutput) {
   fs::remove_all(dir);
 }
 
+// A discrete run whose impacts "auto" left to the plain step says so on the terminal, with the
+// count and what to change, and summary.json labels the impact: a ball dropped 5 mm rebounds
+// at about 0.26 m/s, below a restitution threshold of 1 m/s. At the default threshold the same
+// drop's impacts are resolved and nothing is said.
+TEST(SimulateCli, SaysWhichImpactsThePlainStepTook) {
+  const fs::path dir = scratch("plain");
+  const std::string drop = R"({
+    "format": "vcontact.scenario/1", "duration": 0.05, "output_rate": 1000,
+    "integrator": "discrete", THRESHOLD
+    "bodies": [{"name": "plate", "shape": "halfspace", "motion": "fixed"},
+               {"name": "ball", "shape": "sphere:0.01", "density": 7900, "pose": "0,0,0.015"}],
+    "pairs": [{"a": "ball", "b": "plate",
+               "model": {"format": "vcontact.model/1",
+                         "effects": {"stiffness": {"kv": 5.17e12}, "damping": {"a": 1.0}}}}]})";
+  for (const bool high : {true, false}) {
+    std::string text = drop;
+    text.replace(text.find("THRESHOLD"), 9, high ? R"("restitution_threshold": 1.0,)" : "");
+    std::ofstream(dir / "drop.json") << text;
+    const std::string args = "simulate \"" + (dir / "drop.json").string() + "\" --out \"" +
+                             (dir / "out").string() + "\"";
+    ASSERT_EQ(runCli(args, dir / "err"), 0) << readAll(dir / "err");
+    const std::string err = readAll(dir / "err"), summary = readAll(dir / "out" / "summary.json");
+    const std::size_t said = err.find("1 of 1 fast impacts were left to the plain step");
+    if (high) {
+      EXPECT_NE(said, std::string::npos) << err;
+      EXPECT_NE(err.find("restitution_threshold = 1 m/s"), std::string::npos) << err;
+      EXPECT_NE(summary.find("\"resolution\": \"plain\""), std::string::npos) << summary;
+    } else {
+      EXPECT_EQ(err.find("left to the plain step"), std::string::npos) << err;
+      EXPECT_NE(summary.find("\"resolution\": \"resolved\""), std::string::npos) << summary;
+    }
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -76,14 +76,14 @@ TEST(HousingDrop, FootprintIsTheScriptsRim) {
   EXPECT_NEAR(f.area, 645e-6, 1e-15);
 }
 
-// The defaults (1 ms, impacts resolved, sleep): the housing ends asleep, in contact, with the
+// The defaults (1 ms, impacts "auto", sleep): the housing ends asleep, in contact, with the
 // plate holding its weight, its mean penetration the closed-form d0 and its deepest point the
 // tilted sink's; the run takes no more than a few thousand queries (it used to rock 3 to 19
 // weights about its rest, or blow up).
 TEST(HousingDrop, RestsOnItsRimAtTheStaticSink) {
   const dynamics::Scenario s = readScenarioFile(kHousing).scenario;
   ASSERT_EQ(s.settings.integrator, dynamics::Integrator::kDiscrete);
-  ASSERT_EQ(s.settings.impacts, dynamics::ImpactMode::kResolve);
+  ASSERT_EQ(s.settings.impacts, dynamics::ImpactMode::kAuto);
   const dynamics::RigidBody& housing = s.bodies[1];
   dynamics::Simulator sim(s);
   sim.setOutputDepths(true);

@@ -143,7 +143,8 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
       {"/tolerances", nlohmann::json{{"rel", 0.0}}, "tolerances.rel: expected a positive number"},
       {"/integrator", "euler", "s.json: integrator: expected \"dopri5\", \"bdf\" or \"discrete\""},
       {"/step", 0.1, "s.json: step: expected a number in [1e-06, 0.01]"},
-      {"/impacts", "ignore", "s.json: impacts: expected \"resolve\" or \"implicit\""},
+      {"/impacts", "ignore", "s.json: impacts: expected \"auto\", \"resolve\" or \"implicit\""},
+      {"/restitution_threshold", -0.1, "s.json: restitution_threshold: expected a number in"},
       {"/sleep", "soon", "s.json: sleep: expected false, true or an object"},
       {"/sleep", nlohmann::json{{"speed", 0.0}}, "s.json: sleep.speed: expected a number in"},
       {"/sleep", nlohmann::json{{"time", -1.0}}, "s.json: sleep.time: expected a number in"},
@@ -169,6 +170,12 @@ TEST(ScenarioFile, NamesFilePlaceAndExpectation) {
     EXPECT_NE(message.find(c.fragment), std::string::npos)
         << c.pointer << ": got \"" << message << "\"";
   }
+  nlohmann::json threshold_of_resolve = ballOnPlate();
+  threshold_of_resolve["impacts"] = "resolve";
+  threshold_of_resolve["restitution_threshold"] = 0.1;
+  EXPECT_NE(errorOf(threshold_of_resolve)
+                .find("restitution_threshold: applies to \"impacts\": \"auto\" only"),
+            std::string::npos);
   nlohmann::json mass_only = ballOnPlate();
   mass_only["bodies"][1].erase("density");
   EXPECT_NE(errorOf(mass_only).find("bodies[1]: a free body needs either \"density\""),
@@ -523,20 +530,30 @@ TEST(ScenarioFile, TippeTopInverts) {
   EXPECT_LT(topAxisZAfterRun(f.scenario), -0.9);
 }
 
-// With the discrete stepper at 1 ms, its impacts resolved (the default) or not, it turns over
-// too (earlier than Dormand–Prince: docs/DISCRETE.md §4); "impacts" reaches the settings.
+// With the discrete stepper at 1 ms, its impacts resolved when they rebound (the default), all
+// of them or none, it turns over too (earlier than Dormand–Prince: docs/DISCRETE.md §4);
+// "impacts" and "restitution_threshold" reach the settings.
 TEST(ScenarioFile, TippeTopInvertsWithTheDiscreteStepper) {
-  for (const char* mode : {"resolve", "implicit"}) {
+  const std::vector<std::pair<const char*, dynamics::ImpactMode>> modes = {
+      {"auto", dynamics::ImpactMode::kAuto},
+      {"resolve", dynamics::ImpactMode::kResolve},
+      {"implicit", dynamics::ImpactMode::kImplicit}};
+  for (const auto& [mode, expected] : modes) {
     ScenarioFile f = readScenarioFile(kScenarios + "/tippe_top.json");
     nlohmann::json j = ballOnPlate();
     j["impacts"] = mode;
     const ScenarioFile settings = scenarioFromJson(j, "s.json", kScenarios);
     f.scenario.settings.integrator = dynamics::Integrator::kDiscrete;
     f.scenario.settings.impacts = settings.scenario.settings.impacts;
-    EXPECT_EQ(f.scenario.settings.impacts == dynamics::ImpactMode::kResolve,
-              std::string(mode) == "resolve");
+    EXPECT_EQ(f.scenario.settings.impacts, expected) << mode;
     EXPECT_LT(topAxisZAfterRun(f.scenario), -0.9) << mode;
   }
+  EXPECT_EQ(scenarioFromJson(ballOnPlate(), "s.json", kScenarios).scenario.settings.impacts,
+            dynamics::ImpactMode::kAuto);
+  nlohmann::json j = ballOnPlate();
+  j["restitution_threshold"] = 0.25;
+  EXPECT_EQ(scenarioFromJson(j, "s.json", kScenarios).scenario.settings.restitution_threshold,
+            0.25);
 }
 
 }  // namespace
