@@ -238,7 +238,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     torque_[i].setZero();
   }
   if (any_screened_) screenPairs();
-  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) evaluatePair(k, x, dxdt);
+  evaluatePairs(x, dxdt);
   applyLoads(t);
   for (std::size_t i = 0; i < nb; ++i) {
     if (offset_[i] >= 0) bodyRates(i, x, dxdt);

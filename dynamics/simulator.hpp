@@ -23,6 +23,7 @@
 // what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
 
 #include <Eigen/LU>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -188,6 +189,14 @@ class Simulator {
   /// to the bit and the benchmarks' before and after in one run.
   void setStepShortcuts(bool on) { shortcuts_ = on; }
 
+  /// Whether a right-hand side's pairs (their contact queries and models) are evaluated side
+  /// by side by TBB, in the arena the run is called from (all cores by default; a
+  /// tbb::task_arena or tbb::global_control around run() sets the count). On by default.
+  /// The results are identical to the bit either way and whatever the thread count: each
+  /// pair's evaluation reads only the bodies' kinematics and writes only its own output, and
+  /// the wrenches are summed onto the bodies afterwards, pair by pair in order.
+  void setParallelPairs(bool on) { parallel_pairs_ = on; }
+
   using State = std::vector<double>;
 
  private:
@@ -249,7 +258,9 @@ class Simulator {
   volume::ContactPatches pairContact(std::size_t k,
                                      volume::DepthMode depth = volume::DepthMode::kSkip);
   void fillDepths(std::size_t k, PairOutput& out);
+  void evaluatePairs(const State& x, State& dxdt);
   void evaluatePair(std::size_t k, const State& x, State& dxdt);
+  void applyPair(std::size_t k);
   void evaluatePatches(std::size_t k, const volume::ContactPatches& contact, const State& x,
                        State& dxdt);
   void addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, const Wrench& w);
@@ -356,11 +367,12 @@ class Simulator {
   // a frozen pair's kept contact replaced.
   SleepTracker sleep_;
   std::vector<char> sleep_contact_, sleep_near_, sleep_balanced_;
-  long sleep_skipped_ = 0;
+  std::atomic<long> sleep_skipped_ = 0;  // atomic: counted by pairs evaluated side by side
   long rhs_count_ = 0;
-  long contact_count_ = 0;
-  Snapshot output_;      ///< snapshot()'s result, reused from one output time to the next
-  State snapshot_dxdt_;  ///< snapshot()'s scratch for the rates of an interpolated state
+  std::atomic<long> contact_count_ = 0;
+  bool parallel_pairs_ = true;  ///< setParallelPairs()
+  Snapshot output_;             ///< snapshot()'s result, reused from one output time to the next
+  State snapshot_dxdt_;         ///< snapshot()'s scratch for the rates of an interpolated state
 };
 
 }  // namespace vcontact::dynamics

@@ -2,6 +2,9 @@
 // bodies, the discrete updates of its patches' states, and the output snapshot with the
 // pairs' depths (simulator.hpp).
 
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -183,8 +186,51 @@ void Simulator::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
   non_finite_effect_ = s.str();
 }
 
-// Pair k's contact and model: its wrench into force_ and torque_, its state rates into dxdt.
-// A one-slot pair evaluates its single-region contact (the aggregate) with slot 0.
+// Every pair's contact and model at kin_ (evaluatePair), side by side (TBB) when there are
+// several pairs to query, then their wrenches onto the bodies pair by pair in order (applyPair):
+// the same sums, to the bit, as one thread. A pair's evaluation touches only what is its own
+// (its output, context, caches, tracker and the rates of its states in dxdt) and the query
+// counters, which are atomic; the meshes' shared trees are built under a lock
+// (volume/mesh_cache.hpp) and the queries' scratch is per thread.
+void Simulator::evaluatePairs(const State& x, State& dxdt) {
+  const std::size_t n = scenario_.pairs.size();
+  std::size_t queries = 0;  // the pairs whose evaluation queries their contact
+  if (parallel_pairs_ && !reuse_contacts_) {
+    for (std::size_t k = 0; k < n && queries < 2; ++k) {
+      if (queried_[k] && !sleep_.frozen(k)) ++queries;
+    }
+  }
+  if (queries < 2) {
+    for (std::size_t k = 0; k < n; ++k) evaluatePair(k, x, dxdt);
+  } else {
+    // one pair a task: a mesh pair's query costs 0.1-10 ms, and pairs differ a thousandfold
+    tbb::parallel_for(
+        std::size_t{0}, n, [&](std::size_t k) { evaluatePair(k, x, dxdt); },
+        tbb::simple_partitioner{});
+  }
+  for (std::size_t k = 0; k < n; ++k) applyPair(k);
+}
+
+// Pair k's wrenches onto its bodies from its latest evaluation (last_pairs_[k]), a one-slot
+// pair's at its single region, a patched pair's patch by patch; the first non-finite force of
+// the run noted on the way.
+void Simulator::applyPair(std::size_t k) {
+  const ContactPair& pair = scenario_.pairs[k];
+  const PairOutput& out = last_pairs_[k];
+  if (slots_[k] == 1) {
+    noteNonFinite(k, out.cv, out.result);
+    addWrench(pair, out.cv.p_WC, out.result.wrench);
+    return;
+  }
+  for (const PatchOutput& p : out.patches) {
+    noteNonFinite(k, p.cv, p.result);
+    addWrench(pair, p.cv.p_WC, p.result.wrench);
+  }
+}
+
+// Pair k's contact and model into last_pairs_[k], its state rates into dxdt; the wrench is
+// applied by applyPair. A one-slot pair evaluates its single-region contact (the aggregate)
+// with slot 0.
 void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
   const ContactPair& pair = scenario_.pairs[k];
   PairOutput& out = last_pairs_[k];
@@ -211,8 +257,6 @@ void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
   pair.model.evaluate(out.cv, motion, out.state, out.result,
                       distributed && out.cv.inContact() ? &fields_[k] : nullptr,
                       context ? &context->ctx : nullptr);
-  noteNonFinite(k, out.cv, out.result);
-  addWrench(pair, p_c, out.result.wrench);
   out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
 }
 
@@ -239,8 +283,6 @@ void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& con
     p.state = PairState::unpack(&x[base + std::size_t(m.host[i] * size)], size);
     const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], p.cv.p_WC);
     pair.model.evaluate(p.cv, motion, p.state, p.result);
-    noteNonFinite(k, p.cv, p.result);
-    addWrench(pair, p.cv.p_WC, p.result.wrench);
     if (p.slot >= 0) p.result.rates.pack(&dxdt[base + std::size_t(p.slot * size)], size);
   }
   out.state = PairState::unpack(&x[base], size);
