@@ -237,7 +237,8 @@ constexpr std::pair<const char*, double dynamics::ImpactRecord::*> kImpactColumn
     {"normal_impulse_Ns", &dynamics::ImpactRecord::impulse},
     {"approach_speed_m_s", &dynamics::ImpactRecord::approach_speed},
     {"separation_speed_m_s", &dynamics::ImpactRecord::separation_speed},
-    {"restitution", &dynamics::ImpactRecord::restitution}};
+    {"restitution", &dynamics::ImpactRecord::restitution},
+    {"predicted_rebound_m_s", &dynamics::ImpactRecord::predicted_rebound}};
 
 py::dict impactColumns(const std::vector<dynamics::ImpactRecord>& impacts) {
   py::dict d;

@@ -60,6 +60,25 @@ def test_a_batch_gives_the_figures_of_single_runs_to_the_bit(inline_ball_drop):
         assert r["wall_time"] > 0
 
 
+def test_a_discrete_batch_gives_the_rebound_each_impact_was_predicted(inline_ball_drop):
+    """The impacts' predicted_rebound_m_s (the discrete stepper's decision, docs/DISCRETE.md
+    §5) are summary.json's, to the bit; the ball's bounces rebound at 0.1-0.26 m/s, above the
+    default threshold, so every one was predicted above it."""
+    doc = json.loads(inline_ball_drop.read_text())
+    doc["integrator"] = "discrete"
+    doc["duration"] = 0.2
+    discrete = inline_ball_drop.parent / "ball_drop_discrete.json"
+    discrete.write_text(json.dumps(doc))
+    r = batch.run_batch(discrete, [{}], threads=1)[0]
+    single = vcontact.Scenario.from_json(json.dumps(doc), "single",
+                                         str(inline_ball_drop.parent)).run()
+    predicted = [i["predicted_rebound_m_s"] for i in single["summary"]["impacts"]]
+    assert len(predicted) >= 3
+    assert all(p >= 0.05 for p in predicted)
+    np.testing.assert_array_equal(r["pairs"]["ball-plate"]["impacts"]["predicted_rebound_m_s"],
+                                  predicted)
+
+
 def test_a_run_that_fails_or_stops_is_a_result_not_an_exception(inline_ball_drop):
     results = batch.run_batch(inline_ball_drop, [
         {"models.steel.effects.stiffness.kv": -1.0},   # refused by the model's bounds
