@@ -80,7 +80,9 @@ double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv,
 
 // The rebound speed e v_in predicted for an impact of pair k at approach speed v_in: the exact
 // relation of docs/MODEL.md §5 with the pair's damping, e = 1 without it. Other dissipation
-// (a Maxwell element, friction) only lowers the rebound: the prediction errs towards resolving.
+// (a Maxwell element, friction) only lowers the rebound of a head-on impact: the prediction
+// errs towards resolving there; a rocking or tumbling part can leave faster than it came
+// (docs/DISCRETE.md §5).
 double Simulator::predictedRebound(std::size_t k, double approach) const {
   const Model& model = scenario_.pairs[k].model;
   if (!model.has("damping")) return approach;
