@@ -33,8 +33,8 @@ struct SimulateOptions {
   std::string outputThread = "off";  ///< "on": the CSVs are written on a thread of their own
 };
 
-// A discrete run's impacts that "auto" left to the plain step: what a user who needs their
-// rebounds should change.
+// A discrete run's impacts that "auto" left to the plain step (only that mode leaves any):
+// what a user who needs their rebounds should change.
 void printPlainImpacts(const dynamics::SimulationSummary& s,
                        const dynamics::SimulationSettings& settings) {
   long resolved = 0, plain = 0;
@@ -42,7 +42,7 @@ void printPlainImpacts(const dynamics::SimulationSummary& s,
     if (r.resolution == "plain" || r.resolution == "partly") ++plain;
     if (r.resolution == "resolved") ++resolved;
   }
-  if (plain == 0 || settings.impacts != dynamics::ImpactMode::kAuto) return;
+  if (plain == 0) return;
   std::cerr << "vcontact: " << plain << " of " << (plain + resolved)
             << " fast impacts were left to the plain step, which dissipates them (predicted "
                "rebound below restitution_threshold = "
@@ -141,14 +141,12 @@ void runSimulate(const SimulateOptions& o) {
   checkBeforeRun(o);
   printRecognition(file.scenario, o.quiet);
   dynamics::Simulator sim(file.scenario);
-  sim.setOutputDepths(file.outputs.pairs);
+  sim.setOutputDepths(file.outputs.pairs);  // the depth column is in the pair files only
   sim.setParallelPairs(o.threads != 1);
   // the process's TBB threads for the run: --threads, else every core
   const tbb::global_control threads(
       tbb::global_control::max_allowed_parallelism,
-      o.threads > 0
-          ? static_cast<std::size_t>(o.threads)
-          : tbb::info::default_concurrency());  // the depth column is in the pair files only
+      o.threads > 0 ? static_cast<std::size_t>(o.threads) : tbb::info::default_concurrency());
   const report::OutputThread thread =
       o.outputThread == "on" ? report::OutputThread::kOn : report::OutputThread::kOff;
   // Ctrl-C or SIGTERM from here on ends the run as a stopped one: exit 3, the rows so far and

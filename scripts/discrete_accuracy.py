@@ -5,7 +5,7 @@ output time (docs/DISCRETE.md §4):
 
   python3 scripts/discrete_accuracy.py SCENARIO --out DIR [--duration S] [--output-rate HZ]
       [--steps 1e-3,5e-4,2.5e-4] [--tolerances ABS,REL] [--vcontact build/bin/vcontact]
-      [--skip-reference] [--no-sleep] [--impacts resolve|implicit]
+      [--skip-reference] [--no-sleep] [--impacts auto|resolve|implicit]
 
 Each variant is a copy of the scenario in DIR (mesh and model paths made absolute) with
 "integrator", "step", "duration", "output_rate" and, for dopri5, "tolerances" abs/rel changed;
@@ -65,6 +65,32 @@ def run(vcontact, path, out, name):
                  f"(see {out}/{name}.log)")
 
 
+def common_changes(a):
+    """The changes every variant gets from the command line: --duration and --output-rate."""
+    common = {}
+    if a.duration:
+        common["duration"] = a.duration
+    if a.output_rate:
+        common["output_rate"] = a.output_rate
+    return common
+
+
+def run_discrete(a, scenario, base, common, sleep=None):
+    """The discrete variants at each of --steps h (with --impacts, and "sleep" when given), run
+    into a.out; their names."""
+    names = []
+    for h in a.steps.split(","):
+        name = f"discrete_{float(h) * 1e3:g}ms" + (f"_{a.impacts}" if a.impacts else "")
+        changes = dict(common, integrator="discrete", step=float(h))
+        if a.impacts:
+            changes["impacts"] = a.impacts
+        if sleep is not None:
+            changes["sleep"] = sleep
+        run(a.vcontact, variant(scenario, base, a.out, name, changes), a.out, name)
+        names.append(name)
+    return names
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("scenario")
@@ -77,34 +103,21 @@ def main():
     p.add_argument("--skip-reference", action="store_true")
     p.add_argument("--no-sleep", action="store_true",
                    help='the discrete variants with "sleep": false')
-    p.add_argument("--impacts", choices=("resolve", "implicit"),
+    p.add_argument("--impacts", choices=("auto", "resolve", "implicit"),
                    help='"impacts" of the discrete variants (default: as the scenario says)')
     a = p.parse_args()
     with open(a.scenario) as f:
         scenario = json.load(f)
     base = os.path.dirname(os.path.abspath(a.scenario))
     os.makedirs(a.out, exist_ok=True)
-    common = {}
-    if a.duration:
-        common["duration"] = a.duration
-    if a.output_rate:
-        common["output_rate"] = a.output_rate
+    common = common_changes(a)
     reference = dict(common, integrator="dopri5")
     if a.tolerances:
         abs_tol, rel_tol = (float(x) for x in a.tolerances.split(","))
         reference["tolerances"] = {"abs": abs_tol, "rel": rel_tol}
-    names = []
     if not a.skip_reference:
         run(a.vcontact, variant(scenario, base, a.out, "dopri5", reference), a.out, "dopri5")
-    for h in a.steps.split(","):
-        name = f"discrete_{float(h) * 1e3:g}ms" + (f"_{a.impacts}" if a.impacts else "")
-        changes = dict(common, integrator="discrete", step=float(h))
-        if a.impacts:
-            changes["impacts"] = a.impacts
-        if a.no_sleep:
-            changes["sleep"] = False
-        run(a.vcontact, variant(scenario, base, a.out, name, changes), a.out, name)
-        names.append(name)
+    names = run_discrete(a, scenario, base, common, sleep=False if a.no_sleep else None)
     table = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rest_pose_table.py")
     os.chdir(a.out)
     subprocess.run([sys.executable, table, "dopri5"] + names, check=True)

@@ -24,7 +24,7 @@ import random
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from discrete_accuracy import run, variant  # noqa: E402
+from discrete_accuracy import common_changes, run, run_discrete, variant  # noqa: E402
 
 
 def last_poses(folder):
@@ -82,11 +82,7 @@ def main():
         scenario = json.load(f)
     base = os.path.dirname(os.path.abspath(a.scenario))
     os.makedirs(a.out, exist_ok=True)
-    common = {}
-    if a.duration:
-        common["duration"] = a.duration
-    if a.output_rate:
-        common["output_rate"] = a.output_rate
+    common = common_changes(a)
     reference = dict(common, integrator="dopri5")
     rng = random.Random(a.seed)
     members = [f"dopri5_{i}" for i in range(1, a.members + 1)]
@@ -95,14 +91,7 @@ def main():
         run(a.vcontact, variant(scenario, base, a.out, "dopri5", reference), a.out, "dopri5")
         for name, start in zip(members, starts):
             run(a.vcontact, variant(start, base, a.out, name, reference), a.out, name)
-    discrete = []
-    for h in a.steps.split(","):
-        name = f"discrete_{float(h) * 1e3:g}ms" + (f"_{a.impacts}" if a.impacts else "")
-        changes = dict(common, integrator="discrete", step=float(h))
-        if a.impacts:
-            changes["impacts"] = a.impacts
-        run(a.vcontact, variant(scenario, base, a.out, name, changes), a.out, name)
-        discrete.append(name)
+    discrete = run_discrete(a, scenario, base, common)
 
     ref = last_poses(os.path.join(a.out, "dopri5"))
     ens = [last_poses(os.path.join(a.out, m)) for m in members]
