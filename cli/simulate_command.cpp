@@ -96,6 +96,23 @@ void printRecognition(const dynamics::Scenario& scenario, bool quiet) {
   }
 }
 
+// The effects the discrete stepper takes at each step's start only (Model::explicitEffects),
+// per pair: a stiff one among them needs a smaller step, or an error-controlled integrator.
+void printExplicitEffects(const dynamics::Scenario& scenario, bool quiet) {
+  if (quiet || scenario.settings.integrator != dynamics::Integrator::kDiscrete) return;
+  for (const dynamics::ContactPair& pair : scenario.pairs) {
+    const std::vector<std::string> ids = pair.model.explicitEffects();
+    if (ids.empty()) continue;
+    std::cerr << "vcontact: pair '" << pair.name << "': ";
+    for (std::size_t i = 0; i < ids.size(); ++i) std::cerr << (i ? ", " : "") << ids[i];
+    std::cerr << (ids.size() == 1 ? " is" : " are")
+              << " not linearised by the discrete stepper (each step takes "
+              << (ids.size() == 1 ? "its share" : "their shares")
+              << " at the step's start): if stiff, lower \"step\" or use \"dopri5\" "
+                 "(docs/DISCRETE.md §2)\n";
+  }
+}
+
 // The output rate of the command line replaces the scenario's; then the rows the run would
 // write are counted and refused beyond report::kMaxOutputRows, before anything is written.
 void applyOutputOptions(const SimulateOptions& o, formats::ScenarioFile& file) {
@@ -140,6 +157,7 @@ void runSimulate(const SimulateOptions& o) {
   applyOutputOptions(o, file);
   checkBeforeRun(o);
   printRecognition(file.scenario, o.quiet);
+  printExplicitEffects(file.scenario, o.quiet);
   dynamics::Simulator sim(file.scenario);
   sim.setOutputDepths(file.outputs.pairs);  // the depth column is in the pair files only
   sim.setParallelPairs(o.threads != 1);

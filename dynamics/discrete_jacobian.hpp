@@ -10,16 +10,15 @@
 // with the normal n, p_c, the area A and J_s of the step's start; the friction laws read the
 // normal force f_n, the stick measure s, μ_max and the Contensou factors of the step's start
 // (frozen). The bristle states are advanced implicitly with the step (PatchStep), so their
-// force is affine in ξ⁺ too. Expression effects stay explicit (their share is in w0 only).
+// force is affine in ξ⁺ too. Each effect writes its own terms (Effect::stepForm, linearise);
+// those that have none (adhesion, expression effects: Model::explicitEffects) stay explicit,
+// their share in w0 only.
 
 #include <Eigen/Core>
 
 #include "dynamics/model.hpp"
 
 namespace vcontact::dynamics {
-
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 /// ∂w/∂ξ and ∂w/∂(du, dθ) of the lumped effects (docs/DISCRETE.md §2); rows and columns are
 /// (force, torque) × (v_c, ω) and (du, dθ), world frame, about p_c.

@@ -4,12 +4,12 @@
 
 namespace vcontact::dynamics {
 
-// dir_ε(v) = v / max(|v|, v_ε)   (MODEL.md §3)
 double contactArea(const volume::ContactVolume& cv) {
   if (cv.area > 0.0) return cv.area;
   return cv.depth > 0.0 ? cv.volume / cv.depth : 0.0;
 }
 
+// dir_ε(v) = v / max(|v|, v_ε)   (MODEL.md §3)
 Eigen::Vector3d dirEps(const Eigen::Vector3d& v, double v_eps) {
   return v / std::max(v.norm(), v_eps);
 }
@@ -26,6 +26,10 @@ Eigen::Vector3d saturate(const Eigen::Vector3d& x, double max_norm) {
 }
 
 double saturate(double x, double max_abs) { return std::clamp(x, -max_abs, max_abs); }
+
+Eigen::Matrix3d planeProjector(const Eigen::Vector3d& n) {
+  return Eigen::Matrix3d::Identity() - n * n.transpose();
+}
 
 const std::vector<StateSlot>& Effect::stateSlots() const {
   static const std::vector<StateSlot> kNone;

@@ -17,12 +17,14 @@
 //
 // An effect also owns what else is particular to it: its states (stateSlots, at the offset in
 // the pair state that the model gives it), the relations its parameters must keep with other
-// effects' (brokenRelation), and whether it works with distributed friction.
+// effects' (brokenRelation), whether it works with distributed friction, and how the discrete
+// stepper treats its share (stepForm, linearise: docs/DISCRETE.md §2).
 //
 // Adding an effect is one new file in dynamics/effects/ (a class deriving from
 // dynamics/effects/effect_base.hpp) plus its id in the effect list of dynamics/CMakeLists.txt;
 // simulation, fitting and diagnosis then see it through Model.
 
+#include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cassert>
 #include <memory>
@@ -79,6 +81,48 @@ enum class Stage {
 
 enum class FrictionLaw { kCoulomb, kBristle };
 
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// How an effect's share of the wrench enters a step of the discrete stepper (Effect::stepForm,
+/// docs/DISCRETE.md §2).
+enum class StepForm {
+  /// At its value at the step's start only (the default): a stiff share then limits the step,
+  /// and `vcontact simulate` names the effect (Model::explicitEffects).
+  kExplicit,
+  /// Effect::linearise writes its share's derivatives into StepTerms.
+  kLinearised,
+  /// What it does is in the context that linearised effects read at the step's start: the
+  /// normal law's k_n (power_law, viscoelastic at a fixed Maxwell force), μ_max (stribeck,
+  /// dwell), the Contensou factors, the pose of the geometry (misalignment).
+  kThroughContext,
+};
+
+/// The linear form of a contact's wrench w = (f, τ) on body A at p_c over one step of length h,
+/// about the step's start (twist ξ0 = (v_c, ω), world frame), summed over the effects that
+/// linearise (Effect::linearise, in stage order; docs/DISCRETE.md §2):
+///   w⁺ = w0 + D (ξ⁺ − ξ0) + h K ξ⁺
+/// with the shares of implicitly advanced states (bristle) replaced by their form over the step.
+struct StepTerms {
+  double h = 0.0;  ///< s, the step (0: the instantaneous Jacobians)
+  /// ∂w/∂ξ at fixed states; friction magnitudes are frozen at ξ0 (secants of dir_ε, sgn_ε).
+  Matrix6d D = Matrix6d::Zero();
+  /// ∂w/∂(du, dθ), the displacement of A about p_c at a fixed twist.
+  Matrix6d K = Matrix6d::Zero();
+  /// Shares whose states the step advances implicitly (the bristle force and the bristle spin
+  /// torque): at the step's start they are c_now + L_now ξ0 (L_now is their ∂w/∂ξ at fixed
+  /// states), over the step c_step + L_step ξ⁺ instead.
+  Vector6d c_now = Vector6d::Zero(), c_step = Vector6d::Zero();
+  Matrix6d L_now = Matrix6d::Zero(), L_step = Matrix6d::Zero();
+  /// The implicit states at the step's end, z⁺ = z_c + Z ξ⁺ (a plane vector) and θ⁺ = theta_c +
+  /// Theta ξ⁺ (a scalar after it), from state index `implicit_offset` on; −1: none.
+  int implicit_offset = -1;
+  Eigen::Vector3d z_c = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 3, 6> Z = Eigen::Matrix<double, 3, 6>::Zero();
+  double theta_c = 0.0;
+  Eigen::Matrix<double, 1, 6> Theta = Eigen::Matrix<double, 1, 6>::Zero();
+};
+
 /// Everything one contact evaluation shares between effects. Plain data.
 struct ContactContext {
   // ---- inputs ----
@@ -123,6 +167,9 @@ struct ContactContext {
   double k_n = 0.0;
   /// f_n before damping (the force damping multiplies by 1 + a δ̇), N.
   double f_spring = 0.0;
+  /// f_spring is kv V, linear in V (stiffness sets it; power_law and viscoelastic clear it):
+  /// the tilt stiffness of the discrete stepper is then k_n itself, else the secant f_n/V.
+  bool linear_normal_law = true;
   double theta_n = 0.0;    ///< θ_n from the bristle stage (its state), rad
   double theta_dot = 0.0;  ///< θ̇_n from the bristle stage, rad/s
 
@@ -134,6 +181,8 @@ Eigen::Vector3d dirEps(const Eigen::Vector3d& v, double v_eps);
 double sgnEps(double omega, double v_eps, double r_gyr);
 Eigen::Vector3d saturate(const Eigen::Vector3d& x, double max_norm);
 double saturate(double x, double max_abs);
+/// P = I − n nᵀ, the projector onto the contact plane of normal n.
+Eigen::Matrix3d planeProjector(const Eigen::Vector3d& n);
 /// The contact area A of cv, or V/d where the volume method leaves it out (0 without
 /// contact), m².
 double contactArea(const volume::ContactVolume& cv);
@@ -169,6 +218,13 @@ class Effect {
   virtual bool integratesDistributedFriction() const { return false; }
   /// Why this effect cannot be used with distributed friction; empty when it can.
   virtual std::string_view distributedFrictionConflict() const { return {}; }
+
+  /// How the discrete stepper takes this effect's share (StepForm; kExplicit by default, so
+  /// that an effect without a linearisation is named, not silently left explicit).
+  virtual StepForm stepForm() const { return StepForm::kExplicit; }
+  /// kLinearised: add this effect's part of the step's linear form to `terms`, from the
+  /// context of both passes at the step's start (docs/DISCRETE.md §2). @pre ctx.cv->volume > 0
+  virtual void linearise(const ContactContext& /*ctx*/, StepTerms& /*terms*/) const {}
 
   /// Pass 1: write this effect's parameters into the context.
   virtual void configure(ContactContext& /*ctx*/) const {}

@@ -274,6 +274,20 @@ ContactContext Model::context(const volume::ContactVolume& cv, const RelativeMot
   return ctx;
 }
 
+void Model::linearise(const ContactContext& ctx, StepTerms& terms) const {
+  for (const auto& e : effects_) {
+    if (e->stepForm() == StepForm::kLinearised) e->linearise(ctx, terms);
+  }
+}
+
+std::vector<std::string> Model::explicitEffects() const {
+  std::vector<std::string> ids;
+  for (const auto& e : effects_) {
+    if (e->stepForm() == StepForm::kExplicit) ids.emplace_back(e->id());
+  }
+  return ids;
+}
+
 bool Model::settle(const volume::ContactVolume& cv, const RelativeMotion& motion,
                    PairState& state) const {
   const PairState before = state;

@@ -105,6 +105,14 @@ class Model {
   ContactContext context(const volume::ContactVolume& cv, const RelativeMotion& motion,
                          const PairState& state) const;
 
+  /// The discrete stepper's linear form of the wrench at the context `ctx` of an evaluation
+  /// (evaluate's `context`) over a step of terms.h: every effect whose stepForm() is
+  /// kLinearised adds its part, in stage order (docs/DISCRETE.md §2). @pre ctx.cv in contact
+  void linearise(const ContactContext& ctx, StepTerms& terms) const;
+  /// The ids of the effects whose share the discrete stepper takes at the step's start only
+  /// (StepForm::kExplicit: adhesion, expression effects), in effect order.
+  std::vector<std::string> explicitEffects() const;
+
   /// Distributed friction replaces the lumped Coulomb force and spin torque (coulomb, spin,
   /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs an effect
   /// that integrates it (Effect::integratesDistributedFriction: coulomb), and no effect that

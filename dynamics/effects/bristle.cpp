@@ -5,6 +5,9 @@
 // It owns the states z and θ_n, replaces the Coulomb form of coulomb, and leaves θ̇_n in the
 // context (with θ_n) for the bristle form of spin. It has no pointwise form for distributed
 // friction.
+#include <algorithm>
+
+#include "dynamics/effects/bristle_step.hpp"
 #include "dynamics/effects/effect_base.hpp"
 
 namespace vcontact::dynamics {
@@ -50,6 +53,41 @@ class Bristle final : public EffectBase<Bristle> {
     ctx.rates[thetaOffset()] = ctx.theta_dot;
     return {-ctx.f_n * saturate(Eigen::Vector3d(s0 * z_W + s1 * z_dot), ctx.mu_max),
             Eigen::Vector3d::Zero()};
+  }
+
+  StepForm stepForm() const override { return StepForm::kLinearised; }
+
+  // The bristle force affine in ξ⁺ with z advanced by backward Euler over the step
+  // (bristle_step.hpp; docs/DISCRETE.md §2.6): at the step's start (h = 0, the
+  // instantaneous Jacobian at a fixed z) and over the step, and the states z⁺, θ_n⁺ at its end
+  // (spin adds the torsional bristle's torque).
+  void linearise(const ContactContext& ctx, StepTerms& terms) const override {
+    const double s = ctx.s, s0 = ctx.sigma0, s1 = ctx.sigma1;
+    const double v_eps = ctx.settings.v_eps;
+    const Eigen::Matrix3d P = planeProjector(ctx.n);
+    // the pull term's secant: (C_v μ_C / σ1) dir_ε(v_t) = g_v v_t
+    const double g_v = ctx.C_v * ctx.mu_C / (s1 * std::max(ctx.v_t.norm(), v_eps));
+    const double e_v = s + (1.0 - s) * g_v;
+    const Eigen::Vector3d z = ctx.state.vector(zOffset());
+    // saturation at the step's start, kept as a fixed scale over the step
+    const Eigen::Vector3d x0 = s * s0 * z + s1 * e_v * ctx.v_t;
+    const double scale_v = x0.norm() > ctx.mu_max ? ctx.mu_max / x0.norm() : 1.0;
+    const auto form = [&](double h, Vector6d& c, Matrix6d& L) {
+      const double k = ctx.f_n * bristleRelaxation(ctx, h);
+      c.head<3>() = -scale_v * k * s * s0 * z;
+      L.topLeftCorner<3, 3>() = -scale_v * k * (h * s0 + s1) * e_v * P;
+    };
+    form(0.0, terms.c_now, terms.L_now);
+    form(terms.h, terms.c_step, terms.L_step);
+    const double h = terms.h, beta = bristleRelaxation(ctx, h);
+    const BristleTorsion torsion = bristleTorsion(ctx);
+    terms.implicit_offset = zOffset();
+    terms.z_c = beta * z;
+    terms.Z.setZero();
+    terms.Z.leftCols<3>() = beta * h * e_v * P;
+    terms.theta_c = beta * ctx.theta_n;
+    terms.Theta.setZero();
+    terms.Theta.rightCols<3>() = (beta * h * torsion.e_w) * ctx.n.transpose();
   }
 
  private:

@@ -22,6 +22,10 @@ class Contensou final : public EffectBase<Contensou> {
     }
     return {};
   }
+
+  // The discrete stepper: what it changes is C_v and C_ω, frozen at the step's start for the
+  // friction effects that read them.
+  StepForm stepForm() const override { return StepForm::kThroughContext; }
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 // Distributed friction (ContactContext::field set): the traction −μ_max p(s) dir_ε(v(s))
 // integrated over the δ map instead, force and torque about p_c together
 // (dynamics/distributed_friction.hpp); spin and the Contensou factors are then not used.
+#include <algorithm>
+
 #include "dynamics/distributed_friction.hpp"
 #include "dynamics/effects/effect_base.hpp"
 
@@ -40,6 +42,18 @@ class Coulomb final : public EffectBase<Coulomb> {
     }
     return {-ctx.mu_max * ctx.C_v * ctx.f_n * dirEps(ctx.v_t, ctx.settings.v_eps),
             Eigen::Vector3d::Zero()};
+  }
+
+  StepForm stepForm() const override { return StepForm::kLinearised; }
+
+  // The secant of dir_ε about the step's start, 1/max(|v_t|, v_ε) frozen: exact across the
+  // slip, and along it D ξ0 is the force at ξ0 (docs/DISCRETE.md §2.5). Lumped friction;
+  // under the bristle law its share is zero.
+  void linearise(const ContactContext& ctx, StepTerms& terms) const override {
+    if (ctx.law != FrictionLaw::kCoulomb) return;
+    terms.D.topLeftCorner<3, 3>() -=
+        (ctx.mu_max * ctx.C_v * ctx.f_n / std::max(ctx.v_t.norm(), ctx.settings.v_eps)) *
+        planeProjector(ctx.n);
   }
 };
 

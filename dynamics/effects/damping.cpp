@@ -27,6 +27,16 @@ class Damping final : public EffectBase<Damping> {
     ctx.f_n = f_n;
     return {change * ctx.n, Eigen::Vector3d::Zero()};
   }
+
+  StepForm stepForm() const override { return StepForm::kLinearised; }
+
+  // ∂f_n/∂ξ = −f_spring a n nᵀ (δ̇ = −n·v_c), zero where the clamp holds f_n at 0
+  // (docs/DISCRETE.md §2.3); its factor on the position terms is in stiffness's kv'.
+  void linearise(const ContactContext& ctx, StepTerms& terms) const override {
+    if (!(1.0 + ctx.a * ctx.delta_dot > 0.0)) return;
+    const Eigen::Matrix3d nn = ctx.n * ctx.n.transpose();
+    terms.D.topLeftCorner<3, 3>() -= ctx.f_spring * ctx.a * nn;
+  }
 };
 
 }  // namespace

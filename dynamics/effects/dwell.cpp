@@ -35,6 +35,10 @@ class Dwell final : public EffectBase<Dwell> {
   void settle(const ContactContext& ctx, PairState& state) const override {
     state[stateOffset()] = std::min(state[stateOffset()], ctx.s);
   }
+
+  // The discrete stepper: what it changes is s_μ, frozen at the step's start (its state advanced
+  // explicitly).
+  StepForm stepForm() const override { return StepForm::kThroughContext; }
 };
 
 }  // namespace

@@ -27,6 +27,9 @@ class Misalignment final : public EffectBase<Misalignment> {
     X_WA_tilted.linear() = R_WB * tilt * R_WB.transpose() * X_WA.linear();
     return X_WA_tilted;
   }
+
+  // The discrete stepper: what it changes is the pose the geometry is computed at.
+  StepForm stepForm() const override { return StepForm::kThroughContext; }
 };
 
 }  // namespace

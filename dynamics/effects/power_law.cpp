@@ -24,6 +24,9 @@ class PowerLaw final : public EffectBase<PowerLaw> {
   }
   std::vector<std::string_view> requiredEffects() const override { return {"stiffness"}; }
 
+  // Linearised by stiffness, from the k_n it leaves (the discrete stepper).
+  StepForm stepForm() const override { return StepForm::kThroughContext; }
+
   // f_n ← f_n (V/V_ref)^(p−1);  ∂f_n/∂V = p f_n / V
   Wrench apply(ContactContext& ctx) const override {
     const double V = ctx.cv->volume, p = parameter(0);
@@ -31,6 +34,7 @@ class PowerLaw final : public EffectBase<PowerLaw> {
     const double change = f_n - ctx.f_n;
     ctx.f_n = ctx.f_spring = f_n;
     ctx.k_n = p * f_n / V;
+    ctx.linear_normal_law = false;
     return {change * ctx.n, Eigen::Vector3d::Zero()};
   }
 };

@@ -18,6 +18,13 @@ class RollingResistance final : public EffectBase<RollingResistance> {
   Wrench apply(ContactContext& ctx) const override {
     return {Eigen::Vector3d::Zero(), -ctx.kv * ctx.a * (ctx.cv->J_s * ctx.omega_t)};
   }
+
+  StepForm stepForm() const override { return StepForm::kLinearised; }
+
+  // ω_t = P ω: ∂τ_r/∂ω = −kv a J_s P (docs/DISCRETE.md §2.3).
+  void linearise(const ContactContext& ctx, StepTerms& terms) const override {
+    terms.D.bottomRightCorner<3, 3>() -= ctx.kv * ctx.a * ctx.cv->J_s * planeProjector(ctx.n);
+  }
 };
 
 }  // namespace

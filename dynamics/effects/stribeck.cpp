@@ -38,6 +38,10 @@ class Stribeck final : public EffectBase<Stribeck> {
     ctx.mu_max = ctx.mu_C + (ctx.mu_S - ctx.mu_C) * ctx.s_mu;
     return {};
   }
+
+  // The discrete stepper: what it changes is μ_max, frozen at the step's start for the friction
+  // effects that read it.
+  StepForm stepForm() const override { return StepForm::kThroughContext; }
 };
 
 }  // namespace

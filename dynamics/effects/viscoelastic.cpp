@@ -31,6 +31,10 @@ class Viscoelastic final : public EffectBase<Viscoelastic> {
   }
   std::vector<std::string_view> requiredEffects() const override { return {"stiffness"}; }
 
+  // Linearised by stiffness at a fixed q, from the k_n it leaves; q is advanced explicitly (the
+  // discrete stepper).
+  StepForm stepForm() const override { return StepForm::kThroughContext; }
+
   Wrench apply(ContactContext& ctx) const override {
     const double tau = parameter(0), r = parameter(1);
     const double q = ctx.state[stateOffset()];
@@ -39,6 +43,7 @@ class Viscoelastic final : public EffectBase<Viscoelastic> {
     const double change = f_n - ctx.f_n;
     ctx.k_n = f_n > 0.0 ? r * ctx.k_n : 0.0;  // at fixed q
     ctx.f_n = ctx.f_spring = f_n;
+    ctx.linear_normal_law = false;
     return {change * ctx.n, Eigen::Vector3d::Zero()};
   }
 };

@@ -21,6 +21,16 @@ class Viscous final : public EffectBase<Viscous> {
     const double c = ctx.f_n * ctx.sigma2;
     return {-c * ctx.v_t, -ctx.r_gyr * ctx.r_gyr * c * ctx.omega_n * ctx.n};
   }
+
+  StepForm stepForm() const override { return StepForm::kLinearised; }
+
+  // v_t = P v_c, ω_n = n·ω, at the frozen f_n (docs/DISCRETE.md §2.4).
+  void linearise(const ContactContext& ctx, StepTerms& terms) const override {
+    const double r = ctx.r_gyr;
+    terms.D.topLeftCorner<3, 3>() -= ctx.f_n * ctx.sigma2 * planeProjector(ctx.n);
+    const Eigen::Matrix3d nn = ctx.n * ctx.n.transpose();
+    terms.D.bottomRightCorner<3, 3>() -= r * r * ctx.f_n * ctx.sigma2 * nn;
+  }
 };
 
 }  // namespace

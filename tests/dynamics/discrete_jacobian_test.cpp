@@ -270,3 +270,66 @@ TEST(DiscreteJacobian, NormalLawEffectsMatchDifferences) {
 
 }  // namespace
 }  // namespace vcontact::test
+
+namespace vcontact::test {
+namespace {
+
+// Each effect linearises its own share (Effect::linearise): its D against central differences
+// of that share alone (ContactResult::shares), in the regularised core where the friction
+// laws are linear in the twist (v_t = 5 µm/s, r_gyr ω_n = 8 µm/s < v_eps) and without damping
+// where a friction share reads f_n, which the linearisation freezes (1e-6 as above).
+TEST(DiscreteJacobian, EachEffectsOwnTermsMatchDifferencesOfItsShare) {
+  const volume::ContactVolume cv = cubeContact(cubePose(1e-4, 0.002, 0.3));
+  Vector6d core = Vector6d::Zero();
+  core << 3e-6, -4e-6, -0.01, 0.1, -0.2, 8e-6 / cv.r_gyr;
+  struct Case {
+    std::vector<std::string> effects;
+    Vector6d xi;
+  };
+  int checked = 0;
+  for (const Case& c : {Case{{"stiffness", "damping", "rolling_resistance"}, kTwist},
+                        Case{{"stiffness", "coulomb", "spin", "viscous"}, core}}) {
+    Model m = soft(c.effects);
+    if (m.has("viscous")) m.setParameter("viscous.sigma2", 2.0);
+    const dynamics::ContactContext ctx = m.context(cv, motionOf(c.xi), PairState{});
+    for (std::size_t i = 0; i < m.effectCount(); ++i) {
+      const dynamics::Effect& e = m.effect(i);
+      ASSERT_EQ(e.stepForm(), dynamics::StepForm::kLinearised) << e.id();
+      dynamics::StepTerms own;
+      e.linearise(ctx, own);
+      Matrix6d numeric;
+      const double eps = 1e-8;
+      for (int j = 0; j < 6; ++j) {
+        Vector6d up = c.xi, down = c.xi;
+        up(j) += eps;
+        down(j) -= eps;
+        numeric.col(j) = (asVector(m.evaluate(cv, motionOf(up), PairState{}).shares[i]) -
+                          asVector(m.evaluate(cv, motionOf(down), PairState{}).shares[i])) /
+                         (2.0 * eps);
+      }
+      if (e.id() == "stiffness") {  // kv V n: no twist in it; its terms are the position ones
+        EXPECT_EQ(own.D.cwiseAbs().maxCoeff(), 0.0);
+        EXPECT_LT(numeric.cwiseAbs().maxCoeff(), 1e-6 * own.K.cwiseAbs().maxCoeff());
+        continue;
+      }
+      SCOPED_TRACE(std::string(e.id()));
+      expectClose(own.D, numeric, 1e-6);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 5);  // damping, rolling_resistance, coulomb, spin, viscous
+}
+
+// The effects without a linearisation are named, so that the discrete stepper's user hears of
+// them (vcontact simulate prints them); those that act through the context are not.
+TEST(DiscreteJacobian, ExplicitEffectsAreNamed) {
+  EXPECT_EQ(soft({"stiffness", "damping", "coulomb", "adhesion"}).explicitEffects(),
+            std::vector<std::string>{"adhesion"});
+  EXPECT_TRUE(
+      soft({"stiffness", "power_law", "damping", "coulomb", "stribeck", "contensou", "spin"})
+          .explicitEffects()
+          .empty());
+}
+
+}  // namespace
+}  // namespace vcontact::test
