@@ -20,8 +20,7 @@ ContactJacobians contactJacobians(const Model& model, const volume::ContactVolum
   model.linearise(model.context(cv, motion, state), terms);
   ContactJacobians J;
   J.K = terms.K;
-  J.D = terms.D;
-  J.D += terms.L_now;
+  J.D = terms.D + terms.L_now;
   return J;
 }
 

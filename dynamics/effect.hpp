@@ -167,7 +167,7 @@ struct ContactContext {
   double k_n = 0.0;
   /// f_n before damping (the force damping multiplies by 1 + a δ̇), N.
   double f_spring = 0.0;
-  /// f_spring is kv V, linear in V (stiffness sets it; power_law and viscoelastic clear it):
+  /// f_spring is kv V, linear in V (true until power_law or viscoelastic clears it):
   /// the tilt stiffness of the discrete stepper is then k_n itself, else the secant f_n/V.
   bool linear_normal_law = true;
   double theta_n = 0.0;    ///< θ_n from the bristle stage (its state), rad

@@ -275,9 +275,7 @@ ContactContext Model::context(const volume::ContactVolume& cv, const RelativeMot
 }
 
 void Model::linearise(const ContactContext& ctx, StepTerms& terms) const {
-  for (const auto& e : effects_) {
-    if (e->stepForm() == StepForm::kLinearised) e->linearise(ctx, terms);
-  }
+  for (const auto& e : effects_) e->linearise(ctx, terms);  // a no-op unless kLinearised
 }
 
 std::vector<std::string> Model::explicitEffects() const {

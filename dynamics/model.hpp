@@ -106,8 +106,9 @@ class Model {
                          const PairState& state) const;
 
   /// The discrete stepper's linear form of the wrench at the context `ctx` of an evaluation
-  /// (evaluate's `context`) over a step of terms.h: every effect whose stepForm() is
-  /// kLinearised adds its part, in stage order (docs/DISCRETE.md §2). @pre ctx.cv in contact
+  /// (evaluate's `context`) over a step of terms.h: every effect adds its part, in stage order
+  /// (those whose stepForm() is not kLinearised add nothing; docs/DISCRETE.md §2).
+  /// @pre ctx.cv in contact
   void linearise(const ContactContext& ctx, StepTerms& terms) const;
   /// The ids of the effects whose share the discrete stepper takes at the step's start only
   /// (StepForm::kExplicit: adhesion, expression effects), in effect order.

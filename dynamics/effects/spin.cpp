@@ -43,9 +43,9 @@ class Spin final : public EffectBase<Spin> {
   void linearise(const ContactContext& ctx, StepTerms& terms) const override {
     const double r = ctx.r_gyr;
     if (r <= 0.0) return;
-    const Eigen::Matrix3d nn = ctx.n * ctx.n.transpose();
     if (ctx.law == FrictionLaw::kCoulomb) {
       const double w_eps = ctx.settings.v_eps / r;
+      const Eigen::Matrix3d nn = ctx.n * ctx.n.transpose();
       terms.D.bottomRightCorner<3, 3>() -=
           (ctx.mu_max * ctx.C_w * r * ctx.f_n / std::max(std::abs(ctx.omega_n), w_eps)) * nn;
       return;

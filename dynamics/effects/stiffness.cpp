@@ -37,16 +37,15 @@ class Stiffness final : public EffectBase<Stiffness> {
   // and f_n/V otherwise (power_law: kv'/p; viscoelastic: its r f_e + q over V).
   void linearise(const ContactContext& ctx, StepTerms& terms) const override {
     const volume::ContactVolume& cv = *ctx.cv;
-    const double kv = std::max(0.0, ctx.k_n * (1.0 + ctx.a * ctx.delta_dot));
+    const double damping = 1.0 + ctx.a * ctx.delta_dot;
+    const double kv = std::max(0.0, ctx.k_n * damping);
     const double area = contactArea(cv);
     if (kv <= 0.0 || area <= 0.0) return;
     const Eigen::Vector3d& n = ctx.n;
     const Eigen::Matrix3d P = planeProjector(n);
     const double mean_depth = cv.volume / area;
     const double tilt =
-        ctx.linear_normal_law
-            ? kv
-            : std::max(0.0, ctx.f_spring * (1.0 + ctx.a * ctx.delta_dot)) / cv.volume;
+        ctx.linear_normal_law ? kv : std::max(0.0, ctx.f_spring * damping) / cv.volume;
     terms.K.topLeftCorner<3, 3>() -= kv * area * n * n.transpose();
     terms.K.bottomRightCorner<3, 3>() -= (tilt / mean_depth) * P * cv.J_s * P;
   }
