@@ -1,6 +1,6 @@
-// columns/<case>: the columns method (volume/columns.hpp) on the cases where its line casting
-// was measured against Embree's (benchmarks/README.md, "Columns line casting"), with the volume
-// found (counter V, m³) beside the time; the trees are built once, outside the timed loop.
+// columns/<case>: the columns method (volume/columns/columns.hpp) on the cases where its line
+// casting was measured against Embree's (benchmarks/README.md, "Columns line casting"), with the
+// volume found (counter V, m³) beside the time; the trees are built once, outside the timed loop.
 //
 // Cases, the bundled punch (assets/scenarios/meshes/punch.stl: R = 10 mm, L = 8 mm, 64-sided
 // prism, 256 triangles) 0.6 µm into its support (the static penetration of
@@ -21,7 +21,7 @@
 
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
-#include "volume/columns.hpp"
+#include "volume/columns/columns.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 //   usage: vcontact_error_table OUTPUT_DIR
 // writes OUTPUT_DIR/faceting_error_sphere.csv and OUTPUT_DIR/faceting_error_cylinder.csv,
 // faceting_error_chamfered_pin.csv (a solid of revolution, by slices:
-// volume/recovered_revolution.hpp) and faceting_error_pin_in_bore.csv (two meshes, the pin's
-// slices in the bore's section: volume/recovered_bore.hpp).
+// volume/recovered/revolution_body.hpp) and faceting_error_pin_in_bore.csv (two meshes, the pin's
+// slices in the bore's section: volume/recovered/bore_pair.hpp).
 
 #include <chrono>
 #include <cmath>
@@ -17,11 +17,11 @@
 #include "geometry/mesh_topology.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
-#include "volume/analytic.hpp"
-#include "volume/halfspace_clip.hpp"
-#include "volume/mesh_mesh.hpp"
-#include "volume/recovered_refinement.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/analytic/primitive_on_plane.hpp"
+#include "volume/fast/surface_integration.hpp"
+#include "volume/halfspace/clip.hpp"
+#include "volume/recovered/recovered_surface.hpp"
+#include "volume/recovered/refinement.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 
 #include "dynamics/effects/expression.hpp"
 #include "dynamics/model.hpp"
-#include "volume/analytic.hpp"
+#include "volume/analytic/primitive_on_plane.hpp"
 
 namespace {
 

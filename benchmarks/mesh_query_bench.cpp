@@ -12,7 +12,7 @@
 // query/cad_tray/<pair>/<rest|landing>/depth_reference and depth: the depth pass alone at the
 //   rest pose or at the first pose in contact from 23 ms on (the landing), on the boundary segments
 //   of the query (its last patch's) (the pass of 89ea7e6, kept in the tests as
-//   ReferenceColumnDepth, against volume/column_depth.cpp).
+//   ReferenceColumnDepth, against volume/depth/deepest_column.cpp).
 // Counters: V (m³), the leaf pairs the cache holds, its refreshes and its plain descents (after
 // a recording no query reused), so that a fast wrong answer shows beside its time.
 
@@ -24,10 +24,10 @@
 
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
-#include "tests/volume/column_depth_reference.hpp"  // the old pass
-#include "volume/column_depth.hpp"
-#include "volume/mesh_mesh.hpp"
-#include "volume/mesh_mesh_intersector.hpp"
+#include "tests/volume/depth/deepest_column_reference.hpp"  // the old pass
+#include "volume/depth/deepest_column.hpp"
+#include "volume/fast/intersector.hpp"
+#include "volume/fast/surface_integration.hpp"
 
 namespace {
 

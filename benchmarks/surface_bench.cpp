@@ -4,9 +4,9 @@
 // bodies of one closed form; the same sphere with a free-form patch on top, so that each
 // query scans the vertices for the faces that reach the plane; and the rolling ball of
 // assets/scenarios/ball_roll_recovered.json; a chamfered pin on its side on a plate, a solid
-// of revolution (volume/recovered_revolution.hpp). Two meshes: the pin pressed into the
+// of revolution (volume/recovered/revolution_body.hpp). Two meshes: the pin pressed into the
 // bundled block's bore (surface/pin_in_bore: the fast method on the polyhedra against the
-// recovered pair, by slices across the pin's axis, volume/recovered_bore.hpp), and the tilted
+// recovered pair, by slices across the pin's axis, volume/recovered/bore_pair.hpp), and the tilted
 // pin's slices alone on the true shapes (surface/pin_in_bore_tilted_slices: closed-form
 // slices against polar ones, BoreSection::polar_slices).
 
@@ -22,11 +22,11 @@
 #include "geometry/surface_recognition.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
-#include "volume/analytic_bore.hpp"
-#include "volume/halfspace_clip.hpp"
-#include "volume/mesh_mesh.hpp"
-#include "volume/recovered_refinement.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/fast/surface_integration.hpp"
+#include "volume/halfspace/clip.hpp"
+#include "volume/recovered/pin_in_bore.hpp"
+#include "volume/recovered/recovered_surface.hpp"
+#include "volume/recovered/refinement.hpp"
 
 namespace {
 
@@ -222,8 +222,8 @@ void registerTiltedSlices(double tilt) {
   });
   // The pin of the error table (r 5 mm, 30 mm, 0.5 mm 45° chamfers, 64 segments) on its side
   // with a vertex row down: the cylinder and both chamfer cones reach the plate; recovered,
-  // a solid of revolution by slices (volume/analytic_revolution.hpp). The table's radius; a
-  // pin of r = 10 mm has two-ring chamfers that fit spheres too, told from them by their edges
+  // a solid of revolution by slices (volume/analytic/revolution_on_plane.hpp). The table's radius;
+  // a pin of r = 10 mm has two-ring chamfers that fit spheres too, told from them by their edges
   // (docs/SURFACES.md, "Sphere or cone: the edges decide").
   registerCase("chamfered_pin_side", [] {
     const double r = 0.005;

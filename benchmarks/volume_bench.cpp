@@ -10,9 +10,9 @@
 //   torus_*: a non-convex body on a half-space, flat and upright (registerTorus).
 // Methods: halfspace (BVH clip), halfspace_naive (O(n) reference clip), cgal (corefinement;
 // the half-space modelled as a box), columns (column integration to 1e-3), fast (exact local
-// surface integration of two meshes, volume/mesh_mesh.hpp, as called by default: depth NaN),
-// fast_depth (the same asked for its exact depth pass, `deepest`: the ratio fast_depth / fast
-// is what the depth costs); dispatch: the default method through volume::computeContact (the
+// surface integration of two meshes, volume/fast/surface_integration.hpp, as called by default:
+// depth NaN), fast_depth (the same asked for its exact depth pass, `deepest`: the ratio fast_depth
+// / fast is what the depth costs); dispatch: the default method through volume::computeContact (the
 // method table), to time the dispatch against the direct call (halfspace for a half-space, fast
 // for a pair), and for a pair dispatch_depth (QueryOptions::depth = kDeepest, as `vcontact
 // volume` asks).
@@ -28,11 +28,11 @@
 #include "geometry/bvh.hpp"
 #include "geometry/mesh_topology.hpp"
 #include "geometry/tessellate.hpp"
-#include "volume/cgal_reference.hpp"
-#include "volume/columns.hpp"
+#include "volume/cgal/corefinement.hpp"
+#include "volume/columns/columns.hpp"
 #include "volume/contact.hpp"
-#include "volume/halfspace_clip.hpp"
-#include "volume/mesh_mesh.hpp"
+#include "volume/fast/surface_integration.hpp"
+#include "volume/halfspace/clip.hpp"
 
 namespace {
 

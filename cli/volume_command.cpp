@@ -11,9 +11,8 @@
 #include "report/contact_volume_format.hpp"
 #include "report/depth_map_csv.hpp"
 #include "volume/contact.hpp"
-#include "volume/methods.hpp"
-#include "volume/recovered_refinement.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/recovered/recovered_surface.hpp"
+#include "volume/recovered/refinement.hpp"
 
 namespace vcontact::cli {
 
@@ -38,7 +37,7 @@ struct VolumeOptions {
 template <class Pick>
 std::string methodNames(Pick pick) {
   std::string names;
-  for (const volume::MethodRow& row : volume::methodTable()) {
+  for (const volume::MethodDescription& row : volume::describeMethods()) {
     if (pick(row)) names += (names.empty() ? "" : " | ") + std::string(row.name);
   }
   return names;
@@ -79,7 +78,7 @@ std::string methodHelp() {
   std::string help = methodNames([](const auto&) { return true; }) + " (default: the first of " +
                      methodNames([](const auto& row) { return row.is_default; }) +
                      " that takes the pair). Per method:";
-  for (const volume::MethodRow& row : volume::methodTable()) {
+  for (const volume::MethodDescription& row : volume::describeMethods()) {
     help += "\n  " + std::string(row.name) + ": " + std::string(row.scope) + "; " +
             (row.exact ? "exact" : "approximate") + ", relative_error " +
             std::string(row.error_estimate);
@@ -88,7 +87,7 @@ std::string methodHelp() {
 }
 
 /// --surface recovered: the mesh A's recognised surfaces against the half-space B, or two
-/// meshes on their recognised surfaces (volume/recovered_refinement.hpp).
+/// meshes on their recognised surfaces (volume/recovered/refinement.hpp).
 volume::RecoveredContact recoveredContact(const VolumeOptions& o, const io::ParsedShape& a,
                                           const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
                                           const Eigen::Isometry3d& X_WB) {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/simulation_output.hpp"
 
 namespace vcontact::dynamics {
 

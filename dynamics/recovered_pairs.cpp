@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "dynamics/scenario.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::dynamics {
 namespace {

@@ -20,7 +20,7 @@
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::volume {
-struct RecoveredSurface;  // volume/recovered_surface.hpp
+struct RecoveredSurface;  // volume/recovered/recovered_surface.hpp
 }
 
 namespace vcontact::dynamics {

@@ -301,24 +301,6 @@ bool Simulator::settle(State& x, double t) {
   return settlePairs(x, t);
 }
 
-const char* stopCauseName(StopCause cause) {
-  switch (cause) {
-    case StopCause::kNonFinite:
-      return "non_finite_state";
-    case StopCause::kStepCollapse:
-      return "step_size_collapse";
-    case StopCause::kPenetration:
-      return "penetration_beyond_bound";
-    case StopCause::kBlowUp:
-      return "blow_up";
-    case StopCause::kInterrupted:
-      return "interrupted";
-    case StopCause::kIntegratorFailure:
-      break;
-  }
-  return "integrator_failure";
-}
-
 // The blow-up guard after an accepted step (energy_guard.hpp): O(bodies + pairs).
 void Simulator::checkEnergy(const State& x, double t) {
   const bool current = kinematicsCurrent(x, t);

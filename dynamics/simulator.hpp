@@ -1,7 +1,7 @@
 #pragma once
 // Time integration of a Scenario: Newton–Euler equations of the free bodies under gravity
 // and the contact wrenches of every pair, plus the pair states, error-controlled with the
-// scenario's tolerances by one of two integrators (SimulationSettings::integrator):
+// scenario's tolerances, by one of three integrators (SimulationSettings::integrator):
 //
 // - Dormand–Prince 5(4), Boost.Odeint (runge_kutta_dopri5, FSAL). After each accepted step the
 //   quaternions are renormalised and every pair state is settled (Model::settle: z projected
@@ -11,13 +11,20 @@
 //   are free and outputs come from each step's interpolating polynomial. The settle updates
 //   restart the integrator when they move a state by more than its tolerance; smaller ones are
 //   within the integration error and are applied by every reader of the state anyway.
+// - The discrete stepper (docs/DISCRETE.md; simulator_discrete*.cpp): a linearly
+//   implicit step of fixed size about each pair's contact Jacobians (discrete_jacobian.hpp),
+//   with impacts resolved by Dormand–Prince intervals or by the implicit step itself, and
+//   bodies at rest put to sleep (sleep.hpp).
+//
+// What a run hands out (Snapshot, SimulationSummary, SimulationError) is in
+// simulation_output.hpp, for the writers that need not see the Simulator.
 //
 // Every right-hand side first screens the pairs with a broad phase (FCL's dynamic AABB tree
 // over the bodies' placed bounds, geometry/broad_phase.hpp): a pair whose boxes do not overlap
 // gets the empty contact without a query. Pairs with an unbounded body (half-space) or a model
 // that moves the payload's pose (misalignment) are always queried.
 //
-// Either run stops with a SimulationError naming time, pair or body and the quantity on: a
+// Any run stops with a SimulationError naming time, pair or body and the quantity on: a
 // non-finite state or rate, a mean penetration V/A beyond a set fraction of a body, a step
 // size below the minimum (or another failure of CVODE, in words), or kinetic energy far beyond
 // what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
@@ -36,6 +43,7 @@
 #include "dynamics/patch_tracker.hpp"
 #include "dynamics/recovered_pairs.hpp"
 #include "dynamics/scenario.hpp"
+#include "dynamics/simulation_output.hpp"
 #include "dynamics/sleep.hpp"
 #include "geometry/broad_phase.hpp"
 #include "volume/contact.hpp"
@@ -62,99 +70,6 @@ struct EvaluationContext {
   RelativeMotion motion;
   bool valid = false;  ///< the pair was in contact at that evaluation
 };
-
-/// Why a run stopped, for a program reading its summary (the message says it in words).
-enum class StopCause {
-  kNonFinite,          ///< a state or its rate is NaN or infinite
-  kStepCollapse,       ///< the step size fell below SimulationSettings::min_step
-  kPenetration,        ///< a pair's mean penetration exceeds max_penetration_fraction
-  kIntegratorFailure,  ///< another failure of the integrator (CVODE), in its words
-  kBlowUp,             ///< the free bodies gained energy no input gave them (energy_guard.hpp)
-  kInterrupted         ///< the user asked the run to stop (SIGINT, SIGTERM: io/interrupt.hpp)
-};
-
-/// "non_finite_state", "step_size_collapse", "penetration_beyond_bound", "integrator_failure",
-/// "blow_up", "interrupted".
-const char* stopCauseName(StopCause cause);
-
-class SimulationError : public std::runtime_error {
- public:
-  SimulationError(double t, StopCause cause, const std::string& message)
-      : std::runtime_error(message), time_(t), cause_(cause) {}
-  double time() const { return time_; }  ///< s, where the run stopped
-  StopCause cause() const { return cause_; }
-
- private:
-  double time_;
-  StopCause cause_;
-};
-
-/// One contact patch of a pair at one instant (pairs with several state slots).
-struct PatchOutput {
-  volume::ContactVolume cv;
-  ContactResult result;  ///< wrench on body A at the patch's centroid
-  PairState state;       ///< the states it read (its slot's, or its host slot's)
-  int slot = -1;         ///< its own state slot, −1 when it has none (PatchMatch)
-};
-
-/// Per pair at one instant.
-struct PairOutput {
-  volume::ContactVolume cv;  ///< the single-region contact (ContactPatches::aggregate)
-  /// The pair's total wrench on body A at cv.p_WC (the patches' wrenches moved there), the
-  /// sum of the patches' f_n and the s and μ_max of the largest patch; the rates of slot 0.
-  ContactResult result;
-  PairState state;                   ///< the states of slot 0
-  std::vector<PatchOutput> patches;  ///< pairs with several slots only, in the query's order
-  int patch_count = 0;               ///< patches of the query (0 when apart)
-  int without_slot = 0;              ///< of those, the ones with no slot of their own
-};
-
-struct Snapshot {
-  double t = 0.0;                      ///< s
-  std::vector<BodyKinematics> bodies;  ///< one per Scenario::bodies
-  std::vector<PairOutput> pairs;       ///< one per Scenario::pairs
-  std::vector<LoadOutput> loads;       ///< one per Scenario::loads, then one per spring
-};
-
-struct SimulationSummary {
-  double simulated_time = 0.0;  ///< s
-  double wall_time = 0.0;       ///< s
-  long steps = 0;               ///< accepted steps
-  long rejected_steps = 0;
-  long rhs_evaluations = 0;
-  long contact_evaluations = 0;   ///< volume queries (the pairs the broad phase let through, at
-                                  ///< every right-hand-side evaluation)
-  long jacobian_evaluations = 0;  ///< BDF: difference-quotient Jacobians (their right-hand
-                                  ///< sides are in rhs_evaluations); 0 for Dormand–Prince
-  int patches_max = 0;            ///< most patches of one pair at an output time
-  double patches_mean = 0.0;      ///< mean patch count over the output times of pairs in contact
-  long patches_without_slot = 0;  ///< patches without a slot of their own, summed over outputs
-  /// The bodies with a recovered surface and the pairs with one of them (RecoveredPairs);
-  /// empty when no body has "surface": "recovered".
-  std::vector<SurfaceBodyUse> surface_bodies;
-  std::vector<SurfacePairUse> surface_pairs;
-  /// The impacts of the pairs (dynamics/impact_tracker.hpp); dopri5 and discrete runs.
-  std::vector<ImpactRecord> impacts;
-  /// Discrete runs: the steps whose interval was integrated by Dormand–Prince to resolve an
-  /// impact or a missed linearisation, and the accepted Dormand–Prince steps they took
-  /// (docs/DISCRETE.md §5); of those steps, the ones for a missed linearisation alone, and the
-  /// contact queries all of them made.
-  long resolved_steps = 0;
-  long resolution_substeps = 0;
-  long resolved_for_linearisation = 0;
-  long resolution_queries = 0;
-  /// Discrete runs with sleep (dynamics/sleep.hpp): the bodies falling asleep and waking, in
-  /// order, and the contact queries not made because a pair's bodies slept.
-  std::vector<SleepEvent> sleep_events;
-  long sleep_skipped_queries = 0;
-  double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }
-};
-
-/// The state slots of pair p of scenario s (docs/SCENARIO.md, "Contact patches"): one for
-/// a pair that touches in one region only (distributed friction, the analytic method, two
-/// convex shapes), p.max_patches otherwise.
-/// @throws InputError when that count is outside [kMinMaxPatches, kMaxMaxPatches]
-int patchSlots(const Scenario& s, const ContactPair& p);
 
 class Simulator {
  public:

@@ -14,17 +14,9 @@
 
 #include "dynamics/simulator.hpp"
 #include "geometry/error.hpp"
-#include "volume/mesh_convexity.hpp"
 
 namespace vcontact::dynamics {
 namespace {
-
-// Can this shape meet a convex one in several regions? Primitives and half-spaces are convex,
-// and so is a mesh that bounds a convex solid; two convex solids meet in one convex region.
-bool convex(const geometry::Shape& shape) {
-  const auto* mesh = std::get_if<geometry::Mesh>(&shape);
-  return mesh == nullptr || volume::isConvex(mesh->mesh);
-}
 
 // Wrench w at p moved to the point q: the same force, τ + (p − q) × f.
 Wrench movedTo(const Wrench& w, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
@@ -57,18 +49,6 @@ void combine(const std::vector<PatchOutput>& patches, const Eigen::Vector3d& p_c
 }
 
 }  // namespace
-
-int patchSlots(const Scenario& s, const ContactPair& p) {
-  if (p.friction == FrictionMode::kDistributed) return 1;
-  if (p.method == volume::Method::kAnalytic) return 1;
-  if (convex(s.bodies[p.a].shape) && convex(s.bodies[p.b].shape)) return 1;
-  if (p.max_patches < kMinMaxPatches || p.max_patches > kMaxMaxPatches) {
-    throw InputError("pair '" + p.name + "'", "max_patches " + std::to_string(p.max_patches) +
-                                                  " is outside [" + std::to_string(kMinMaxPatches) +
-                                                  ", " + std::to_string(kMaxMaxPatches) + "]");
-  }
-  return p.max_patches;
-}
 
 // Pair k's contact at kin_: queried, or its contact when apart when the broad phase
 // screened it out. The force evaluations skip the exact depth (kSkip: the model does not
@@ -191,7 +171,7 @@ void Simulator::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
 // the same sums, to the bit, as one thread. A pair's evaluation touches only what is its own
 // (its output, context, caches, tracker and the rates of its states in dxdt) and the query
 // counters, which are atomic; the meshes' shared trees are built under a lock
-// (volume/mesh_cache.hpp) and the queries' scratch is per thread.
+// (volume/kernels/mesh_cache.hpp) and the queries' scratch is per thread.
 void Simulator::evaluatePairs(const State& x, State& dxdt) {
   const std::size_t n = scenario_.pairs.size();
   std::size_t queries = 0;  // the pairs whose evaluation queries their contact

@@ -15,7 +15,7 @@
 #include <optional>
 #include <string>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/simulation_output.hpp"
 #include "formats/scenario_file.hpp"
 #include "report/simulation_csv.hpp"
 #include "report/snapshot_queue.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/simulation_output.hpp"
 #include "formats/scenario_file.hpp"
 #include "io/output_file.hpp"
 #include "report/csv_number.hpp"

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/simulation_output.hpp"
 
 namespace vcontact::report {
 

@@ -26,7 +26,7 @@
 #include <thread>
 #include <vector>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/simulation_output.hpp"
 
 namespace vcontact::report {
 

@@ -11,7 +11,6 @@
 #include "geometry/error.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/shape_spec.hpp"
-#include "volume/columns.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::validation {
@@ -23,7 +22,7 @@ constexpr int kSphereSegments = 256, kSphereRings = 128;
 constexpr int kMaxRows = 2000;
 // The plate is tilted by these angles (degrees); the friction is frame-invariant. The tilt
 // once hid a columns bug (a micrometre-thin slab in a coordinate plane was missed; now
-// tests/volume/columns_test.cpp FindsAThinAxisAlignedLayer) and stays because the map's
+// tests/volume/columns/columns_test.cpp FindsAThinAxisAlignedLayer) and stays because the map's
 // numbers depend on how the grid lies: untilted, f_n moves by 9e-5 relative (grid error).
 const Eigen::Vector3d kPlateRpyDeg(17.0, 29.0, 0.0);
 
@@ -61,7 +60,10 @@ SweepContact press(geometry::TriangleMesh mesh, double depth) {
   c.X_WH = io::poseFromRpyDegrees(Eigen::Vector3d::Zero(), kPlateRpyDeg);
   const Eigen::Isometry3d X_WB = c.X_WH * Eigen::Translation3d(0.0, 0.0, -box.min.z() - depth);
   const geometry::Mesh body{std::make_shared<geometry::TriangleMesh>(std::move(mesh)), "payload"};
-  c.cv = volume::columnsContact(body, X_WB, geometry::HalfSpace{}, c.X_WH, &c.field);
+  volume::QueryOptions columns;
+  columns.method = volume::Method::kColumns;  // the δ map the distributed friction integrates
+  c.cv = volume::computeContact(body, X_WB, geometry::HalfSpace{}, c.X_WH, columns, &c.field)
+             .aggregate;
   if (!c.cv.inContact()) throw InputError("depth", "the body does not reach the plate");
   return c;
 }

@@ -9,7 +9,7 @@
 
 #include "dynamics/patch_tracker.hpp"
 #include "volume/contact.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::validation {
 namespace {

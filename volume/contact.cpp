@@ -4,8 +4,10 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "volume/fast/surface_integration.hpp"
+#include "volume/kernels/mesh_convexity.hpp"
 #include "volume/methods.hpp"
-#include "volume/patch_floor.hpp"
+#include "volume/speck_floor.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -58,6 +60,25 @@ void requireHandles(Method method, const geometry::Shape& a, const geometry::Sha
 }
 
 bool fillsDepthField(Method method) { return methodRow(method).fills_depth_field; }
+
+std::vector<MethodDescription> describeMethods() {
+  std::vector<MethodDescription> out;
+  for (const MethodRow& row : methodTable()) {
+    out.push_back({row.id, row.name, row.exact, row.error_estimate, row.scope, row.is_default,
+                   row.fills_depth_field});
+  }
+  return out;
+}
+
+ContactCache::ContactCache() : mesh_mesh_(std::make_unique<MeshMeshCache>()) {}
+ContactCache::~ContactCache() = default;
+ContactCache::ContactCache(ContactCache&&) noexcept = default;
+ContactCache& ContactCache::operator=(ContactCache&&) noexcept = default;
+
+bool convexSolid(const geometry::Shape& shape) {
+  const auto* mesh = std::get_if<geometry::Mesh>(&shape);
+  return mesh == nullptr || isConvex(mesh->mesh);
+}
 
 ContactPatches computeContact(const geometry::Shape& a, const Eigen::Isometry3d& X_WA,
                               const geometry::Shape& b, const Eigen::Isometry3d& X_WB,

@@ -5,18 +5,22 @@
 // reads it.
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <optional>
+#include <string_view>
+#include <vector>
 
 #include "geometry/primitives.hpp"
 #include "volume/contact_volume.hpp"
-#include "volume/mesh_mesh.hpp"
 
 namespace vcontact::volume {
 
+struct MeshMeshCache;  // fast/surface_integration.hpp
+
 /// Whether a query computes ContactVolume::depth, the deepest column d = max over the plate of
 /// δ(s) (MODEL.md §1), for the one method whose depth is a pass of its own (QueryOptions::depth).
-/// By default it does not: `fast`'s exact depth pass (column_depth.hpp) makes a query on two
-/// curved meshes 3–4× as long (benchmarks/README.md, "Depth on demand"), and neither the force
+/// By default it does not: `fast`'s exact depth pass (depth/deepest_column.hpp) makes a query on
+/// two curved meshes 3–4× as long (benchmarks/README.md, "Depth on demand"), and neither the force
 /// model nor any other field needs it. Ask for kDeepest where d is shown or used.
 enum class DepthMode {
   kDeepest,  ///< every method fills depth: `fast` runs its exact depth pass
@@ -43,8 +47,8 @@ struct QueryOptions {
 
 /// The method used when none is asked for: the first default row of the table that takes
 /// the pair (analytic for a primitive against a half-space, the exact half-space clip for a
-/// mesh against a half-space, the exact local surface integration (fast, mesh_mesh.hpp) for
-/// two meshes).
+/// mesh against a half-space, the exact local surface integration (fast,
+/// fast/surface_integration.hpp) for two meshes).
 /// @throws InputError when no default method handles the pair
 Method defaultMethod(const geometry::Shape& a, const geometry::Shape& b);
 
@@ -64,14 +68,44 @@ void requireHandles(Method method, const geometry::Shape& a, const geometry::Sha
 /// Can `method` fill a DepthField (its row's fills_depth_field)?
 bool fillsDepthField(Method method);
 
+/// What the method table (methods.hpp) says of one method, for help texts and readers that
+/// describe the methods without dispatching on them.
+struct MethodDescription {
+  Method id;
+  std::string_view name;            ///< as in files and on the command line
+  bool exact;                       ///< exact for every pair it takes (up to rounding)
+  std::string_view error_estimate;  ///< what ContactVolume::relative_error holds
+  std::string_view scope;           ///< what it computes ("clips a mesh by ...")
+  bool is_default;                  ///< a default for the pairs it takes (defaultMethod)
+  bool fills_depth_field;           ///< can fill a DepthField
+};
+
+/// Every method of the table, in its order (the order defaultMethod tries the default ones).
+std::vector<MethodDescription> describeMethods();
+
+/// Does this shape bound a convex solid? Primitives and half-spaces do; a mesh does when it is
+/// closed and convex (kernels/mesh_convexity.hpp, cached per mesh). Two convex solids meet in one
+/// convex region, so a pair of them has one contact patch whatever the poses.
+bool convexSolid(const geometry::Shape& shape);
+
 /// What a pair of shapes keeps between queries at nearby poses (one per pair and thread;
-/// used by the methods that gain from it: `fast`, MeshMeshCache).
-struct ContactCache {
-  MeshMeshCache meshMesh;
+/// used by the methods that gain from it: `fast`, MeshMeshCache). Opaque above volume/: made
+/// once per pair, then handed to every query of that pair.
+class ContactCache {
+ public:
+  ContactCache();
+  ~ContactCache();
+  ContactCache(ContactCache&&) noexcept;
+  ContactCache& operator=(ContactCache&&) noexcept;
+
+  MeshMeshCache& meshMesh() { return *mesh_mesh_; }  ///< `fast`'s recorded leaf pairs
+
+ private:
+  std::unique_ptr<MeshMeshCache> mesh_mesh_;
 };
 
 /// The contact patches of A (the payload) and B (the plate or other body) and their aggregate
-/// (ContactPatches) by options.method, specks left out (patch_floor.hpp). `fast` takes two meshes
+/// (ContactPatches) by options.method, specks left out (speck_floor.hpp). `fast` takes two meshes
 /// only: a mesh against a half-space is refused (the halfspace clip is the exact method for it).
 /// Every field of every patch is filled, except `depth` of a `fast` query (the default method
 /// for two meshes), which is NaN unless options.depth is DepthMode::kDeepest.

@@ -5,11 +5,11 @@
 #include <variant>
 
 #include "geometry/error.hpp"
-#include "volume/analytic.hpp"
-#include "volume/cgal_reference.hpp"
-#include "volume/columns.hpp"
-#include "volume/halfspace_clip.hpp"
-#include "volume/mesh_mesh.hpp"
+#include "volume/analytic/primitive_on_plane.hpp"
+#include "volume/cgal/corefinement.hpp"
+#include "volume/columns/columns.hpp"
+#include "volume/fast/surface_integration.hpp"
+#include "volume/halfspace/clip.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -47,7 +47,7 @@ ContactPatches cgal(const Shape& a, const Isometry3d& X_WA, const Shape& b, cons
 
 ContactPatches fast(const Shape& a, const Isometry3d& X_WA, const Shape& b, const Isometry3d& X_WB,
                     const QueryOptions& options, DepthField*, ContactCache* cache) {
-  return fastContact(a, X_WA, b, X_WB, cache ? &cache->meshMesh : nullptr,
+  return fastContact(a, X_WA, b, X_WB, cache ? &cache->meshMesh() : nullptr,
                      options.depth == DepthMode::kDeepest);
 }
 

@@ -200,7 +200,7 @@ TEST_F(MeshCli, RecoveredSurfaceNeedsAMeshOnAHalfSpace) {
 // the bundled block's 5.1 mm bore (z in [−20, 0] mm), 20 mm of it inside: V = 20 mm times the
 // part of the peg's disk outside the bore's, beyond the crossing chord the peg's segment less
 // the bore's (revolution_references.hpp derives it). The peg is a solid of revolution in a
-// bore parallel to it, computed by slices (recovered_bore.hpp): within 1e-4, which covers the
+// bore parallel to it, computed by slices (recovered/bore_pair.hpp): within 1e-4, which covers the
 // block's single-precision bore radius (V moves by 1.5 ΔR/d of itself, ΔR ~ 1e-10 m).
 TEST_F(MeshCli, RecoveredPegPressedIntoTheBore) {
   const std::string dir = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/";

@@ -22,7 +22,7 @@
 #include "geometry/tessellate.hpp"
 #include "support/test_support.hpp"
 #include "validation/punch_friction.hpp"
-#include "volume/columns.hpp"
+#include "volume/columns/columns.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {

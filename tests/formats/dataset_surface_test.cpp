@@ -13,7 +13,7 @@
 #include "formats/model_file.hpp"
 #include "geometry/error.hpp"
 #include "validation/replay.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::formats {
 namespace {

@@ -12,7 +12,7 @@
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
 #include "report/simulation_summary.hpp"
-#include "volume/recovered_surface.hpp"
+#include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::formats {
 namespace {

@@ -16,7 +16,8 @@
 namespace vcontact::validation {
 namespace {
 
-// The sphere cap formulas are exact; the analytic backend is accurate to 1e-9 (analytic.hpp).
+// The sphere cap formulas are exact; the analytic backend is accurate to 1e-9
+// (analytic/primitive_on_plane.hpp).
 constexpr double kAnalyticTolerance = 1e-8;
 
 Dataset slidingBall(double R, double d, double v, std::size_t n) {

@@ -13,9 +13,9 @@
 
 #include "geometry/error.hpp"
 #include "support/test_support.hpp"
-#include "volume/bvh_cache.hpp"
-#include "volume/columns.hpp"
-#include "volume/halfspace_clip.hpp"
+#include "volume/columns/columns.hpp"
+#include "volume/halfspace/clip.hpp"
+#include "volume/kernels/bvh_cache.hpp"
 #include "volume/methods.hpp"
 #include "volume_fixtures.hpp"
 
@@ -50,8 +50,8 @@ TEST(ComputeContact, HalfspaceInEitherOrder) {
   EXPECT_LE((ba.n_W + X_WH.linear().col(2)).norm(), 1e-15);
 }
 
-// Two meshes default to fast (exact, mesh_mesh_test checks it against cgal); cgal and
-// columns agree within twice the columns' own estimate (the bound columns_test justifies).
+// Two meshes default to fast (exact, fast_surface_integration_test checks it against cgal); cgal
+// and columns agree within twice the columns' own estimate (the bound columns_test justifies).
 TEST(ComputeContact, MeshPairMethods) {
   const geometry::Shape peg = geometry::Mesh{std::make_shared<const geometry::TriangleMesh>(
                                                  geometry::tessellateCylinder(0.0052, 0.03, 40)),
@@ -236,7 +236,7 @@ TEST(ComputeContact, AnalyticIsOnePatch) {
 
 // Every method that takes the pair finds the U's two feet, on a half-space and on a plate
 // mesh whose top face is the same plane, each foot's V equal to the exact clip's: to 1e-9 for
-// the exact methods (two exact methods, cgal_reference_test), to twice the reported estimate
+// the exact methods (two exact methods, cgal_corefinement_test), to twice the reported estimate
 // for columns (columns_test).
 TEST(ComputeContact, EveryMethodFindsTheSamePatches) {
   const auto u = std::make_shared<const geometry::TriangleMesh>(

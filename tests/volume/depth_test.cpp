@@ -15,7 +15,7 @@
 #include "geometry/mesh_topology.hpp"
 #include "support/test_support.hpp"
 #include "volume/contact.hpp"
-#include "volume/mesh_mesh.hpp"
+#include "volume/fast/surface_integration.hpp"
 #include "volume_fixtures.hpp"
 
 namespace vcontact::volume {
@@ -28,7 +28,7 @@ using geometry::Shape;
 /// The exact methods (fast, cgal, halfspace, analytic) against a closed form of the same
 /// polyhedron: they round the vertices placed in W (|p| < 1 m: ~1e-16 m) and the crossing
 /// points, and take each column's span over a reach of 1e-12 of the coordinates
-/// (column_depth.cpp), which moves no flat or vertical face. 1e-9 of d (≥ 1e-4 m here) is
+/// (depth/deepest_column.cpp), which moves no flat or vertical face. 1e-9 of d (≥ 1e-4 m here) is
 /// 1e-13 m: a thousand times the rounding, far below any faceting.
 constexpr double kExact = 1e-9;
 

@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "columns_agreement.hpp"
+#include "columns/columns_agreement.hpp"
 #include "io/mesh_io.hpp"
 #include "scenario_mesh.hpp"
-#include "volume/cgal_reference.hpp"
+#include "volume/cgal/corefinement.hpp"
 #include "volume/contact.hpp"
-#include "volume/mesh_mesh.hpp"
-#include "volume/patch_floor.hpp"
+#include "volume/fast/surface_integration.hpp"
+#include "volume/speck_floor.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -80,9 +80,9 @@ TEST(PegInHolePatches, ExactMethodsCountTheSamePatches) {
 }
 
 // columns finds the regions from its axis passes and integrates each along its own normal:
-// the same patches as fast, each to columns' own accuracy (columns_agreement.hpp). The pair's
-// normal of two opposite walls runs nearly along both, so a grid along it alone would see them
-// edge-on; and at t = 0.01 s the second, thinner patch is one that no line of the first passes
+// the same patches as fast, each to columns' own accuracy (columns/columns_agreement.hpp). The
+// pair's normal of two opposite walls runs nearly along both, so a grid along it alone would see
+// them edge-on; and at t = 0.01 s the second, thinner patch is one that no line of the first passes
 // meets.
 TEST(PegInHolePatches, ColumnsFindsTheSamePatchesAsFast) {
   const geometry::Shape peg = vcontact::test::scenarioMesh("peg_d10.stl"),
@@ -98,7 +98,7 @@ TEST(PegInHolePatches, ColumnsFindsTheSamePatchesAsFast) {
 }
 
 // Before the floor: fast's extra patches are cgal's too, volume for volume (1e-9, two exact
-// methods on one polyhedron, mesh_mesh_patches_test), and each is below the floor's share.
+// methods on one polyhedron, fast_intersection_patches_test), and each is below the floor's share.
 TEST(PegInHolePatches, SpecksAreRealAndBelowTheFloor) {
   const geometry::Shape peg = vcontact::test::scenarioMesh("peg_d10.stl"),
                         block = vcontact::test::scenarioMesh("block_hole_d10.stl");

@@ -13,7 +13,7 @@
 
 #include "geometry/tessellate.hpp"
 #include "volume/contact.hpp"
-#include "volume/mesh_mesh.hpp"
+#include "volume/fast/surface_integration.hpp"
 
 namespace {
 std::atomic<long> gAllocations{0};

@@ -1,8 +1,8 @@
 #pragma once
 // Closed forms and references of solids of revolution on a plate, shared by the tests of the
-// slices (analytic_revolution_test), of the recovered profiles (recovered_revolution_test), of
+// slices (revolution_on_plane_test), of the recovered profiles (recovered_revolution_body_test), of
 // the refinement (recovered_refinement_test), of the recovered sphere (recovered_surface_test)
-// and of the pin in a bore (recovered_bore_test).
+// and of the pin in a bore (recovered_bore_pair_test).
 
 #include <cmath>
 

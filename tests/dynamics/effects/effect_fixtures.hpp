@@ -6,7 +6,7 @@
 
 #include "dynamics/model.hpp"
 #include "support/test_support.hpp"
-#include "volume/analytic.hpp"
+#include "volume/analytic/primitive_on_plane.hpp"
 
 namespace vcontact::dynamics::test {
 
