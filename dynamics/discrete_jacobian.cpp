@@ -42,17 +42,12 @@ void linearisePatch(const Model& model, const ContactContext& ctx, const Relativ
   w0 << out.start.wrench.f_W, out.start.wrench.tau_W;
   out.c = w0 - terms.D * xi0;
   out.L = terms.D + h * terms.K;
-  out.bristle = terms.implicit_offset >= 0;
-  if (!out.bristle) return;
-  out.bristle_offset = terms.implicit_offset;
+  out.implicit = terms.implicit;
+  if (!out.implicit.any()) return;
   // the shares of the implicit states at the start (c_now + L_now ξ0: exactly the bristle and
   // bristle-spin shares) are replaced by their form over the step
   out.c += terms.c_step - (terms.c_now + terms.L_now * xi0);
   out.L += terms.L_step;
-  out.z_c = terms.z_c;
-  out.Z = terms.Z;
-  out.theta_c = terms.theta_c;
-  out.Theta = terms.Theta;
 }
 
 }  // namespace vcontact::dynamics

@@ -45,12 +45,7 @@ struct PatchStep {
   Vector6d c = Vector6d::Zero();
   Matrix6d L = Matrix6d::Zero();
   ContactResult start;      ///< the model at the step's start: wrench w0, state rates
-  bool bristle = false;     ///< the model has bristle: z and θ_n are advanced implicitly
-  int bristle_offset = -1;  ///< offset of z in the pair state (θ_n at + 3)
-  Eigen::Vector3d z_c = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, 3, 6> Z = Eigen::Matrix<double, 3, 6>::Zero();
-  double theta_c = 0.0;
-  Eigen::Matrix<double, 1, 6> Theta = Eigen::Matrix<double, 1, 6>::Zero();
+  ImplicitStates implicit;  ///< the states advanced implicitly (bristle's z, θ_n), if any
 };
 
 /// The step of length h (> 0) of a patch in contact (cv.inContact()), lumped friction.

@@ -103,6 +103,18 @@ enum class StepForm {
 /// linearise (Effect::linearise, in stage order; docs/DISCRETE.md §2):
 ///   w⁺ = w0 + D (ξ⁺ − ξ0) + h K ξ⁺
 /// with the shares of implicitly advanced states (bristle) replaced by their form over the step.
+/// The states a step advances implicitly (bristle's z and θ_n), affine in the twist ξ⁺ at the
+/// step's end: z⁺ = z_c + Z ξ⁺ (a plane vector) and θ⁺ = theta_c + Theta ξ⁺ (the scalar after
+/// it), from state index `offset` on.
+struct ImplicitStates {
+  int offset = -1;  ///< −1: the model has no implicitly advanced state
+  Eigen::Vector3d z_c = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 3, 6> Z = Eigen::Matrix<double, 3, 6>::Zero();
+  double theta_c = 0.0;
+  Eigen::Matrix<double, 1, 6> Theta = Eigen::Matrix<double, 1, 6>::Zero();
+  bool any() const { return offset >= 0; }
+};
+
 struct StepTerms {
   double h = 0.0;  ///< s, the step (0: the instantaneous Jacobians)
   /// ∂w/∂ξ at fixed states; friction magnitudes are frozen at ξ0 (secants of dir_ε, sgn_ε).
@@ -114,13 +126,7 @@ struct StepTerms {
   /// states), over the step c_step + L_step ξ⁺ instead.
   Vector6d c_now = Vector6d::Zero(), c_step = Vector6d::Zero();
   Matrix6d L_now = Matrix6d::Zero(), L_step = Matrix6d::Zero();
-  /// The implicit states at the step's end, z⁺ = z_c + Z ξ⁺ (a plane vector) and θ⁺ = theta_c +
-  /// Theta ξ⁺ (a scalar after it), from state index `implicit_offset` on; −1: none.
-  int implicit_offset = -1;
-  Eigen::Vector3d z_c = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, 3, 6> Z = Eigen::Matrix<double, 3, 6>::Zero();
-  double theta_c = 0.0;
-  Eigen::Matrix<double, 1, 6> Theta = Eigen::Matrix<double, 1, 6>::Zero();
+  ImplicitStates implicit;
 };
 
 /// Everything one contact evaluation shares between effects. Plain data.
@@ -225,6 +231,12 @@ class Effect {
   /// kLinearised: add this effect's part of the step's linear form to `terms`, from the
   /// context of both passes at the step's start (docs/DISCRETE.md §2). @pre ctx.cv->volume > 0
   virtual void linearise(const ContactContext& /*ctx*/, StepTerms& /*terms*/) const {}
+
+  /// The coefficient of restitution this effect alone gives a head-on impact at normal
+  /// approach speed `approach` (m/s, > 0): 1 for an effect that dissipates nothing in one
+  /// (the default), or whose loss has no closed form. The discrete stepper predicts rebounds
+  /// from it (Model::impactRestitution) to decide which impacts to resolve.
+  virtual double restitution(double /*approach*/) const { return 1.0; }
 
   /// Pass 1: write this effect's parameters into the context.
   virtual void configure(ContactContext& /*ctx*/) const {}

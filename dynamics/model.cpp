@@ -286,6 +286,12 @@ std::vector<std::string> Model::explicitEffects() const {
   return ids;
 }
 
+double Model::impactRestitution(double approach) const {
+  double e = 1.0;
+  for (const auto& effect : effects_) e = std::min(e, effect->restitution(approach));
+  return e;
+}
+
 bool Model::settle(const volume::ContactVolume& cv, const RelativeMotion& motion,
                    PairState& state) const {
   const PairState before = state;

@@ -114,6 +114,11 @@ class Model {
   /// (StepForm::kExplicit: adhesion, expression effects), in effect order.
   std::vector<std::string> explicitEffects() const;
 
+  /// The restitution of a head-on impact at normal approach speed `approach` (m/s): the
+  /// smallest of the effects' own (Effect::restitution; 1 when none dissipates). Other
+  /// dissipation only lowers a head-on rebound further, so it errs high, towards resolving.
+  double impactRestitution(double approach) const;
+
   /// Distributed friction replaces the lumped Coulomb force and spin torque (coulomb, spin,
   /// contensou) by pointwise Coulomb friction with μ_max over the δ map. It needs an effect
   /// that integrates it (Effect::integratesDistributedFriction: coulomb), and no effect that

@@ -261,14 +261,14 @@ void Simulator::updateDiscreteStates(State& x, double h) {
     double* s = &x[static_cast<std::size_t>(pair_offset_[dp.pair] + dp.slot * size)];
     PairState state = PairState::unpack(s, size);
     for (int i = 0; i < size; ++i) state[i] += h * dp.step.start.rates[i];
-    if (dp.step.bristle) {
+    if (const ImplicitStates& next = dp.step.implicit; next.any()) {
       const BodyKinematics& A = next_kin_[pair.a];
       const BodyKinematics& B = next_kin_[pair.b];
       const RelativeMotion m = relativeMotion(A, B, dp.p_c);
       Vector6d xi;
       xi << m.v_c_W, m.w_W;
-      state.vector(dp.step.bristle_offset) = dp.step.z_c + dp.step.Z * xi;
-      state[dp.step.bristle_offset + 3] = dp.step.theta_c + (dp.step.Theta * xi)(0);
+      state.vector(next.offset) = next.z_c + next.Z * xi;
+      state[next.offset + 3] = next.theta_c + (next.Theta * xi)(0);
     }
     state.pack(s, size);
   }

@@ -30,7 +30,6 @@
 #include <numbers>
 
 #include "dynamics/dopri5_control.hpp"
-#include "dynamics/restitution.hpp"
 #include "dynamics/simulator.hpp"
 
 namespace vcontact::dynamics {
@@ -78,15 +77,14 @@ double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv,
   return std::numbers::pi * std::sqrt(1.0 / (inverse_mass * k_n));
 }
 
-// The rebound speed e v_in predicted for an impact of pair k at approach speed v_in: the exact
-// relation of docs/MODEL.md §5 with the pair's damping, e = 1 without it. Other dissipation
-// (a Maxwell element, friction) only lowers the rebound of a head-on impact: the prediction
-// errs towards resolving there; a rocking or tumbling part can leave faster than it came
-// (docs/DISCRETE.md §5).
+// The rebound speed e v_in predicted for an impact of pair k at approach speed v_in: the
+// restitution the pair's effects give a head-on impact (Model::impactRestitution: the exact
+// relation of docs/MODEL.md §5 for damping, e = 1 without a dissipating effect). Other
+// dissipation (a Maxwell element, friction) only lowers the rebound of a head-on impact: the
+// prediction errs towards resolving there; a rocking or tumbling part can leave faster than it
+// came (docs/DISCRETE.md §5).
 double Simulator::predictedRebound(std::size_t k, double approach) const {
-  const Model& model = scenario_.pairs[k].model;
-  if (!model.has("damping")) return approach;
-  return dampedRestitution(model.parameter("damping.a") * approach) * approach;
+  return scenario_.pairs[k].model.impactRestitution(approach) * approach;
 }
 
 // Whether a contact region of a pair at the latest query is in an impact to resolve over a

@@ -72,22 +72,24 @@ class Bristle final : public EffectBase<Bristle> {
     // saturation at the step's start, kept as a fixed scale over the step
     const Eigen::Vector3d x0 = s * s0 * z + s1 * e_v * ctx.v_t;
     const double scale_v = x0.norm() > ctx.mu_max ? ctx.mu_max / x0.norm() : 1.0;
-    const auto form = [&](double h, Vector6d& c, Matrix6d& L) {
-      const double k = ctx.f_n * bristleRelaxation(ctx, h);
+    // over a step h with the state's relaxation β over it (β = 1 at h = 0)
+    const auto form = [&](double h, double beta, Vector6d& c, Matrix6d& L) {
+      const double k = ctx.f_n * beta;
       c.head<3>() = -scale_v * k * s * s0 * z;
       L.topLeftCorner<3, 3>() = -scale_v * k * (h * s0 + s1) * e_v * P;
     };
-    form(0.0, terms.c_now, terms.L_now);
-    form(terms.h, terms.c_step, terms.L_step);
     const double h = terms.h, beta = bristleRelaxation(ctx, h);
+    form(0.0, 1.0, terms.c_now, terms.L_now);
+    form(h, beta, terms.c_step, terms.L_step);
     const BristleTorsion torsion = bristleTorsion(ctx);
-    terms.implicit_offset = zOffset();
-    terms.z_c = beta * z;
-    terms.Z.setZero();
-    terms.Z.leftCols<3>() = beta * h * e_v * P;
-    terms.theta_c = beta * ctx.theta_n;
-    terms.Theta.setZero();
-    terms.Theta.rightCols<3>() = (beta * h * torsion.e_w) * ctx.n.transpose();
+    ImplicitStates& next = terms.implicit;
+    next.offset = zOffset();
+    next.z_c = beta * z;
+    next.Z.setZero();
+    next.Z.leftCols<3>() = beta * h * e_v * P;
+    next.theta_c = beta * ctx.theta_n;
+    next.Theta.setZero();
+    next.Theta.rightCols<3>() = (beta * h * torsion.e_w) * ctx.n.transpose();
   }
 
  private:

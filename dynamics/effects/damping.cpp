@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "dynamics/effects/effect_base.hpp"
+#include "dynamics/restitution.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -26,6 +27,11 @@ class Damping final : public EffectBase<Damping> {
     const double change = f_n - ctx.f_n;
     ctx.f_n = f_n;
     return {change * ctx.n, Eigen::Vector3d::Zero()};
+  }
+
+  // the exact e(a v_in) of the Hunt–Crossley impact (docs/MODEL.md §5, restitution.hpp)
+  double restitution(double approach) const override {
+    return dampedRestitution(parameter(0) * approach);
   }
 
   StepForm stepForm() const override { return StepForm::kLinearised; }

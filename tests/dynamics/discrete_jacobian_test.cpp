@@ -194,8 +194,9 @@ TEST(DiscreteJacobian, ImplicitBristleStepIsBackwardEuler) {
   Vector6d xi = Vector6d::Zero();
   xi << 1e-8, 0.5e-8, 0.0, 0.0, 0.0, 1e-6;  // no normal or tilt motion: no K term
   PairState next = state;
-  next.vector(z) = step.z_c + step.Z * xi;
-  next[z + 3] = step.theta_c + (step.Theta * xi)(0);
+  ASSERT_EQ(step.implicit.offset, z);
+  next.vector(z) = step.implicit.z_c + step.implicit.Z * xi;
+  next[z + 3] = step.implicit.theta_c + (step.implicit.Theta * xi)(0);
   const dynamics::ContactResult r = m.evaluate(cv, motionOf(xi), next);
   const Vector3d dz = next.vector(z) - state.vector(z);
   EXPECT_LE((dz - h * r.rates.vector(z)).norm(), 2e-5 * dz.norm());

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dynamics/restitution.hpp"
 #include "effect_fixtures.hpp"
 
 namespace vcontact::dynamics::test {
@@ -25,6 +26,22 @@ TEST(Damping, ApproachAddsForceAndSeparationIsClamped) {
   RelativeMotion separate;
   separate.v_c_W = 1.0 * cv.n_W;  // 1 + a δ̇ = −2 < 0: clamped to zero
   EXPECT_EQ(m.evaluate(cv, separate, PairState{}).wrench.f_W.norm(), 0.0);
+}
+
+// The restitution the discrete stepper predicts rebounds with (Model::impactRestitution) is
+// damping's exact e(a v) (restitution_test checks that relation against the impact's ODE), 1
+// for a model that dissipates nothing, and falls with the approach speed.
+TEST(Damping, PredictsTheRestitutionOfAHeadOnImpact) {
+  Model m = Model::withEffects({"stiffness", "damping"});
+  m.setParameter("damping.a", 0.8);
+  for (const double v : {0.01, 0.3, 2.0}) {
+    EXPECT_EQ(m.impactRestitution(v), dampedRestitution(0.8 * v)) << "v " << v;
+  }
+  EXPECT_GT(m.impactRestitution(0.3), m.impactRestitution(2.0));
+  EXPECT_LT(m.impactRestitution(2.0), 1.0);
+  EXPECT_EQ(Model::withEffects({"stiffness"}).impactRestitution(2.0), 1.0);
+  m.setParameter("damping.a", 0.0);
+  EXPECT_EQ(m.impactRestitution(2.0), 1.0);
 }
 
 }  // namespace
