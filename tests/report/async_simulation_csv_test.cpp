@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
 #include "support/scratch_dir.hpp"
