@@ -4,15 +4,12 @@
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
-#include "geometry/surface_recognition.hpp"
 #include "io/json_file.hpp"
 #include "io/output_file.hpp"
 #include "io/shape_spec.hpp"
 #include "report/contact_volume_format.hpp"
 #include "report/depth_map_csv.hpp"
 #include "volume/contact.hpp"
-#include "volume/recovered/recovered_surface.hpp"
-#include "volume/recovered/refinement.hpp"
 
 namespace vcontact::cli {
 
@@ -86,47 +83,37 @@ std::string methodHelp() {
   return help;
 }
 
-/// --surface recovered: the mesh A's recognised surfaces against the half-space B, or two
-/// meshes on their recognised surfaces (volume/recovered/refinement.hpp).
-volume::RecoveredContact recoveredContact(const VolumeOptions& o, const io::ParsedShape& a,
-                                          const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
-                                          const Eigen::Isometry3d& X_WB) {
-  const auto* meshA = std::get_if<geometry::Mesh>(&a.shape);
-  const auto* meshB = std::get_if<geometry::Mesh>(&b.shape);
-  if (!meshA || !(meshB || std::holds_alternative<geometry::HalfSpace>(b.shape)) ||
-      !o.method.empty() || !o.field.empty()) {
+/// --surface recovered: the method table's `recovered` row, refining where no closed form
+/// applies (QueryOptions::refine), with the depth (the table and --json show it).
+volume::ContactPatches recoveredContact(const VolumeOptions& o, const io::ParsedShape& a,
+                                        const Eigen::Isometry3d& X_WA, const io::ParsedShape& b,
+                                        const Eigen::Isometry3d& X_WB) {
+  if (!volume::handles(volume::Method::kRecovered, a.shape, b.shape) || !o.method.empty() ||
+      !o.field.empty()) {
     throw InputError("--surface recovered",
-                     "takes a mesh A on a half-space B, or two meshes, without --method or "
-                     "--field");
+                     "takes a mesh and a half-space, or two meshes, without --method or --field");
   }
-  const auto recognise = [](const geometry::TriangleMesh& m, const std::string& source) {
-    try {
-      return geometry::recogniseSurfaces(m);
-    } catch (const InputError& e) {
-      throw e.withSource(source);
-    }
-  };
-  const geometry::SurfaceRecognition recA = recognise(*meshA->mesh, o.a);
-  if (!meshB) return volume::recoveredHalfspaceContact(*meshA->mesh, recA, X_WA, X_WB);
-  const geometry::SurfaceRecognition recB = recognise(*meshB->mesh, o.b);
-  const volume::RecoveredBody bodyA(*meshA->mesh, recA), bodyB(*meshB->mesh, recB);
-  volume::RefinementOptions refinement;
-  refinement.exact_depth = true;  // the table and --json show the depth
-  return volume::recoveredMeshMeshContact(bodyA, X_WA, bodyB, X_WB, refinement);
+  volume::QueryOptions query{volume::Method::kRecovered, 0, volume::DepthMode::kDeepest};
+  query.refine = true;
+  try {
+    return volume::computeContact(a.shape, X_WA, b.shape, X_WB, query);
+  } catch (const InputError& e) {  // recognition refused a mesh
+    throw e.withSource("--surface recovered");
+  }
 }
 
 /// "refined" when any part of the body was refined, else "mesh" (its faces as they are).
-std::string bodyRepresentation(const volume::RecoveredContact& r, const std::string& body) {
+std::string bodyRepresentation(const volume::SurfaceUse& r, const std::string& body) {
   for (const volume::PatchPart& p : r.parts)
     if (p.body == body && p.representation == "refined") return "refined";
   return "mesh";
 }
 
-nlohmann::json recoveredJson(const volume::RecoveredContact& r) {
-  nlohmann::json j = {{"representation", r.representation},
+nlohmann::json recoveredJson(const volume::SurfaceUse& r) {
+  nlohmann::json j = {{"representation", volume::representationName(r.representation)},
                       {"volume_error_bound_m3", r.volume_error_bound}};
   if (!r.reason.empty()) j["reason"] = r.reason;
-  if (r.representation == "refined" || !r.parts.empty()) {
+  if (r.representation == volume::Representation::kRefined || !r.parts.empty()) {
     j["level"] = r.level;
     j["converged"] = r.converged;
     j["bodies"] = {{"a", bodyRepresentation(r, "A")}, {"b", bodyRepresentation(r, "B")}};
@@ -141,8 +128,9 @@ nlohmann::json recoveredJson(const volume::RecoveredContact& r) {
   return j;
 }
 
-void printRecovered(const volume::RecoveredContact& r) {
-  std::cout << "surface: " << r.representation << (r.reason.empty() ? "" : " (" + r.reason + ")")
+void printRecovered(const volume::SurfaceUse& r) {
+  std::cout << "surface: " << volume::representationName(r.representation)
+            << (r.reason.empty() ? "" : " (" + r.reason + ")")
             << ", |V error| <= " << r.volume_error_bound << " m^3\n";
   if (r.parts.empty()) return;
   std::cout << "  refinement level " << r.level << (r.converged ? "" : " (level cap reached)")
@@ -163,13 +151,12 @@ void runVolume(const VolumeOptions& o) {
   const Eigen::Isometry3d X_WA = io::parsePose(o.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = io::parsePose(o.poseB, "--pose-b");
   volume::DepthField field;
-  std::optional<volume::RecoveredContact> recovered;
-  if (o.surface == "recovered") recovered = recoveredContact(o, a, X_WA, b, X_WB);
+  const bool recovered = o.surface == "recovered";
   const volume::ContactPatches contact =
-      recovered ? volume::singlePatch(recovered->cv) : compute(o, a, X_WA, b, X_WB, field);
+      recovered ? recoveredContact(o, a, X_WA, b, X_WB) : compute(o, a, X_WA, b, X_WB, field);
 
   nlohmann::json j = report::toJson(contact);
-  if (recovered) j["surface"] = recoveredJson(*recovered);
+  if (recovered) j["surface"] = recoveredJson(contact.surface);
   j["a"] = {{"shape", geometry::describe(a.shape)}, {"pose", o.poseA}};
   j["b"] = {{"shape", geometry::describe(b.shape)}, {"pose", o.poseB}};
   io::OutputSet files;  // --field and --out: both files or neither
@@ -184,7 +171,7 @@ void runVolume(const VolumeOptions& o) {
     std::cout << "A: " << geometry::describe(a.shape) << " at " << o.poseA << '\n'
               << "B: " << geometry::describe(b.shape) << " at " << o.poseB << '\n'
               << report::toTable(contact);
-    if (recovered) printRecovered(*recovered);
+    if (recovered) printRecovered(contact.surface);
   }
 }
 
@@ -208,10 +195,10 @@ void addVolumeCommand(CLI::App& app) {
                       ", the first that takes the pair unless --method says)");
   cmd->add_flag("--json", opts->json, "print JSON instead of a table");
   cmd->add_option("--surface", opts->surface,
-                  "mesh: the polyhedron; recovered: a mesh A's recognised surfaces against a "
-                  "half-space B (closed form for a sphere or capped cylinder, else local "
-                  "refinement), or two meshes on their recognised surfaces, refined where they "
-                  "can touch (docs/SURFACES.md)")
+                  "mesh: the polyhedron; recovered: the method `recovered`, a mesh on its "
+                  "recognised surfaces against a half-space or another mesh (closed forms for a "
+                  "sphere, capped cylinder or solid of revolution on a plane and a solid of "
+                  "revolution in a bore, else local refinement; docs/SURFACES.md)")
       ->check(CLI::IsMember({"mesh", "recovered"}))
       ->capture_default_str();
   cmd->add_flag("--repair", opts->repair, "repair mesh files first (as mesh-repair does)");

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "dynamics/scenario.hpp"
-#include "volume/recovered/recovered_surface.hpp"
+#include "volume/recovered/recovered_surface.hpp"  // the recognition a body use reports
 
 namespace vcontact::dynamics {
 namespace {
@@ -26,24 +26,25 @@ SurfaceBodyUse bodyUse(const RigidBody& body) {
   return u;
 }
 
-// Why a pair with a recovered body uses the polyhedra for every query; "" when it need not:
-// a recovered mesh against a half-space, queried by the half-space clip it replaces.
+// Why a pair with a recovered body uses the polyhedra for every query; "" when it need not: a
+// recovered mesh against a half-space or another mesh, queried by the method the recovered
+// surfaces replace (the default, or the exact polyhedral method it falls back to).
 std::string polyhedralReason(const Scenario& s, const ContactPair& p) {
   const RigidBody& a = s.bodies[p.a];
   const RigidBody& b = s.bodies[p.b];
-  const bool onPlane = (a.surface && isHalfspace(b.shape)) || (b.surface && isHalfspace(a.shape));
-  if (!onPlane) {
-    const RigidBody& other = a.surface ? b : a;
+  const RigidBody& other = a.surface ? b : a;
+  const bool meshPartner = std::holds_alternative<geometry::Mesh>(other.shape);
+  if (!meshPartner && !isHalfspace(other.shape)) {
     return "the partner '" + other.name + "' is a " + geometry::shapeKind(other.shape) +
-           "; a recovered surface has closed forms against a half-space only (a recovered "
-           "surface against another body needs the local refinement, not built)";
+           "; a recovered surface is computed against a half-space or another mesh";
   }
   if (p.friction == FrictionMode::kDistributed) {
     return "distributed friction integrates over the columns of the polyhedron";
   }
-  if (p.method && *p.method != volume::Method::kHalfspace) {
+  const volume::Method replaced = meshPartner ? volume::Method::kFast : volume::Method::kHalfspace;
+  if (p.method && *p.method != replaced && *p.method != volume::Method::kRecovered) {
     return "the pair asks for method '" + volume::methodName(*p.method) +
-           "'; the recovered surface replaces the half-space clip only";
+           "'; the recovered surface replaces " + volume::methodName(replaced) + " only";
   }
   return "";
 }
@@ -56,14 +57,10 @@ RecoveredPairs::RecoveredPairs(const Scenario& scenario) {
   }
   for (const ContactPair& p : scenario.pairs) {
     PairPlan plan;
-    const RigidBody& a = scenario.bodies[p.a];
-    const RigidBody& b = scenario.bodies[p.b];
-    if (a.surface || b.surface) {
+    if (scenario.bodies[p.a].surface || scenario.bodies[p.b].surface) {
       plan.use = static_cast<int>(uses_.size());
       uses_.push_back(SurfacePairUse{p.name, polyhedralReason(scenario, p), {}, {}});
       plan.on_surface = uses_.back().polyhedral_reason.empty();
-      plan.swapped = !a.surface;
-      if (plan.on_surface) plan.surface = plan.swapped ? b.surface : a.surface;
     }
     plans_.push_back(plan);
   }
@@ -76,26 +73,16 @@ void RecoveredPairs::resetCounts() {
   }
 }
 
-volume::ContactPatches RecoveredPairs::contact(
-    std::size_t k, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
-    const std::function<volume::ContactPatches()>& polyhedral) {
+void RecoveredPairs::count(std::size_t k, const volume::ContactPatches& contact) {
   const PairPlan& plan = plans_[k];
-  if (plan.use < 0) return polyhedral();
+  if (plan.use < 0) return;
   SurfacePairUse& use = uses_[static_cast<std::size_t>(plan.use)];
-  if (plan.on_surface) {
-    std::string reason;
-    const Eigen::Isometry3d& X_WM = plan.swapped ? X_WB : X_WA;
-    const Eigen::Isometry3d& X_WH = plan.swapped ? X_WA : X_WB;
-    if (auto r = plan.surface->body->closedFormContact(X_WM, X_WH, reason)) {
-      ++use.evaluations[r->representation];
-      // n points out of B into A: out of the plane into the mesh, or the reverse when swapped
-      if (plan.swapped) r->cv.n_W = -r->cv.n_W;
-      return volume::singlePatch(r->cv);
-    }
-    use.mesh_reasons.insert(reason);
+  if (!plan.on_surface) {
+    ++use.evaluations["mesh"];
+    return;
   }
-  ++use.evaluations["mesh"];
-  return polyhedral();
+  ++use.evaluations[volume::representationName(contact.surface.representation)];
+  if (!contact.surface.reason.empty()) use.mesh_reasons.insert(contact.surface.reason);
 }
 
 }  // namespace vcontact::dynamics

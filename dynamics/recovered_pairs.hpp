@@ -2,26 +2,21 @@
 // The pairs of a scenario whose contact is computed on a body's recovered surface
 // ("surface": "recovered", docs/SCENARIO.md "Recovered surfaces"), and what each used.
 //
-// A mesh body with a recovered surface against a half-space (either order) is queried with
-// volume::RecoveredBody: where the part of the body that can reach the plane lies on one
-// sphere or one capped cylinder, the contact is that closed form, one patch; elsewhere it is
-// the pair's polyhedral query, with its patches. Any other pair with such a body (against a
-// mesh or a primitive, with distributed friction, or with a method other than the half-space
-// clip) uses the polyhedra throughout, and the summary says which and why, once.
+// A pair with a recovered mesh body against a half-space or another mesh is queried by the
+// method table's `recovered` row (volume/contact.hpp): the closed form where the faces within
+// reach lie on one sphere, capped cylinder or solid of revolution, or a solid of revolution in
+// a cylindrical bore (a patch per run of its axis); elsewhere the exact polyhedral method, with
+// its patches. Any other pair with such a body (against a primitive, with distributed friction,
+// or with a method of its own) uses the polyhedra throughout, and the summary says which and
+// why, once.
 
-#include <Eigen/Geometry>
-#include <functional>
 #include <map>
-#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "volume/contact_volume.hpp"
-
-namespace vcontact::volume {
-struct RecoveredSurface;  // volume/recovered/recovered_surface.hpp
-}
 
 namespace vcontact::dynamics {
 
@@ -43,7 +38,8 @@ struct SurfacePairUse {
   /// Empty when the pair is queried on the recovered surface; otherwise why the polyhedra are
   /// used for every query.
   std::string polyhedral_reason;
-  /// Queries per representation: "sphere", "cylinder" (closed forms) and "mesh".
+  /// Queries per representation (volume::representationName): "sphere", "cylinder",
+  /// "revolution", "revolution_in_bore" (closed forms) and "mesh" (the polyhedra).
   std::map<std::string, long> evaluations;
   /// Why queries of a recovered pair fell back to the polyhedron (each reason once).
   std::set<std::string> mesh_reasons;
@@ -54,12 +50,15 @@ class RecoveredPairs {
   /// Decides, per pair, whether its queries use a recovered surface.
   explicit RecoveredPairs(const Scenario& scenario);
 
-  /// Pair k's contact at these poses (body A's pose as the model adjusted it): on the
-  /// recovered surface where the pair allows it and a closed form applies, otherwise
-  /// `polyhedral()` (the pair's own query); counted per representation.
-  volume::ContactPatches contact(std::size_t k, const Eigen::Isometry3d& X_WA,
-                                 const Eigen::Isometry3d& X_WB,
-                                 const std::function<volume::ContactPatches()>& polyhedral);
+  /// The method pair k is queried with: `recovered` where the pair is on a recovered surface,
+  /// else the pair's own (`asked`, empty for the default).
+  std::optional<volume::Method> method(std::size_t k, std::optional<volume::Method> asked) const {
+    return plans_[k].on_surface ? std::optional(volume::Method::kRecovered) : asked;
+  }
+
+  /// Counts a query of pair k by what it was computed on (ContactPatches::surface), and the
+  /// reason of a fallback to the polyhedra. @pre not called for one pair from two threads
+  void count(std::size_t k, const volume::ContactPatches& contact);
 
   /// Starts the evaluation counts again (a new run).
   void resetCounts();
@@ -71,8 +70,6 @@ class RecoveredPairs {
   struct PairPlan {
     int use = -1;  ///< index into uses_, −1 when no body of the pair is recovered
     bool on_surface = false;
-    bool swapped = false;  ///< the recovered mesh is body B, the half-space body A
-    std::shared_ptr<const volume::RecoveredSurface> surface;  ///< on_surface only
   };
   std::vector<PairPlan> plans_;
   std::vector<SurfaceBodyUse> bodies_;

@@ -96,8 +96,8 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   caches_.resize(scenario_.pairs.size());
   kin_.resize(scenario_.bodies.size());
   addToBroadPhase();
-  preparePairs();
   recovered_.emplace(scenario_);
+  preparePairs();
   checkLoads();
   queried_.assign(scenario_.pairs.size(), 1);
   if (scenario_.settings.integrator == Integrator::kDiscrete) {
@@ -174,7 +174,8 @@ void Simulator::addToBroadPhase() {
 // checked against the pair's shapes here, so that a pair no method handles fails before any
 // output.
 void Simulator::preparePairs() {
-  for (const ContactPair& p : scenario_.pairs) {
+  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
+    const ContactPair& p = scenario_.pairs[k];
     const bool screened =
         broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 && !p.model.adjustsPayloadPose();
     const std::pair<int, int> ids = std::minmax(broad_id_[p.a], broad_id_[p.b]);
@@ -183,7 +184,8 @@ void Simulator::preparePairs() {
     const geometry::Shape& b = scenario_.bodies[p.b].shape;
     apart_.emplace_back();
     try {
-      const volume::Method m = p.method ? *p.method
+      const std::optional<volume::Method> asked = recovered_->method(k, p.method);
+      const volume::Method m = asked ? *asked
                                : p.friction == FrictionMode::kDistributed
                                    ? volume::defaultDepthFieldMethod(a, b)
                                    : volume::defaultMethod(a, b);

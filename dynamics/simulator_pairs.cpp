@@ -72,16 +72,17 @@ volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode d
   const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
   const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
   const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-  volume::QueryOptions query{pair.method, distributed ? pair.column_resolution : 0, depth};
+  volume::QueryOptions query{recovered_->method(k, pair.method),
+                             distributed ? pair.column_resolution : 0, depth};
   if (depth == volume::DepthMode::kDeepest) {
     return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
   }
   if (query_depths_) query.depth = volume::DepthMode::kDeepest;
   ++contact_count_;
-  volume::ContactPatches contact = recovered_->contact(k, X_WA, kin_[pair.b].X_WB, [&] {
-    return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                                  distributed ? &fields_[k] : nullptr, &caches_[k]);
-  });
+  volume::ContactPatches contact =
+      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
+                             distributed ? &fields_[k] : nullptr, &caches_[k]);
+  recovered_->count(k, contact);
   if (!last_contact_.empty()) last_contact_[k] = contact;
   return contact;
 }

@@ -9,7 +9,6 @@
 
 #include "dynamics/patch_tracker.hpp"
 #include "volume/contact.hpp"
-#include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::validation {
 namespace {
@@ -77,19 +76,15 @@ class HalfspaceVolumes {
   static constexpr double kKeyResolution = 1e-15;
   static double rounded(double x) { return std::round(x / kKeyResolution) * kKeyResolution; }
 
-  // On the recovered surface's closed form where one applies, else on the shape as it is.
+  // On the recovered surface (the method table's `recovered` row: its closed form where one
+  // applies, else the exact clip), or on the shape as it is by the default method.
   static volume::ContactPatches atCanonical(const geometry::Shape& payload,
                                             const volume::RecoveredSurface* surface,
                                             const Eigen::Isometry3d& X_c) {
-    const Eigen::Isometry3d X_BB = Eigen::Isometry3d::Identity();
-    std::string reason;
-    if (surface) {
-      if (auto r = surface->body->closedFormContact(X_c, X_BB, reason)) {
-        return volume::singlePatch(r->cv);
-      }
-    }
+    volume::QueryOptions query;
+    if (surface) query.method = volume::Method::kRecovered;
     const geometry::Shape halfspace = geometry::HalfSpace{};
-    return volume::computeContact(payload, X_c, halfspace, X_BB);
+    return volume::computeContact(payload, X_c, halfspace, Eigen::Isometry3d::Identity(), query);
   }
 
   static Eigen::Isometry3d symmetryReduced(const geometry::Shape& payload, Eigen::Isometry3d X) {

@@ -43,6 +43,11 @@ struct QueryOptions {
   /// `vcontact volume` (table and --json), Python's contact(depth=True), the validation
   /// replay (its regimes fit V against d), a simulation's output samples (Simulator).
   DepthMode depth = DepthMode::kSkip;
+  /// `recovered` only: where no closed form applies and curved recognised faces reach the
+  /// partner, refine the polyhedron towards them until V converges (recovered/refinement.hpp;
+  /// a query of seconds) instead of falling back to the exact polyhedral method. Off by default
+  /// (simulations, replays); `vcontact volume --surface recovered` turns it on.
+  bool refine = false;
 };
 
 /// The method used when none is asked for: the first default row of the table that takes

@@ -68,6 +68,24 @@ void sortPatches(std::vector<ContactVolume>& patches) {
   });
 }
 
+const char* representationName(Representation representation) {
+  switch (representation) {
+    case Representation::kSphere:
+      return "sphere";
+    case Representation::kCylinder:
+      return "cylinder";
+    case Representation::kRevolution:
+      return "revolution";
+    case Representation::kRevolutionInBore:
+      return "revolution_in_bore";
+    case Representation::kRefined:
+      return "refined";
+    case Representation::kShape:
+      break;
+  }
+  return "mesh";
+}
+
 ContactPatches singlePatch(const ContactVolume& cv) {
   ContactPatches contact;
   contact.aggregate = cv;

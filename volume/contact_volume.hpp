@@ -16,7 +16,7 @@ namespace vcontact::volume {
 
 /// The key of a row of the method table (volume/methods.hpp), which alone maps it to its
 /// name and backend.
-enum class Method { kAnalytic, kHalfspace, kCgal, kFast, kColumns };
+enum class Method { kAnalytic, kHalfspace, kCgal, kFast, kColumns, kRecovered };
 
 /// The row's name ("analytic", "halfspace", ...).
 std::string methodName(Method method);
@@ -44,12 +44,60 @@ struct ContactVolume {
 /// The interference of a pair split into its contact regions: the volumetric model is defined
 /// per connected region of A ∩ B, each with its own V, p_c, n, J_s and friction state
 /// (MODEL.md §1). The pair's total V is the sum of the patches' V.
+/// What a contact was computed on. Every method but `recovered` computes on the shapes as they
+/// are (kShape); `recovered` on a mesh's recognised surfaces where a closed form applies, and
+/// otherwise on a refinement of the polyhedron towards them, or on the polyhedron itself, its
+/// fallback (docs/SURFACES.md).
+enum class Representation {
+  kShape,             ///< the shapes as given: the polyhedron of a mesh (its name: "mesh")
+  kSphere,            ///< a recognised sphere on a half-space, closed form
+  kCylinder,          ///< a cylinder closed by flat ends on a half-space, closed form
+  kRevolution,        ///< a solid of revolution on a half-space, by closed-form slices
+  kRevolutionInBore,  ///< a solid of revolution in a cylindrical bore of the other mesh, by slices
+  kRefined,           ///< the polyhedron refined towards its surfaces until V converged
+};
+
+/// "mesh", "sphere", "cylinder", "revolution", "revolution_in_bore", "refined".
+const char* representationName(Representation representation);
+
+/// One part of the faces that can reach the partner, of a refined contact: which body ("A" or
+/// "B"), the surface ("cone", "concave cylinder", "plane", "free-form"), how many faces, and
+/// what represents them: "refined" (split and projected onto the recognised surface), "exact"
+/// (planes: the faces are the surface) or "polyhedral" (free-form faces, kept as they are).
+struct PatchPart {
+  std::string body;
+  std::string surface;
+  int faces = 0;
+  std::string representation;
+};
+
+/// How a `recovered` query went (ContactPatches::surface); the other methods leave it as is.
+struct SurfaceUse {
+  Representation representation = Representation::kShape;
+  /// Why no closed form applied (a refined or polyhedral result); empty otherwise.
+  std::string reason;
+  /// A bound on |V − V_true|, m³ (docs/SURFACES.md): for a closed form the contact area times
+  /// the surfaces' fit residual plus the closed form's own error; refined, the Richardson
+  /// estimate plus the same residual term; for the polyhedron, the area times the largest chord
+  /// gap of the faces that can reach the partner (NaN where free-form faces reach it, or where
+  /// no query on recovered surfaces was made).
+  double volume_error_bound = std::numeric_limits<double>::quiet_NaN();
+  /// kRefined: what the faces within reach were computed on, per body and surface; the
+  /// refinement level k of the finest evaluation, and whether its error estimate met the
+  /// tolerance (false: the level cap came first).
+  std::vector<PatchPart> parts;
+  int level = 0;
+  bool converged = true;
+};
+
 struct ContactPatches {
   /// The connected components of A ∩ B, each a full ContactVolume of its own region, ordered
   /// by sortPatches.
   std::vector<ContactVolume> patches;
   /// The whole A ∩ B as one region (one centroid, one normal): the single-region figures.
   ContactVolume aggregate;
+  /// `recovered` queries: the surfaces it was computed on, and why where it fell back.
+  SurfaceUse surface;
 
   bool inContact() const { return !patches.empty(); }
 };

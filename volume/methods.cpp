@@ -10,6 +10,7 @@
 #include "volume/columns/columns.hpp"
 #include "volume/fast/surface_integration.hpp"
 #include "volume/halfspace/clip.hpp"
+#include "volume/recovered/recovered_query.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -60,6 +61,12 @@ ContactPatches columns(const Shape& a, const Isometry3d& X_WA, const Shape& b,
   return columnsPatches(a, X_WA, b, X_WB, field, grid);
 }
 
+ContactPatches recovered(const Shape& a, const Isometry3d& X_WA, const Shape& b,
+                         const Isometry3d& X_WB, const QueryOptions& options, DepthField*,
+                         ContactCache* cache) {
+  return recoveredContact(a, X_WA, b, X_WB, options, cache);
+}
+
 constexpr std::array kTable{
     MethodRow{Method::kAnalytic, "analytic", analyticSupports, analytic, false,
               "the cylinder's quadrature estimate (1e-9 or better); NaN for the sphere and box "
@@ -74,6 +81,11 @@ constexpr std::array kTable{
     MethodRow{Method::kColumns, "columns", meshAndMeshOrHalfspace, columns, false,
               "the change of V between the last two grid levels; inf on a fixed grid",
               "integrates columns through two meshes, or a mesh and a half-space", false, true},
+    MethodRow{Method::kRecovered, "recovered", meshAndMeshOrHalfspace, recovered, false,
+              "NaN; the bound on |V - V_true| is in the result's surface use",
+              "computes a mesh on its recognised surfaces (closed forms, else the exact "
+              "polyhedral method) against a half-space or another mesh",
+              false, false},
 };
 
 }  // namespace

@@ -11,7 +11,9 @@
 #include "dynamics/simulator.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/error.hpp"
+#include "io/shape_spec.hpp"
 #include "report/simulation_summary.hpp"
+#include "volume/contact.hpp"
 #include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::formats {
@@ -76,7 +78,9 @@ TEST(ScenarioSurface, MeshIsTheDefault) {
 
 // The summary records per body what recognition found, and per pair which representation its
 // queries used: the ball on the plate answers on its sphere at every query; the ball under the
-// second ball is a mesh pair, on the polyhedra throughout, and says why.
+// second ball (a mesh) is queried by the same `recovered` row, which has no closed form for two
+// spheres and falls back to the polyhedra (`fast`) at every query, saying why; a pair that asks
+// for another method (cgal) is on the polyhedra throughout, and says why.
 TEST(ScenarioSurface, TheSummaryRecordsRecognitionAndRepresentations) {
   const ScenarioFile f = scenarioFromJson(twoBallsOnPlate("recovered"), "s.json", kScenarios);
   ASSERT_NE(f.scenario.bodies[1].surface, nullptr);
@@ -92,12 +96,30 @@ TEST(ScenarioSurface, TheSummaryRecordsRecognitionAndRepresentations) {
   ASSERT_EQ(j["pairs"].size(), 2u);
   EXPECT_EQ(j["pairs"][0]["representation"], "recovered");
   EXPECT_EQ(j["pairs"][0]["evaluations"], nlohmann::json({{"sphere", summary.rhs_evaluations}}));
-  EXPECT_EQ(j["pairs"][1]["representation"], "mesh");
-  EXPECT_NE(j["pairs"][1]["why_mesh"].get<std::string>().find("partner 'top' is a mesh"),
-            std::string::npos)
-      << j["pairs"][1];
+  EXPECT_EQ(j["pairs"][1]["representation"], "recovered");
   EXPECT_EQ(j["pairs"][1]["evaluations"].size(), 1u);
   EXPECT_GT(j["pairs"][1]["evaluations"]["mesh"].get<long>(), 0);
+  ASSERT_EQ(j["pairs"][1]["mesh_fallbacks"].size(), 1u) << j["pairs"][1];
+  EXPECT_NE(j["pairs"][1]["mesh_fallbacks"][0].get<std::string>().find(
+                "the pin is not one solid of revolution"),
+            std::string::npos)
+      << j["pairs"][1];
+
+  nlohmann::json cgal = twoBallsOnPlate("recovered");
+  cgal["pairs"][1]["method"] = "cgal";
+  cgal["duration"] = 0.0002;  // a few corefinements
+  cgal["output_rate"] = 10000;
+  const ScenarioFile g = scenarioFromJson(cgal, "s.json", kScenarios);
+  dynamics::Simulator other(g.scenario);
+  dynamics::SimulationSummary otherSummary;
+  other.run([](const dynamics::Snapshot&) {}, [](double) {}, otherSummary);
+  const nlohmann::json k = report::simulationSummaryJson(otherSummary, "s.json")["surfaces"];
+  ASSERT_EQ(k["pairs"].size(), 2u);
+  EXPECT_EQ(k["pairs"][1]["representation"], "mesh");
+  EXPECT_NE(k["pairs"][1]["why_mesh"].get<std::string>().find("asks for method 'cgal'"),
+            std::string::npos)
+      << k["pairs"][1];
+  EXPECT_GT(k["pairs"][1]["evaluations"]["mesh"].get<long>(), 0);
 }
 
 struct RunOutput {
@@ -123,6 +145,49 @@ double largestDifference(const RunOutput& a, const RunOutput& b, F f) {
 
 // The bundled ball_roll_recovered.json (a 2,000-triangle STL ball rolling at 0.2 m/s) against
 // the same scenario with the analytic sphere in its place, and with the polyhedron.
+// The bundled peg on its recovered surface, tilted 5° in the bundled block: the simulation's
+// query is the volume command's (the method table's `recovered` row), so its first output has
+// the same two patches, to the bit, as computeContact at that pose, and the summary counts the
+// slices of a pin in a bore.
+TEST(ScenarioRecovered, TiltedPegHasTheVolumeCommandsTwoPatches) {
+  const std::string meshes = std::string(VCONTACT_ASSETS_DIR) + "/scenarios/meshes/";
+  const std::string pose = "0,-0.00116,0.0118,5,0,0";
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "format": "vcontact.scenario/1", "duration": 0.0001, "output_rate": 10000,
+    "gravity": [0, 0, 0],
+    "bodies": [{"name": "block", "motion": "fixed"},
+               {"name": "peg", "density": 7800, "surface": "recovered"}],
+    "pairs": [{"a": "peg", "b": "block", "model": "steel_on_aluminium.model.json"}]})");
+  j["bodies"][0]["shape"] = meshes + "block_hole_d10.stl";
+  j["bodies"][1]["shape"] = meshes + "peg_d10.stl";
+  j["bodies"][1]["pose"] = pose;
+  const ScenarioFile f = scenarioFromJson(j, "s.json", kScenarios);
+  dynamics::Simulator sim(f.scenario);
+  dynamics::SimulationSummary summary;
+  std::vector<dynamics::PairOutput> first;
+  sim.run(
+      [&](const dynamics::Snapshot& s) {
+        if (first.empty()) first = s.pairs;
+      },
+      [](double) {}, summary);
+  ASSERT_EQ(first.size(), 1u);
+  volume::QueryOptions query;
+  query.method = volume::Method::kRecovered;
+  const volume::ContactPatches expected =
+      volume::computeContact(f.scenario.bodies[1].shape, io::parsePose(pose, "pose"),
+                             f.scenario.bodies[0].shape, Eigen::Isometry3d::Identity(), query);
+  ASSERT_EQ(expected.patches.size(), 2u);
+  ASSERT_EQ(first[0].patches.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(first[0].patches[i].cv.volume, expected.patches[i].volume) << i;
+    EXPECT_EQ(first[0].patches[i].cv.p_WC, expected.patches[i].p_WC) << i;
+    EXPECT_EQ(first[0].patches[i].cv.n_W, expected.patches[i].n_W) << i;
+  }
+  ASSERT_EQ(summary.surface_pairs.size(), 1u);
+  EXPECT_TRUE(summary.surface_pairs[0].polyhedral_reason.empty());
+  EXPECT_GT(summary.surface_pairs[0].evaluations.at("revolution_in_bore"), 0);
+}
+
 TEST(ScenarioRecovered, BallRollTracksTheAnalyticSphere) {
   const ScenarioFile f = readScenarioFile(kScenarios + "/ball_roll_recovered.json");
   dynamics::Scenario analytic = f.scenario, polyhedral = f.scenario;

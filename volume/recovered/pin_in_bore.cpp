@@ -81,10 +81,31 @@ struct Slicer {
 struct Totals {
   SliceVector sum = SliceVector::Zero();
   double volumeError = 0.0;
-  void add(const QuadratureResult<kSize>& q) {
+  /// The connected regions along the axis: runs of consecutive intervals with a region in
+  /// their slices, each summed apart (the pin tilted in its bore touches the wall at both ends
+  /// on opposite sides, with nothing between: two patches). `sum` is the whole, summed in the
+  /// same order as without runs.
+  struct Run {
+    SliceVector sum = SliceVector::Zero();
+    double volumeError = 0.0;
+    double depth = 0.0;  ///< the largest δ of its slices
+  };
+  std::vector<Run> runs;
+  bool open = false;  ///< the last interval had a region: the next one continues its run
+
+  /// An interval with a region, whose slices reached `depth`.
+  void add(const QuadratureResult<kSize>& q, double depth) {
     sum += q.value;
     volumeError += q.relative_error * std::abs(q.value(0));
+    if (!open) runs.emplace_back();
+    open = true;
+    Run& run = runs.back();
+    run.sum += q.value;
+    run.volumeError += q.relative_error * std::abs(q.value(0));
+    run.depth = std::max(run.depth, depth);
   }
+  /// An interval without a region: the run before it, if any, has ended.
+  void gap() { open = false; }
   double relErr() const { return sum(0) > 0.0 ? volumeError / sum(0) : 0.0; }
 };
 
@@ -149,8 +170,17 @@ void addPiece(Slicer& s, const ProfilePiece& p, double zlo, double zhi, Totals& 
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     const double a = cuts[i], b = cuts[i + 1];
     const PieceAt mid = pieceAt(p, 0.5 * (a + b));
-    if (!(b > a) || s.condition(0, mid.zeta, mid.r) <= 0.0) continue;  // no crescent
-    out.add(integrateSlices(at, a, b, isChange(a), isChange(b)));
+    if (!(b > a)) continue;
+    if (s.condition(0, mid.zeta, mid.r) <= 0.0) {  // no crescent
+      out.gap();
+      continue;
+    }
+    // the run's own deepest slice; the whole's is the largest of the runs'
+    const double deepest = s.depth;
+    s.depth = 0.0;
+    const QuadratureResult<kSize> q = integrateSlices(at, a, b, isChange(a), isChange(b));
+    out.add(q, s.depth);
+    s.depth = std::max(deepest, s.depth);
   }
 }
 
@@ -471,9 +501,19 @@ void addTiltedPiece(Tilted& T, const ProfilePiece& p, double rMax, Totals& out) 
     // of the piece's length times its largest slice
     if (!(b - a > detail::kNegligible * (t1 - t0))) continue;
     const PieceAt mid = pieceAt(p, 0.5 * (a + b));
-    if (T.area(mid.zeta, mid.r) == 0.0) continue;  // no region: none appears within
+    if (T.area(mid.zeta, mid.r) == 0.0) {  // no region: none appears within
+      out.gap();
+      continue;
+    }
     const double tol = T.inBand(mid.zeta, rMax) ? kBandTolerance : kTiltedTolerance;
-    out.add(integrateSlices(at, a, b, cuts[i].singular, cuts[i + 1].singular, tol));
+    // the run's own deepest slice (slice() searches a slice only when it can beat the depth
+    // so far, so a run's depth is searched against its own); the whole's is the largest
+    const double deepest = T.depth;
+    T.depth = out.open ? out.runs.back().depth : 0.0;
+    const QuadratureResult<kSize> q =
+        integrateSlices(at, a, b, cuts[i].singular, cuts[i + 1].singular, tol);
+    out.add(q, T.depth);
+    T.depth = std::max(deepest, T.depth);
   }
 }
 
@@ -496,23 +536,37 @@ BoreContact revolutionInBore(const RevolutionProfile& profile, const Eigen::Isom
   s.o = -largestRadius(profile) * (eMid > 0.0 ? Vector2d(cMid / eMid) : Vector2d::UnitX());
   Totals t;
   for (const ProfilePiece& p : profile) addPiece(s, p, std::max(p.z0, lo), std::min(p.z1, hi), t);
-  const SliceVector& x = t.sum;
-  if (!(x(0) > 0.0)) return out;
+  if (!(t.sum(0) > 0.0)) return out;
   // B's boundary inside the pin: the bore's arcs (x(10), x(11)) and the planes' parts, whose
-  // outward normals are −e_z at ζ_lo and +e_z at ζ_hi (B lies between them).
+  // outward normals are −e_z at ζ_lo and +e_z at ζ_hi (B lies between them). A plane's part
+  // belongs to the run that reaches it: the first run the one at ζ_lo, the last the one at
+  // ζ_hi (where no run reaches a plane, its part is empty).
   const double areaLo = sliceArea(s, profile, bore.zeta_lo);
   const double areaHi = sliceArea(s, profile, bore.zeta_hi);
-  Vector3d n_R(x(10), x(11), areaHi - areaLo);
-  if (!(n_R.norm() > 0.0)) n_R = Vector3d(-s.o.x(), -s.o.y(), 0.0);  // no boundary of B inside
-  n_R.normalize();
-  geometry::Moments M;
-  M.m0 = x(0);
-  M.m1 = Vector3d(x(1), x(2), x(3));
-  M.m2 << x(4), x(5), x(7), x(5), x(6), x(8), x(7), x(8), x(9);
-  const double area = x(12) + std::abs(n_R.z()) * (areaLo + areaHi);
-  out.cv = contactFromMoments(M, Vector3d(s.o.x(), s.o.y(), s.zo), X_WR, X_WR.linear() * n_R, area,
-                              s.depth, Method::kAnalytic);
-  out.cv.relative_error = t.relErr();
+  const auto region = [&](const SliceVector& x, double lowPlane, double highPlane, double depth,
+                          double relErr) {
+    Vector3d n_R(x(10), x(11), highPlane - lowPlane);
+    if (!(n_R.norm() > 0.0)) n_R = Vector3d(-s.o.x(), -s.o.y(), 0.0);  // no boundary of B inside
+    n_R.normalize();
+    geometry::Moments M;
+    M.m0 = x(0);
+    M.m1 = Vector3d(x(1), x(2), x(3));
+    M.m2 << x(4), x(5), x(7), x(5), x(6), x(8), x(7), x(8), x(9);
+    const double area = x(12) + std::abs(n_R.z()) * (lowPlane + highPlane);
+    ContactVolume cv = contactFromMoments(M, Vector3d(s.o.x(), s.o.y(), s.zo), X_WR,
+                                          X_WR.linear() * n_R, area, depth, Method::kAnalytic);
+    cv.relative_error = relErr;
+    return cv;
+  };
+  out.cv = region(t.sum, areaLo, areaHi, s.depth, t.relErr());
+  for (std::size_t i = 0; i < t.runs.size(); ++i) {
+    const Totals::Run& run = t.runs[i];
+    if (!(run.sum(0) > 0.0)) continue;
+    out.patches.push_back(region(run.sum, i == 0 ? areaLo : 0.0,
+                                 i + 1 == t.runs.size() ? areaHi : 0.0, run.depth,
+                                 run.volumeError / run.sum(0)));
+  }
+  sortPatches(out.patches);
   out.plane_area = areaLo + areaHi;
   return out;
 }
@@ -532,22 +586,35 @@ BoreContact revolutionInTiltedBore(const RevolutionProfile& profile, const Eigen
   Totals t;
   for (const ProfilePiece& p : profile) addTiltedPiece(T, p, rMax, t);
   T.untilt(t.sum);
-  const SliceVector& x = t.sum;
-  if (!(x(0) > 0.0)) return out;
-  // the pin's boundary inside B: its side, and its end faces (normals ∓e_z)
+  if (!(t.sum(0) > 0.0)) return out;
+  // the pin's boundary inside B: its side, and its end faces (normals ∓e_z), the bottom's
+  // part in the first run, the top's in the last
   const double bottom =
       T.area(profile.front().z0, profileRadius(profile.front(), profile.front().z0));
   const double top = T.area(profile.back().z1, profileRadius(profile.back(), profile.back().z1));
-  const Vector3d N(x(10), x(11), x(12) - bottom + top);
-  Vector3d n_R = N.norm() > 0.0 ? Vector3d(-N) : Vector3d(-T.o.x(), -T.o.y(), 0.0);
-  n_R.normalize();
-  geometry::Moments M;
-  M.m0 = x(0);
-  M.m1 = Vector3d(x(1), x(2), x(3));
-  M.m2 << x(4), x(5), x(7), x(5), x(6), x(8), x(7), x(8), x(9);
-  out.cv = contactFromMoments(M, Vector3d(T.o.x(), T.o.y(), T.zo), X_WR, X_WR.linear() * n_R,
-                              N.norm(), T.depth, Method::kAnalytic);
-  out.cv.relative_error = t.relErr();
+  const auto region = [&](const SliceVector& x, double low, double high, double depth,
+                          double relErr) {
+    const Vector3d N(x(10), x(11), x(12) - low + high);
+    Vector3d n_R = N.norm() > 0.0 ? Vector3d(-N) : Vector3d(-T.o.x(), -T.o.y(), 0.0);
+    n_R.normalize();
+    geometry::Moments M;
+    M.m0 = x(0);
+    M.m1 = Vector3d(x(1), x(2), x(3));
+    M.m2 << x(4), x(5), x(7), x(5), x(6), x(8), x(7), x(8), x(9);
+    ContactVolume cv = contactFromMoments(M, Vector3d(T.o.x(), T.o.y(), T.zo), X_WR,
+                                          X_WR.linear() * n_R, N.norm(), depth, Method::kAnalytic);
+    cv.relative_error = relErr;
+    return cv;
+  };
+  out.cv = region(t.sum, bottom, top, T.depth, t.relErr());
+  for (std::size_t i = 0; i < t.runs.size(); ++i) {
+    Totals::Run run = t.runs[i];
+    T.untilt(run.sum);
+    if (!(run.sum(0) > 0.0)) continue;
+    out.patches.push_back(region(run.sum, i == 0 ? bottom : 0.0, i + 1 == t.runs.size() ? top : 0.0,
+                                 run.depth, run.volumeError / run.sum(0)));
+  }
+  sortPatches(out.patches);
   return out;
 }
 

@@ -49,6 +49,12 @@ struct BoreContact {
   /// largest δ of a slice (the column along u through the axis' side of the slice).
   /// relative_error: the quadrature's estimate.
   ContactVolume cv;
+  /// The connected regions of the interference, each by the same formulas from its own slices
+  /// (in sortPatches order): the runs of the pin's axis over which the slices hold a region.
+  /// One for a pin that touches in one band; a pin tilted in its bore gives two, at its ends
+  /// on opposite walls. A slice holds one region (a crescent, or the disc less the bore), so
+  /// the runs are the regions.
+  std::vector<ContactVolume> patches;
   /// The area of the interference in the slices at the planes that bound it, m² (to bound the
   /// error of planes that are not exactly across the axis).
   double plane_area = 0.0;

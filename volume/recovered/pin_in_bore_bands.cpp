@@ -174,20 +174,6 @@ struct PresenceScan {
       if (std::abs(e.t - t) <= snapWidth) return;
     changes.push_back({t, true});
   }
-  // The changes in the sample interval (a, b), present(a) = from ≠ present(b) = to: between
-  // the first and the last event inside, the events'; before and after them, bisected.
-  void scan(double a, double b, bool from, bool to) {
-    double first = b, last = a;
-    for (const Breakpoint& e : events)
-      if (e.t > a && e.t < b) {
-        first = std::min(first, e.t);
-        last = std::max(last, e.t);
-      }
-    if (!(first < b)) return bisect(a, b, from);
-    const double before = 0.5 * (a + first), after = 0.5 * (last + b);
-    if (present(before) != from) bisect(a, before, from);
-    if (present(after) != to) bisect(after, b, !to);
-  }
 };
 
 bool byParameter(const Breakpoint& x, const Breakpoint& y) { return x.t < y.t; }
@@ -201,12 +187,23 @@ std::vector<Breakpoint> pieceBreakpoints(const ProfilePiece& p, double t0, doubl
   PresenceScan scan{present, {}, kSnap * (t1 - t0), {}};
   for (const BorePlane& pl : planes) bandBreakpoints(p, t0, t1, rMax, bore, pl, scan.events);
   std::sort(scan.events.begin(), scan.events.end(), byParameter);
-  bool prev = present(t0);
-  for (int i = 1; i <= kZetaSamples; ++i) {
-    const double a = t0 + (t1 - t0) * (i - 1) / kZetaSamples;
-    const double b = i == kZetaSamples ? t1 : t0 + (t1 - t0) * i / kZetaSamples;
-    const bool next = present(b);
-    if (next != prev) scan.scan(a, b, prev, next);
+  // Presence is tested at the samples, at the lines' events and halfway between any two of
+  // them, and bisected between two tests that differ. A region that lives only inside a band
+  // (the pin's side pressed against the rim where a plane meets the bore) comes and goes
+  // between two samples where there is none: the events and the points between them see it.
+  std::vector<double> at;
+  for (int i = 0; i <= kZetaSamples; ++i)
+    at.push_back(i == kZetaSamples ? t1 : t0 + (t1 - t0) * i / kZetaSamples);
+  for (const Breakpoint& e : scan.events) at.push_back(e.t);
+  std::sort(at.begin(), at.end());
+  bool prev = present(at.front());
+  for (std::size_t i = 1; i < at.size(); ++i) {
+    const double a = at[i - 1], b = at[i];
+    if (!(b > a)) continue;
+    const double m = 0.5 * (a + b);
+    const bool mid = present(m), next = present(b);
+    if (mid != prev) scan.bisect(a, m, prev);
+    if (next != mid) scan.bisect(m, b, mid);
     prev = next;
   }
   std::vector<Breakpoint> found = scan.events;

@@ -40,10 +40,10 @@ void bandBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
 
 /// The breakpoints of piece p in (t0, t1), ascending: the events of bandBreakpoints for each
 /// plane, and where the region appears or vanishes (singular), bisected on `present(t)`
-/// (whether the slice at t has a region) between 16 samples of the piece. Within a sample
-/// interval that holds lines' events, a change between its first and last event is taken
-/// for an event's (a region goes or comes with a line's touching or crossing), and only a
-/// change between an end and the nearest event is bisected (presence tested once each side).
+/// (whether the slice at t has a region) between two tests that differ. Presence is tested at
+/// 16 samples of the piece, at every event and halfway between any two consecutive of these
+/// points, so that a region that lives only inside a band (between two samples without one)
+/// is found; a change bisected to within 1e-9 of the piece of an event is the event's.
 std::vector<Breakpoint> pieceBreakpoints(const ProfilePiece& p, double t0, double t1, double rMax,
                                          const BoreSection& bore,
                                          const std::vector<BorePlane>& planes,

@@ -12,6 +12,7 @@
 #include "volume/analytic/primitive_on_plane.hpp"
 #include "volume/analytic/revolution_on_plane.hpp"
 #include "volume/halfspace/clip.hpp"
+#include "volume/kernels/mesh_cache.hpp"
 #include "volume/recovered/refinement.hpp"
 
 namespace vcontact::volume {
@@ -22,7 +23,7 @@ using geometry::SurfaceKind;
 using geometry::TriangleMesh;
 
 RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, double max_residual) {
-  RecoveredContact r{cv, kind, "", 0.0, {}, 0, true};
+  RecoveredContact r{cv, kind, "", 0.0, {}, 0, true, {}};
   const double method_error = std::isfinite(cv.relative_error) ? cv.relative_error : 1e-12;
   r.volume_error_bound = cv.area * max_residual + cv.volume * method_error;
   return r;
@@ -31,7 +32,7 @@ RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, double max_r
 RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
                         const Eigen::Isometry3d& X_WH, std::string reason, double gap) {
   RecoveredContact r{
-      meshHalfspaceContact(mesh, X_WM, X_WH), "mesh", std::move(reason), 0.0, {}, 0, true};
+      meshHalfspaceContact(mesh, X_WM, X_WH), "mesh", std::move(reason), 0.0, {}, 0, true, {}};
   r.volume_error_bound = r.cv.area * gap;
   return r;
 }
@@ -176,17 +177,17 @@ std::vector<int> RecoveredBody::reachingFaces(const Eigen::Isometry3d& X_HM) con
   return faces;
 }
 
-std::shared_ptr<const RecoveredSurface> recoverSurface(
-    std::shared_ptr<const geometry::TriangleMesh> mesh) {
-  auto r = std::make_shared<RecoveredSurface>();
-  r->mesh = std::move(mesh);
+RecoveredSurface::RecoveredSurface(const TriangleMesh& mesh) {
   const auto start = std::chrono::steady_clock::now();
-  r->recognition = geometry::recogniseSurfaces(*r->mesh);
-  r->recognition_seconds =
+  recognition = geometry::recogniseSurfaces(mesh);
+  recognition_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // r is not moved from here on, so the body's references to its mesh and recognition hold
-  r->body = std::make_unique<RecoveredBody>(*r->mesh, r->recognition);
-  return r;
+  body = std::make_unique<RecoveredBody>(mesh, recognition);
+}
+
+std::shared_ptr<const RecoveredSurface> recoverSurface(
+    const std::shared_ptr<const geometry::TriangleMesh>& mesh) {
+  return derivedOf<RecoveredSurface>(mesh);
 }
 
 std::string recognisedKinds(const geometry::SurfaceRecognition& recognition) {

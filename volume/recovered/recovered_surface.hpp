@@ -25,17 +25,6 @@
 
 namespace vcontact::volume {
 
-/// One part of the faces that can reach the partner: which body ("A" or "B"), the surface
-/// ("cone", "concave cylinder", "plane", "free-form"), how many faces, and what represents them:
-/// "refined" (split and projected onto the recognised surface), "exact" (planes: the faces
-/// are the surface) or "polyhedral" (free-form faces, kept as they are).
-struct PatchPart {
-  std::string body;
-  std::string surface;
-  int faces = 0;
-  std::string representation;
-};
-
 struct RecoveredContact {
   ContactVolume cv;
   /// What the contact was computed on: "sphere", "cylinder" (a cylinder closed by flat ends)
@@ -61,6 +50,9 @@ struct RecoveredContact {
   /// met the tolerance asked for (false: the level cap was reached first).
   int level = 0;
   bool converged = true;
+  /// The connected regions, where the representation splits them ("revolution_in_bore": the
+  /// runs of the pin's axis, recovered/pin_in_bore.hpp); empty: the contact is one region, cv.
+  std::vector<ContactVolume> patches;
 };
 
 /// A mesh body with its recognised surfaces, prepared once for many queries: the chord gap
@@ -127,20 +119,26 @@ class RecoveredBody {
   std::optional<ClosedForm> whole_;
 };
 
-/// A mesh body's recovered surface, owned together: the mesh, what recognition found on it
-/// (and how long that took), and the body prepared for queries. Scenario bodies and dataset
-/// payloads with "surface": "recovered" hold one, made once at load.
+/// A mesh's recovered surface: what recognition found on it (and how long that took), and the
+/// body prepared for queries. Made once per mesh and shared (recoverSurface): the scenario and
+/// dataset readers make it at load for "surface": "recovered", and every `recovered` query on
+/// that mesh finds it. It refers to the mesh, which must outlive it.
 struct RecoveredSurface {
-  std::shared_ptr<const geometry::TriangleMesh> mesh;
+  /// @throws InputError when recognition refuses the mesh (not closed, not oriented)
+  explicit RecoveredSurface(const geometry::TriangleMesh& mesh);
+  RecoveredSurface(const RecoveredSurface&) = delete;  // the body refers to `recognition`
+  RecoveredSurface& operator=(const RecoveredSurface&) = delete;
+
   geometry::SurfaceRecognition recognition;
   double recognition_seconds = 0.0;  ///< wall time of recogniseSurfaces, s
   std::unique_ptr<RecoveredBody> body;
 };
 
-/// Recognises the mesh's surfaces and prepares the body (RecoveredSurface).
+/// The recovered surface of `mesh`: recognised on the first call for this mesh, the same object
+/// afterwards while the mesh lives (volume/kernels/mesh_cache.hpp); thread-safe.
 /// @throws InputError when recognition refuses the mesh (not closed, not oriented)
 std::shared_ptr<const RecoveredSurface> recoverSurface(
-    std::shared_ptr<const geometry::TriangleMesh> mesh);
+    const std::shared_ptr<const geometry::TriangleMesh>& mesh);
 
 /// "1 sphere", "1 cylinder, 2 planes", "6 planes, 12 free-form faces": the kinds recognised,
 /// with counts, for summaries.

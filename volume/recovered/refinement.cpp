@@ -128,7 +128,7 @@ Converged converge(const std::function<ContactVolume(int)>& eval, double gap, do
 }
 
 RecoveredContact fromConverged(const Converged& c, double residual, std::vector<PatchPart> parts) {
-  RecoveredContact r{c.cv, "refined", "", 0.0, {}, 0, true};
+  RecoveredContact r{c.cv, "refined", "", 0.0, {}, 0, true, {}};
   r.parts = std::move(parts);
   r.level = c.level;
   r.converged = c.converged;
@@ -264,6 +264,7 @@ RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::I
   if (std::optional<RecoveredContact> r = boreContact(a, X_WA, b, X_WB, aInB)) return *r;
   if (std::optional<RecoveredContact> r = boreContact(b, X_WB, a, X_WA, bInA)) {
     r->cv = swapped(r->cv);
+    for (ContactVolume& patch : r->patches) patch = swapped(patch);
     return *r;
   }
   RecoveredContact r = refinedMeshMeshContact(a, X_WA, b, X_WB, options);
