@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "columns/columns_agreement.hpp"
+#include "columns_agreement.hpp"
 #include "support/test_support.hpp"
 #include "volume/contact.hpp"
 #include "volume_fixtures.hpp"

@@ -1,4 +1,4 @@
-#include "depth/deepest_column_reference.hpp"
+#include "deepest_column_reference.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "depth/deepest_column_reference.hpp"
+#include "deepest_column_reference.hpp"
 #include "geometry/tessellate.hpp"
 #include "io/mesh_io.hpp"
 #include "scenario_mesh.hpp"
