@@ -26,7 +26,8 @@ const char* stopCauseName(StopCause cause) {
 int patchSlots(const Scenario& s, const ContactPair& p) {
   if (p.friction == FrictionMode::kDistributed) return 1;
   if (p.method == volume::Method::kAnalytic) return 1;
-  if (volume::convexSolid(s.bodies[p.a].shape) && volume::convexSolid(s.bodies[p.b].shape)) return 1;
+  if (volume::convexSolid(s.bodies[p.a].shape) && volume::convexSolid(s.bodies[p.b].shape))
+    return 1;
   if (p.max_patches < kMinMaxPatches || p.max_patches > kMaxMaxPatches) {
     throw InputError("pair '" + p.name + "'", "max_patches " + std::to_string(p.max_patches) +
                                                   " is outside [" + std::to_string(kMinMaxPatches) +
