@@ -33,7 +33,7 @@ Eigen::Quaterniond quaternionAt(const double* q) {
 }
 
 // The penetration the run is stopped on: the mean depth V/A over the contact area. The
-// deepest column (cv.depth) is not used: the force evaluations skip it (pairContact), and a
+// deepest column (cv.depth) is not used: the force evaluations skip it (PairContacts), and a
 // region with volume has a projection of positive area, so the fallback serves only a method
 // that reports no area.
 double meanPenetration(const volume::ContactVolume& cv) {
@@ -92,15 +92,11 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
   const int n = layoutStates();
   setInitialState(n);
   last_pairs_.resize(scenario_.pairs.size());
-  fields_.resize(scenario_.pairs.size());
-  caches_.resize(scenario_.pairs.size());
   kin_.resize(scenario_.bodies.size());
-  addToBroadPhase();
-  recovered_.emplace(scenario_);
-  preparePairs();
+  const bool discrete = scenario_.settings.integrator == Integrator::kDiscrete;
+  contacts_.emplace(scenario_, discrete);
   checkLoads();
-  queried_.assign(scenario_.pairs.size(), 1);
-  if (scenario_.settings.integrator == Integrator::kDiscrete) {
+  if (discrete) {
     const double h = scenario_.settings.step;
     if (!(h >= kMinDiscreteStep && h <= kMaxDiscreteStep)) {
       std::ostringstream s;
@@ -108,7 +104,6 @@ Simulator::Simulator(Scenario scenario) : scenario_(std::move(scenario)) {
         << "] s";
       throw InputError("settings", s.str());
     }
-    last_contact_.resize(scenario_.pairs.size());
     last_context_.resize(scenario_.pairs.size());
   }
   force_.resize(scenario_.bodies.size());
@@ -157,47 +152,6 @@ void Simulator::setInitialState(int n) {
   }
 }
 
-// Every bounded body enters the broad phase at its initial pose.
-void Simulator::addToBroadPhase() {
-  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
-    const RigidBody& b = scenario_.bodies[i];
-    const std::optional<geometry::Aabb> box = geometry::localBounds(b.shape);
-    local_bounds_.push_back(
-        box.value_or(geometry::Aabb{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}));
-    broad_id_.push_back(-1);
-    if (!box) continue;
-    broad_id_.back() = broad_phase_.add(geometry::placedBounds(*box, b.X_WB0));
-  }
-}
-
-// Per pair: its broad-phase screening key and its contact when apart, whose method is
-// checked against the pair's shapes here, so that a pair no method handles fails before any
-// output.
-void Simulator::preparePairs() {
-  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
-    const ContactPair& p = scenario_.pairs[k];
-    const bool screened =
-        broad_id_[p.a] >= 0 && broad_id_[p.b] >= 0 && !p.model.adjustsPayloadPose();
-    const std::pair<int, int> ids = std::minmax(broad_id_[p.a], broad_id_[p.b]);
-    screen_key_.push_back(screened ? ids : std::make_pair(-1, -1));
-    const geometry::Shape& a = scenario_.bodies[p.a].shape;
-    const geometry::Shape& b = scenario_.bodies[p.b].shape;
-    apart_.emplace_back();
-    try {
-      const std::optional<volume::Method> asked = recovered_->method(k, p.method);
-      const volume::Method m = asked ? *asked
-                               : p.friction == FrictionMode::kDistributed
-                                   ? volume::defaultDepthFieldMethod(a, b)
-                                   : volume::defaultMethod(a, b);
-      volume::requireHandles(m, a, b);
-      apart_.back().aggregate.method = m;
-    } catch (const InputError& e) {
-      throw InputError("pair '" + p.name + "'", e.message());
-    }
-    any_screened_ = any_screened_ || screened;
-  }
-}
-
 BodyKinematics Simulator::kinematics(const State& x, std::size_t i, double t) const {
   const RigidBody& body = scenario_.bodies[i];
   if (offset_[i] < 0) return scheduledKinematics(body, t);
@@ -210,20 +164,6 @@ BodyKinematics Simulator::kinematics(const State& x, std::size_t i, double t) co
   k.v_WBcm = Eigen::Vector3d(s[7], s[8], s[9]);
   k.w_WB = Eigen::Vector3d(s[10], s[11], s[12]);
   return k;
-}
-
-// queried_ for the current kin_: the screened pairs whose bodies' placed bounds overlap, and
-// every other pair. Bodies that move are re-placed; fixed ones keep the bounds of their pose.
-void Simulator::screenPairs() {
-  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
-    if (broad_id_[i] < 0 || scenario_.bodies[i].motion == BodyMotion::kFixed) continue;
-    broad_phase_.update(broad_id_[i], geometry::placedBounds(local_bounds_[i], kin_[i].X_WB));
-  }
-  const std::vector<std::pair<int, int>> overlapping = broad_phase_.overlappingPairs();  // sorted
-  for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
-    if (screen_key_[k].first < 0) continue;
-    queried_[k] = std::binary_search(overlapping.begin(), overlapping.end(), screen_key_[k]);
-  }
 }
 
 // ẋ for the bodies (Newton–Euler in W) and the pair states (the models' rates).
@@ -239,7 +179,7 @@ void Simulator::rhs(const State& x, State& dxdt, double t) {
     force_[i].setZero();
     torque_[i].setZero();
   }
-  if (any_screened_) screenPairs();
+  contacts_->screen(kin_);
   evaluatePairs(x, dxdt);
   applyLoads(t);
   for (std::size_t i = 0; i < nb; ++i) {
@@ -443,8 +383,8 @@ SimulationError interrupted(int signal, double t) {
 void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
                     const std::function<void(double)>& on_progress, SimulationSummary& summary) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const long rhs_start = rhs_count_, contacts_start = contact_count_,
-             skipped_start = sleep_skipped_;
+  const long rhs_start = rhs_count_, contacts_start = contacts_->queries(),
+             skipped_start = contacts_->skipped();
   double t = 0.0;
   long patch_samples = 0, patch_total = 0;
   const OutputFn output = [&](const Snapshot& s) {
@@ -463,19 +403,19 @@ void Simulator::run(const std::function<void(const Snapshot&)>& on_output,
     summary.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     summary.rhs_evaluations = rhs_count_ - rhs_start;
-    summary.contact_evaluations = contact_count_ - contacts_start;
-    summary.surface_bodies = recovered_->bodies();
-    summary.surface_pairs = recovered_->pairs();
+    summary.contact_evaluations = contacts_->queries() - contacts_start;
+    summary.surface_bodies = contacts_->recovered().bodies();
+    summary.surface_pairs = contacts_->recovered().pairs();
     impacts_.finish(t);
     summary.impacts = impacts_.impacts();
     summary.sleep_events = sleep_.events();
-    summary.sleep_skipped_queries = sleep_skipped_ - skipped_start;
+    summary.sleep_skipped_queries = contacts_->skipped() - skipped_start;
   };
 
   non_finite_effect_.clear();
-  query_depths_ = false;  // a run that stopped in a discrete step may have left it set
+  contacts_->setQueryDepths(false);  // a run that stopped in a discrete step may have left it set
   keep_contexts_ = false;
-  recovered_->resetCounts();
+  contacts_->resetCounts();
   sleep_.reset(scenario_);
   State x = x0_;
   State dxdt(x.size());

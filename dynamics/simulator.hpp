@@ -19,10 +19,9 @@
 // What a run hands out (Snapshot, SimulationSummary, SimulationError) is in
 // simulation_output.hpp, for the writers that need not see the Simulator.
 //
-// Every right-hand side first screens the pairs with a broad phase (FCL's dynamic AABB tree
-// over the bodies' placed bounds, geometry/broad_phase.hpp): a pair whose boxes do not overlap
-// gets the empty contact without a query. Pairs with an unbounded body (half-space) or a model
-// that moves the payload's pose (misalignment) are always queried.
+// Every right-hand side takes the pairs' contacts from PairContacts (pair_contacts.hpp): the
+// broad phase screens them (a pair whose boxes do not overlap gets the empty contact without a
+// query), the rest are queried, pairs of sleeping bodies keep their latest contact.
 //
 // Any run stops with a SimulationError naming time, pair or body and the quantity on: a
 // non-finite state or rate, a mean penetration V/A beyond a set fraction of a body, a step
@@ -40,12 +39,11 @@
 #include "dynamics/discrete_jacobian.hpp"
 #include "dynamics/energy_guard.hpp"
 #include "dynamics/impact_tracker.hpp"
+#include "dynamics/pair_contacts.hpp"
 #include "dynamics/patch_tracker.hpp"
-#include "dynamics/recovered_pairs.hpp"
 #include "dynamics/scenario.hpp"
 #include "dynamics/simulation_output.hpp"
 #include "dynamics/sleep.hpp"
-#include "geometry/broad_phase.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
@@ -161,17 +159,12 @@ class Simulator {
   void stepImpulses(double h);
   void sleepBeforeStep(State& x, double t);
   void contactBalance(std::vector<char>& balanced) const;
-  bool lacksDepth(std::size_t k) const;
   void assembleLoads(double t, double h);
   void loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
                  Vector6d out[2]) const;
   int layoutStates();
   void setInitialState(int n);
-  void addToBroadPhase();
-  void preparePairs();
   void rhs(const State& x, State& dxdt, double t);
-  volume::ContactPatches pairContact(std::size_t k,
-                                     volume::DepthMode depth = volume::DepthMode::kSkip);
   void fillDepths(std::size_t k, PairOutput& out);
   void evaluatePairs(const State& x, State& dxdt);
   void evaluatePair(std::size_t k, const State& x, State& dxdt);
@@ -185,7 +178,6 @@ class Simulator {
   void checkLoads() const;
   void applyLoads(double t);
   void bodyRates(std::size_t i, const State& x, State& dxdt) const;
-  void screenPairs();
   bool rhsFinite(const double* x, double* dxdt, double t);
   const Snapshot& snapshot(const State& x, double t, bool depths);
   BodyKinematics kinematics(const State& x, std::size_t body, double t) const;
@@ -218,40 +210,20 @@ class Simulator {
   std::optional<EnergyGuard> energy_guard_;  ///< set by run() from the state at t = 0
   std::vector<BodyKinematics> guard_kin_;    ///< checkEnergy()'s scratch
   std::vector<LoadOutput> last_loads_;       ///< the loads' and springs' wrenches, same evaluation
-  std::vector<volume::DepthField> fields_;   ///< δ maps of the distributed-friction pairs
-  /// Per pair, what the contact query keeps between right-hand sides (volume::ContactCache:
-  /// the fast method's leaf pairs while the bodies move less than its reach).
-  std::vector<volume::ContactCache> caches_;
-  /// Which pairs are queried on a body's recovered surface, and the counts per representation.
-  std::optional<RecoveredPairs> recovered_;
-  // Broad phase (FCL's dynamic AABB tree over the bodies' placed bounds): a pair whose bodies'
-  // boxes do not overlap is not queried; its contact is empty (V = 0), as the query would say.
-  geometry::BroadPhase broad_phase_;
-  std::vector<int> broad_id_;                 ///< per body, −1 when unbounded (half-space)
-  std::vector<geometry::Aabb> local_bounds_;  ///< per body, its shape's own bounds
-  /// Per pair, its bodies' broad-phase ids (smaller first) as overlappingPairs() lists them;
-  /// (−1, −1) when it is always queried (a body unbounded, or body A's pose adjusted).
-  std::vector<std::pair<int, int>> screen_key_;
-  std::vector<char> queried_;                  ///< per pair, at the latest right-hand side
-  std::vector<volume::ContactPatches> apart_;  ///< per pair, its contact when not queried
-  bool any_screened_ = false;
+  /// The pairs' contacts: broad phase, caches, δ maps, recovered surfaces, the discrete
+  /// stepper's latest contacts (pair_contacts.hpp); the only caller of the contact query.
+  std::optional<PairContacts> contacts_;
   State rhs_x_, rhs_dxdt_;  ///< rhsFinite()'s copies of CVODE's vectors
   std::string non_finite_;  ///< the state whose rate was last found not finite
   /// The first effect whose wrench was not finite at a finite contact, and when ("" if none).
   std::string non_finite_effect_;
   double rhs_t_ = 0.0;  ///< s, the time of the right-hand side being evaluated
-  // The discrete stepper (simulator_discrete.cpp): the latest query's contacts per pair, reused
-  // instead of a query while reuse_contacts_ (re-evaluating the models after a settle), and
-  // the step's system, kept between steps to avoid allocations.
-  std::vector<volume::ContactPatches> last_contact_;
+  // The discrete stepper (simulator_discrete.cpp): the evaluations' contexts per pair, and the
+  // step's system, kept between steps to avoid allocations.
   std::vector<EvaluationContext> last_context_;  ///< per pair, discrete runs only
   /// The force evaluations keep their contexts (last_context_): the discrete step's query, whose
   /// evaluation is the next step's start; not the Dormand–Prince stages of a resolved interval.
   bool keep_contexts_ = false;
-  bool reuse_contacts_ = false;
-  /// The force evaluation's queries compute the exact depth too (DepthMode::kDeepest): the
-  /// discrete step that lands on an output time, whose contacts the output reads.
-  bool query_depths_ = false;
   bool output_depths_ = true;  ///< setOutputDepths()
   bool shortcuts_ = true;      ///< setStepShortcuts()
   bool fixed_ready_ = false;   ///< kin_ holds the fixed bodies' kinematics (rhs())
@@ -282,9 +254,7 @@ class Simulator {
   // a frozen pair's kept contact replaced.
   SleepTracker sleep_;
   std::vector<char> sleep_contact_, sleep_near_, sleep_balanced_;
-  std::atomic<long> sleep_skipped_ = 0;  // atomic: counted by pairs evaluated side by side
   long rhs_count_ = 0;
-  std::atomic<long> contact_count_ = 0;
   bool parallel_pairs_ = true;  ///< setParallelPairs()
   Snapshot output_;             ///< snapshot()'s result, reused from one output time to the next
   State snapshot_dxdt_;         ///< snapshot()'s scratch for the rates of an interpolated state

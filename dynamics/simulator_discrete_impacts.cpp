@@ -201,10 +201,10 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   normaliseQuaternions(x);
   // The step's one contact query, at the new state; on an output time with the exact
   // depths the output writes, which spares snapshot() a second query (fillDepths).
-  query_depths_ = lands && output_depths_;
+  contacts_->setQueryDepths(lands && output_depths_);
   keep_contexts_ = true;
   rhs(x, dxdt, t);
-  query_depths_ = false;
+  contacts_->setQueryDepths(false);
   keep_contexts_ = false;
   if (resolve) {
     const bool impact = impactAhead(start_kin_, true, h, fast_regions_);
@@ -221,9 +221,11 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
   markImpacts(false);
   check(x, t);
   if (settlePairs(x, t)) {
-    reuse_contacts_ = keep_contexts_ = true;
+    contacts_->setReuse(true);
+    keep_contexts_ = true;
     rhs(x, dxdt, t);
-    reuse_contacts_ = keep_contexts_ = false;
+    contacts_->setReuse(false);
+    keep_contexts_ = false;
   }
   impacts_.observe(t, kin_, last_pairs_, &step_impulse_);
 }
@@ -235,7 +237,7 @@ void Simulator::resolveInterval(State& x, State& dxdt, double& t, double t1,
   const SimulationSettings& set = scenario_.settings;
   ++summary.resolved_steps;
   markImpacts(true);
-  const long queries_before = contact_count_;
+  const long queries_before = contacts_->queries();
   Dopri5Control control(set.abs_tol, set.rel_tol);
   double dt = std::min(resolve_dt_ > 0.0 ? resolve_dt_ : set.initial_step, set.max_step);
   const double span = t1 - t;
@@ -252,7 +254,7 @@ void Simulator::resolveInterval(State& x, State& dxdt, double& t, double t1,
     afterDopri5Step(x, dxdt, t);
   }
   resolve_dt_ = dt;
-  summary.resolution_queries += contact_count_ - queries_before;
+  summary.resolution_queries += contacts_->queries() - queries_before;
 }
 
 // The normal impulse of each pair over the step just solved: h n·f⁺ of its patches, with the

@@ -50,43 +50,6 @@ void combine(const std::vector<PatchOutput>& patches, const Eigen::Vector3d& p_c
 
 }  // namespace
 
-// Pair k's contact at kin_: queried, or its contact when apart when the broad phase
-// screened it out. The force evaluations skip the exact depth (kSkip: the model does not
-// use it, and for `fast` it costs several times the rest of the query) unless
-// query_depths_ asks for it; kDeepest is an output sample's query (fillDepths), made without
-// the depth field and the pair's cache so that it leaves the run's state as it was, and not
-// counted as a contact evaluation.
-volume::ContactPatches Simulator::pairContact(std::size_t k, volume::DepthMode depth) {
-  const ContactPair& pair = scenario_.pairs[k];
-  if (reuse_contacts_) return last_contact_[k];
-  if (!queried_[k]) {
-    if (!last_contact_.empty()) last_contact_[k] = apart_[k];
-    return apart_[k];
-  }
-  if (sleep_.frozen(k) && depth == volume::DepthMode::kSkip && !(query_depths_ && lacksDepth(k))) {
-    ++sleep_skipped_;  // each body asleep or fixed: the same poses, the same answer
-    return last_contact_[k];
-  }
-  // the constructor checked that the method takes the pair's shapes
-  const bool distributed = pair.friction == FrictionMode::kDistributed;
-  const Eigen::Isometry3d X_WA = pair.model.adjustPayloadPose(kin_[pair.a].X_WB, kin_[pair.b].X_WB);
-  const geometry::Shape& shapeA = scenario_.bodies[pair.a].shape;
-  const geometry::Shape& shapeB = scenario_.bodies[pair.b].shape;
-  volume::QueryOptions query{recovered_->method(k, pair.method),
-                             distributed ? pair.column_resolution : 0, depth};
-  if (depth == volume::DepthMode::kDeepest) {
-    return volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query);
-  }
-  if (query_depths_) query.depth = volume::DepthMode::kDeepest;
-  ++contact_count_;
-  volume::ContactPatches contact =
-      volume::computeContact(shapeA, X_WA, shapeB, kin_[pair.b].X_WB, query,
-                             distributed ? &fields_[k] : nullptr, &caches_[k]);
-  recovered_->count(k, contact);
-  if (!last_contact_.empty()) last_contact_[k] = contact;
-  return contact;
-}
-
 // Whether kin_ is kinematics(x, ·, t) for every body: the latest right-hand side was evaluated
 // at the same bits of x and at t. The readers after an accepted step (check, settle, output)
 // then take kin_ instead of converting the quaternions again.
@@ -128,7 +91,8 @@ void Simulator::fillDepths(std::size_t k, PairOutput& out) {
   bool any = missing(out.cv);
   for (const PatchOutput& p : out.patches) any = any || missing(p.cv);
   if (!any) return;
-  const volume::ContactPatches exact = pairContact(k, volume::DepthMode::kDeepest);
+  const volume::ContactPatches exact =
+      contacts_->contact(k, kin_, sleep_.frozen(k), volume::DepthMode::kDeepest);
   out.cv.depth = exact.aggregate.depth;
   for (PatchOutput& p : out.patches) {
     double best = std::numeric_limits<double>::infinity();
@@ -176,9 +140,9 @@ void Simulator::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
 void Simulator::evaluatePairs(const State& x, State& dxdt) {
   const std::size_t n = scenario_.pairs.size();
   std::size_t queries = 0;  // the pairs whose evaluation queries their contact
-  if (parallel_pairs_ && !reuse_contacts_) {
+  if (parallel_pairs_ && !contacts_->reusing()) {
     for (std::size_t k = 0; k < n && queries < 2; ++k) {
-      if (queried_[k] && !sleep_.frozen(k)) ++queries;
+      if (contacts_->queried(k) && !sleep_.frozen(k)) ++queries;
     }
   }
   if (queries < 2) {
@@ -215,7 +179,7 @@ void Simulator::applyPair(std::size_t k) {
 void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
   const ContactPair& pair = scenario_.pairs[k];
   PairOutput& out = last_pairs_[k];
-  const volume::ContactPatches contact = pairContact(k);
+  const volume::ContactPatches contact = contacts_->contact(k, kin_, sleep_.frozen(k));
   out.patch_count = static_cast<int>(contact.patches.size());
   out.without_slot = 0;
   if (slots_[k] > 1) {
@@ -236,7 +200,7 @@ void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
     if (!context->valid) context = nullptr;
   }
   pair.model.evaluate(out.cv, motion, out.state, out.result,
-                      distributed && out.cv.inContact() ? &fields_[k] : nullptr,
+                      distributed && out.cv.inContact() ? &contacts_->field(k) : nullptr,
                       context ? &context->ctx : nullptr);
   out.result.rates.pack(&dxdt[static_cast<std::size_t>(pair_offset_[k])], state_size);
 }

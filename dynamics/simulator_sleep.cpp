@@ -16,7 +16,7 @@ void Simulator::sleepBeforeStep(State& x, double t) {
   sleep_near_.resize(np);
   for (std::size_t k = 0; k < np; ++k) {
     sleep_contact_[k] = last_pairs_[k].cv.inContact();
-    sleep_near_[k] = sleep_contact_[k] || (screen_key_[k].first >= 0 && queried_[k]);
+    sleep_near_[k] = sleep_contact_[k] || (contacts_->screened(k) && contacts_->queried(k));
   }
   contactBalance(sleep_balanced_);
   for (const std::size_t i : sleep_.update(t, kin_, sleep_contact_, sleep_near_, sleep_balanced_)) {
@@ -72,17 +72,6 @@ void Simulator::contactBalance(std::vector<char>& balanced) const {
     balanced[i] = (force[i] + b.mass * scenario_.gravity_W).norm() <= limit &&
                   torque[i].norm() <= limit * sleep_.reach(i);
   }
-}
-
-// Whether pair k's kept contact lacks the exact depth that an output step's query computes.
-bool Simulator::lacksDepth(std::size_t k) const {
-  const volume::ContactPatches& c = last_contact_[k];
-  const auto missing = [](const volume::ContactVolume& cv) {
-    return cv.inContact() && std::isnan(cv.depth);
-  };
-  bool any = missing(c.aggregate);
-  for (const volume::ContactVolume& p : c.patches) any = any || missing(p);
-  return any;
 }
 
 }  // namespace vcontact::dynamics
