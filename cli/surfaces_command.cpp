@@ -15,7 +15,7 @@
 #include "io/json_file.hpp"
 #include "io/progress.hpp"
 #include "io/shape_spec.hpp"
-#include "volume/recovered/recovered_surface.hpp"
+#include "volume/contact.hpp"
 
 namespace vcontact::cli {
 namespace {

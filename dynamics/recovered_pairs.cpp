@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "dynamics/scenario.hpp"
-#include "volume/recovered/recovered_surface.hpp"  // the recognition a body use reports
+#include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -13,10 +13,10 @@ bool isHalfspace(const geometry::Shape& s) {
 }
 
 SurfaceBodyUse bodyUse(const RigidBody& body) {
-  const geometry::SurfaceRecognition& r = body.surface->recognition;
+  const geometry::SurfaceRecognition& r = volume::recognition(*body.surface);
   SurfaceBodyUse u;
   u.body = body.name;
-  u.recognition_seconds = body.surface->recognition_seconds;
+  u.recognition_seconds = volume::recognitionSeconds(*body.surface);
   for (const geometry::RecognisedSurface& s : r.surfaces) {
     ++u.kinds[std::string(s.convex ? "" : "concave ") + geometry::surfaceKindName(s.kind)];
     u.max_residual = std::max(u.max_residual, s.max_residual);

@@ -12,7 +12,7 @@
 #include "geometry/primitives.hpp"
 
 namespace vcontact::volume {
-struct RecoveredSurface;  // volume/recovered/recovered_surface.hpp
+struct RecoveredSurface;  // opaque: volume/contact.hpp makes and describes it
 }
 
 namespace vcontact::dynamics {

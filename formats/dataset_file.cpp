@@ -20,7 +20,7 @@
 #include "io/shape_json.hpp"
 #include "io/shape_spec.hpp"
 #include "validation/free_flight.hpp"
-#include "volume/recovered/recovered_surface.hpp"
+#include "volume/contact.hpp"
 
 namespace vcontact::formats {
 namespace {

@@ -17,7 +17,6 @@
 #include "io/mesh_io.hpp"
 #include "io/shape_spec.hpp"
 #include "volume/contact.hpp"
-#include "volume/recovered/recovered_surface.hpp"
 
 namespace vcontact::formats {
 namespace {

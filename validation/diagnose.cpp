@@ -12,7 +12,7 @@
 
 #include "geometry/error.hpp"
 #include "validation/phases.hpp"
-#include "volume/recovered/recovered_surface.hpp"
+#include "volume/contact.hpp"
 
 namespace vcontact::validation {
 namespace {

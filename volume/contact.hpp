@@ -7,15 +7,19 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "geometry/primitives.hpp"
+#include "geometry/surface_recognition.hpp"
+#include "geometry/triangle_mesh.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::volume {
 
-struct MeshMeshCache;  // fast/surface_integration.hpp
+struct MeshMeshCache;     // fast/surface_integration.hpp
+struct RecoveredSurface;  // recovered/recovered_surface.hpp: opaque above volume/
 
 /// Whether a query computes ContactVolume::depth, the deepest column d = max over the plate of
 /// δ(s) (MODEL.md §1), for the one method whose depth is a pass of its own (QueryOptions::depth).
@@ -123,5 +127,21 @@ ContactPatches computeContact(const geometry::Shape& a, const Eigen::Isometry3d&
                               const geometry::Shape& b, const Eigen::Isometry3d& X_WB,
                               const QueryOptions& options = {}, DepthField* field = nullptr,
                               ContactCache* cache = nullptr);
+
+/// The recovered surface of `mesh` (what `recovered` queries compute on): its surfaces
+/// recognised on the first call for this mesh (geometry/surface_recognition.hpp), the same
+/// object afterwards while the mesh lives; thread-safe. The scenario and dataset readers make
+/// it at load for "surface": "recovered", so that a bad mesh is refused before a run and the
+/// recognition's time is reported once.
+/// @throws InputError when recognition refuses the mesh (not closed, not oriented)
+std::shared_ptr<const RecoveredSurface> recoverSurface(
+    const std::shared_ptr<const geometry::TriangleMesh>& mesh);
+/// What recognition found on the mesh of `surface`.
+const geometry::SurfaceRecognition& recognition(const RecoveredSurface& surface);
+/// The wall time of that recognition, s.
+double recognitionSeconds(const RecoveredSurface& surface);
+/// "1 sphere", "1 cylinder, 2 planes", "6 planes, 12 free-form faces": the kinds recognised,
+/// with counts, for summaries.
+std::string recognisedKinds(const geometry::SurfaceRecognition& recognition);
 
 }  // namespace vcontact::volume

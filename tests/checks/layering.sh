@@ -20,9 +20,8 @@
 #
 # Above volume/, only its public headers may be included: the contact volume type and the query
 # (volume/contact_volume.hpp, volume/contact.hpp); the methods' folders, the method table and the
-# shared kernels are volume's own. One more: the readers that recognise a body's surfaces at
-# load and report what was found include volume/recovered/recovered_surface.hpp (the queries on
-# those surfaces are the method table's `recovered` row, like any other).
+# shared kernels are volume's own (a recovered surface is opaque above volume/: made and
+# described through the query header, queried through the method table's `recovered` row).
 set -euo pipefail
 src="${1:?usage: layering.sh SOURCE_DIR}"
 layers=(geometry io volume dynamics validation formats report cli)
@@ -31,7 +30,7 @@ for i in "${!layers[@]}"; do rank[${layers[$i]}]=$i; done
 
 order=$(printf ' < %s' "${layers[@]}")
 order=${order:3}
-public_volume=(volume/contact_volume.hpp volume/contact.hpp volume/recovered/recovered_surface.hpp)
+public_volume=(volume/contact_volume.hpp volume/contact.hpp)
 violations=0
 for layer in "${layers[@]}"; do
   [ -d "$src/$layer" ] || continue

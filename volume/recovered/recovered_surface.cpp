@@ -190,6 +190,12 @@ std::shared_ptr<const RecoveredSurface> recoverSurface(
   return derivedOf<RecoveredSurface>(mesh);
 }
 
+const geometry::SurfaceRecognition& recognition(const RecoveredSurface& surface) {
+  return surface.recognition;
+}
+
+double recognitionSeconds(const RecoveredSurface& surface) { return surface.recognition_seconds; }
+
 std::string recognisedKinds(const geometry::SurfaceRecognition& recognition) {
   std::map<std::string, int> counts;
   for (const RecognisedSurface& s : recognition.surfaces) {

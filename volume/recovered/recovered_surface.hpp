@@ -20,6 +20,7 @@
 #include "geometry/bvh.hpp"
 #include "geometry/surface_recognition.hpp"
 #include "geometry/triangle_mesh.hpp"
+#include "volume/contact.hpp"
 #include "volume/contact_volume.hpp"
 #include "volume/recovered/revolution_body.hpp"
 
@@ -134,15 +135,8 @@ struct RecoveredSurface {
   std::unique_ptr<RecoveredBody> body;
 };
 
-/// The recovered surface of `mesh`: recognised on the first call for this mesh, the same object
-/// afterwards while the mesh lives (volume/kernels/mesh_cache.hpp); thread-safe.
-/// @throws InputError when recognition refuses the mesh (not closed, not oriented)
-std::shared_ptr<const RecoveredSurface> recoverSurface(
-    const std::shared_ptr<const geometry::TriangleMesh>& mesh);
-
-/// "1 sphere", "1 cylinder, 2 planes", "6 planes, 12 free-form faces": the kinds recognised,
-/// with counts, for summaries.
-std::string recognisedKinds(const geometry::SurfaceRecognition& recognition);
+// recoverSurface, recognition, recognitionSeconds and recognisedKinds are declared in the query
+// header (volume/contact.hpp), for the readers above volume/.
 
 /// One query on a body prepared for it alone (RecoveredBody).
 RecoveredContact recoveredHalfspaceContact(const geometry::TriangleMesh& mesh,
