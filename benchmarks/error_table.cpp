@@ -56,8 +56,8 @@ void writeTable(const std::string& path, const std::string& shape, const int (&r
           vcontact::volume::recoveredHalfspaceContact(mesh, surfaces, X, H);
       f << shape << ',' << mesh.triangleCount() << ',' << dR << ',' << m.volume << ',' << e.volume
         << ',' << (m.volume - e.volume) / e.volume << ',' << (m.r_gyr - e.r_gyr) / e.r_gyr << ','
-        << r.representation << ',' << r.cv.volume << ',' << (r.cv.volume - e.volume) / e.volume
-        << '\n';
+        << representationName(r.representation) << ',' << r.cv.volume << ','
+        << (r.cv.volume - e.volume) / e.volume << '\n';
     }
   }
   std::cout << "wrote " << path << '\n';
@@ -80,8 +80,8 @@ void writeRefinedRow(std::ofstream& f, const std::string& shape, long triangles,
                      double poly, double exact, const vcontact::volume::RecoveredContact& r,
                      double seconds) {
   f << shape << ',' << triangles << ',' << ratio << ',' << poly << ',' << exact << ','
-    << (poly - exact) / exact << ',' << r.representation << ',' << r.cv.volume << ','
-    << (r.cv.volume - exact) / exact << ',' << r.level << ',' << r.converged << ','
+    << (poly - exact) / exact << ',' << representationName(r.representation) << ',' << r.cv.volume
+    << ',' << (r.cv.volume - exact) / exact << ',' << r.level << ',' << r.converged << ','
     << r.volume_error_bound / exact << ',' << seconds << '\n';
 }
 

@@ -92,7 +92,7 @@ void registerCase(const std::string& name, std::function<std::shared_ptr<Case>()
                                    benchmark::DoNotOptimize(r);
                                  }
                                  s.counters["V"] = r.cv.volume;
-                                 s.SetLabel(r.representation);
+                                 s.SetLabel(representationName(r.representation));
                                });
 }
 
@@ -160,7 +160,7 @@ void registerPinInBore(const std::string& name, double tilt) {
         }
         s.counters["V"] = r.cv.volume;
         s.counters["level"] = r.level;
-        s.SetLabel(r.representation);
+        s.SetLabel(representationName(r.representation));
       });
 }
 

@@ -222,7 +222,7 @@ std::optional<RecoveredContact> boreContact(const RecoveredBody& pin, const Isom
   const ContactVolume& cv = bc.cv;
   const double residual = std::max(rev->max_residual, setup->residual);
   const double method = std::isfinite(cv.relative_error) ? cv.relative_error : 0.0;
-  RecoveredContact r{cv, "revolution_in_bore", "", 0.0, {}, 0, true, bc.patches};
+  RecoveredContact r{cv, Representation::kRevolutionInBore, "", 0.0, {}, 0, true, bc.patches};
   r.volume_error_bound = cv.area * residual + cv.volume * method;
   if (!setup->tilted)  // what taking the axes and the planes as parallel costs
     r.volume_error_bound += cv.area * sec.radius * (1.0 / sec.axis_R.z() - 1.0) +

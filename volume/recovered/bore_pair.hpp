@@ -16,7 +16,7 @@
 namespace vcontact::volume {
 
 /// The contact of `pin` (pose X_WP) in the bore of `block` (pose X_WB) by slices,
-/// representation "revolution_in_bore", n out of the block into the pin; nothing when the
+/// representation kRevolutionInBore, n out of the block into the pin; nothing when the
 /// slices do not apply, with `reason` saying why: the pin is not one solid of revolution;
 /// the block's faces within reach of the pin's bounding cylinder are free-form, on another
 /// curved surface than one concave cylinder, on a plane that is not across the bore's axis

@@ -18,15 +18,6 @@ namespace {
 
 using Eigen::Isometry3d;
 
-Representation representationOf(const std::string& name) {
-  for (const Representation r :
-       {Representation::kSphere, Representation::kCylinder, Representation::kRevolution,
-        Representation::kRevolutionInBore, Representation::kRefined}) {
-    if (name == representationName(r)) return r;
-  }
-  return Representation::kShape;  // "mesh"
-}
-
 // Every region labelled with the method that produced it.
 ContactPatches labelled(ContactPatches c) {
   c.aggregate.method = Method::kRecovered;
@@ -38,7 +29,7 @@ ContactPatches labelled(ContactPatches c) {
 ContactPatches onSurfaces(const RecoveredContact& r) {
   ContactPatches c = singlePatch(r.cv);
   if (r.cv.inContact() && !r.patches.empty()) c.patches = r.patches;
-  c.surface.representation = representationOf(r.representation);
+  c.surface.representation = r.representation;
   c.surface.reason = r.reason;
   c.surface.volume_error_bound = r.volume_error_bound;
   c.surface.parts = r.parts;
@@ -67,12 +58,12 @@ ContactPatches onPlane(const geometry::Shape& m, const Isometry3d& X_WM, const g
   std::string reason;
   if (std::optional<RecoveredContact> r = body.closedFormContact(X_WM, X_WH, reason))
     return onSurfaces(*r);
-  ContactPatches clip = halfspaceClipContact(m, X_WM, h, X_WH);
   if (options.refine) {  // refined where curved faces reach, else the clip with its own bound
     const RecoveredContact r = body.halfspaceContact(X_WM, X_WH);
-    if (r.representation != "mesh") return onSurfaces(r);
-    return onPolyhedra(std::move(clip), r.reason, r.volume_error_bound);
+    if (r.representation != Representation::kShape) return onSurfaces(r);
+    return onPolyhedra(halfspaceClipContact(m, X_WM, h, X_WH), r.reason, r.volume_error_bound);
   }
+  ContactPatches clip = halfspaceClipContact(m, X_WM, h, X_WH);
   // the area times the largest chord gap of the body's faces: how far outside them the true
   // surface may lie
   const double bound = clip.aggregate.area * body.margin();
@@ -96,7 +87,7 @@ ContactPatches meshInMesh(const geometry::Shape& a, const Isometry3d& X_WA,
     RefinementOptions refinement;
     refinement.exact_depth = deepest;
     RecoveredContact r = refinedMeshMeshContact(bodyA, X_WA, bodyB, X_WB, refinement);
-    if (r.representation != "mesh") {
+    if (r.representation != Representation::kShape) {
       r.reason = r.reason.empty() ? reason : r.reason + "; " + reason;
       return onSurfaces(r);
     }

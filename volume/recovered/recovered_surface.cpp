@@ -22,7 +22,7 @@ using geometry::RecognisedSurface;
 using geometry::SurfaceKind;
 using geometry::TriangleMesh;
 
-RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, double max_residual) {
+RecoveredContact fromClosedForm(ContactVolume cv, Representation kind, double max_residual) {
   RecoveredContact r{cv, kind, "", 0.0, {}, 0, true, {}};
   const double method_error = std::isfinite(cv.relative_error) ? cv.relative_error : 1e-12;
   r.volume_error_bound = cv.area * max_residual + cv.volume * method_error;
@@ -31,8 +31,14 @@ RecoveredContact fromClosedForm(ContactVolume cv, const char* kind, double max_r
 
 RecoveredContact onMesh(const TriangleMesh& mesh, const Eigen::Isometry3d& X_WM,
                         const Eigen::Isometry3d& X_WH, std::string reason, double gap) {
-  RecoveredContact r{
-      meshHalfspaceContact(mesh, X_WM, X_WH), "mesh", std::move(reason), 0.0, {}, 0, true, {}};
+  RecoveredContact r{meshHalfspaceContact(mesh, X_WM, X_WH),
+                     Representation::kShape,
+                     std::move(reason),
+                     0.0,
+                     {},
+                     0,
+                     true,
+                     {}};
   r.volume_error_bound = r.cv.area * gap;
   return r;
 }
@@ -99,11 +105,13 @@ RecoveredContact RecoveredBody::onClosedForm(const ClosedForm& form, const Eigen
                                              const Eigen::Isometry3d& X_WH) {
   if (const RecognisedSurface* s = form.sphere) {
     const Eigen::Isometry3d X_WS = X_WM * Eigen::Translation3d(s->point);
-    return fromClosedForm(sphereHalfspace(s->radius, X_WS, X_WH), "sphere", s->max_residual);
+    return fromClosedForm(sphereHalfspace(s->radius, X_WS, X_WH), Representation::kSphere,
+                          s->max_residual);
   }
   const RevolutionBody& b = form.revolution;
   return fromClosedForm(revolutionHalfspace(b.profile, X_WM * b.X_MR, X_WH),
-                        b.capped_cylinder ? "cylinder" : "revolution", b.max_residual);
+                        b.capped_cylinder ? Representation::kCylinder : Representation::kRevolution,
+                        b.max_residual);
 }
 
 std::optional<RecoveredContact> RecoveredBody::closedFormContact(const Eigen::Isometry3d& X_WM,

@@ -28,15 +28,15 @@ namespace vcontact::volume {
 
 struct RecoveredContact {
   ContactVolume cv;
-  /// What the contact was computed on: "sphere", "cylinder" (a cylinder closed by flat ends)
-  /// or "revolution" (cylinders, cones, spheres and tori on one axis closed by planes across
-  /// it: volume/recovered/revolution_body.hpp), by closed-form slices; "revolution_in_bore" (two
-  /// meshes, a solid of revolution in a cylindrical bore: volume/recovered/bore_pair.hpp, by
-  /// slices); "refined" (the polyhedron refined
-  /// towards its recognised surfaces around the patch until V converged, surface_refinement.hpp),
-  /// or "mesh" (the polyhedron).
-  std::string representation;
-  /// Why no closed form applied, for "mesh" and "refined"; empty otherwise.
+  /// What the contact was computed on: a sphere or a cylinder closed by flat ends (kSphere,
+  /// kCylinder) or a solid of revolution (kRevolution: cylinders, cones, spheres and tori on one
+  /// axis closed by planes across it, volume/recovered/revolution_body.hpp), by closed-form
+  /// slices; a solid of revolution in a cylindrical bore of the other mesh (kRevolutionInBore,
+  /// volume/recovered/bore_pair.hpp, by slices); the polyhedron refined towards its recognised
+  /// surfaces around the patch until V converged (kRefined, surface_refinement.hpp), or the
+  /// polyhedron itself (kShape, "mesh").
+  Representation representation = Representation::kShape;
+  /// Why no closed form applied, for the polyhedron and a refinement; empty otherwise.
   std::string reason;
   /// A bound on |V − V_true|, m³: for a recovered surface the contact area times the largest
   /// distance of the surface's vertices to it (the fit residual) plus the closed form's own
@@ -45,13 +45,13 @@ struct RecoveredContact {
   /// reach the plane (how far the true surface may lie outside the faces).
   double volume_error_bound = 0.0;
   /// What the faces that can reach the partner were computed on, per body and surface: for
-  /// "refined", one entry per recognised surface or the free-form faces (PatchPart).
+  /// kRefined, one entry per recognised surface or the free-form faces (PatchPart).
   std::vector<PatchPart> parts;
-  /// "refined": the refinement level k of the finest evaluation, and whether the error estimate
+  /// kRefined: the refinement level k of the finest evaluation, and whether the error estimate
   /// met the tolerance asked for (false: the level cap was reached first).
   int level = 0;
   bool converged = true;
-  /// The connected regions, where the representation splits them ("revolution_in_bore": the
+  /// The connected regions, where the representation splits them (kRevolutionInBore: the
   /// runs of the pin's axis, recovered/pin_in_bore.hpp); empty: the contact is one region, cv.
   std::vector<ContactVolume> patches;
 };

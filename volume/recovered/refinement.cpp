@@ -128,7 +128,7 @@ Converged converge(const std::function<ContactVolume(int)>& eval, double gap, do
 }
 
 RecoveredContact fromConverged(const Converged& c, double residual, std::vector<PatchPart> parts) {
-  RecoveredContact r{c.cv, "refined", "", 0.0, {}, 0, true, {}};
+  RecoveredContact r{c.cv, Representation::kRefined, "", 0.0, {}, 0, true, {}};
   r.parts = std::move(parts);
   r.level = c.level;
   r.converged = c.converged;
@@ -236,12 +236,13 @@ RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Iso
   const auto eval = [&](int k) { return evalAt(k, false); };
   if (za.curved + zb.curved == 0) {
     RecoveredContact r{evalAt(1, options.exact_depth),
-                       "mesh",
+                       Representation::kShape,
                        "no curved recognised surface can reach the other body",
                        0.0,
                        {},
                        1,
-                       true};
+                       true,
+                       {}};
     r.parts = std::move(parts);
     const bool freeForm = std::any_of(r.parts.begin(), r.parts.end(),
                                       [](const PatchPart& p) { return p.surface == "free-form"; });

@@ -42,7 +42,7 @@ struct RefinementOptions {
 };
 
 /// The contact of `body` (pose X_WM) on the half-space (pose X_WH, solid z_H ≤ 0) with the
-/// faces in `zone` (RecoveredBody::reachingFaces) refined; representation "refined".
+/// faces in `zone` (RecoveredBody::reachingFaces) refined; representation kRefined.
 RecoveredContact refinedHalfspaceContact(const RecoveredBody& body, const std::vector<int>& zone,
                                          const Eigen::Isometry3d& X_WM,
                                          const Eigen::Isometry3d& X_WH,
@@ -58,8 +58,8 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
 
 /// Two meshes on their recovered surfaces by refinement alone: both bodies' faces within
 /// reach of the other refined, the exact `fast` method (fast/surface_integration.hpp) on the two
-/// refinements. representation "refined" when a curved recognised surface of either body can reach
-/// the other, else "mesh" (the polyhedra, exact for planes; free-form faces stay polyhedral).
+/// refinements. representation kRefined when a curved recognised surface of either body can reach
+/// the other, else kShape (the polyhedra, exact for planes; free-form faces stay polyhedral).
 /// `parts` names the body ("A", "B") of each part.
 /// @pre both meshes as meshMeshContact requires
 RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
@@ -68,7 +68,7 @@ RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Iso
 
 /// Two meshes on their recovered surfaces: a pin in a bore by slices when one body is a
 /// solid of revolution in a cylindrical bore of the other parallel to it
-/// (volume/recovered/bore_pair.hpp, representation "revolution_in_bore", tried with A as the pin,
+/// (volume/recovered/bore_pair.hpp, representation kRevolutionInBore, tried with A as the pin,
 /// then B), else refinedMeshMeshContact, whose `reason` then says why the slices did not apply.
 /// @pre both meshes as meshMeshContact requires
 RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,

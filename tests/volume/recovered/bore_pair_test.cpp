@@ -348,7 +348,7 @@ TEST(RecoveredBore, PinInTheBundledBlockIsTheDiscOutsideTheBoreTimesTheBlock) {
     const double e = kBore - kR + ratio * kR, expected = kBlock * pinOutsideBore(kR, kBore, e);
     const RecoveredContact got =
         recoveredMeshMeshContact(k.a, pressed(ratio), k.b, Isometry3d::Identity());
-    ASSERT_EQ(got.representation, "revolution_in_bore") << got.reason;
+    ASSERT_EQ(got.representation, Representation::kRevolutionInBore) << got.reason;
     EXPECT_NEAR(got.cv.volume, expected, got.volume_error_bound) << ratio;
     EXPECT_NEAR(got.cv.volume, expected, 1e-3 * expected) << ratio;
     EXPECT_LT(got.volume_error_bound, 5e-3 * expected);  // a bound that says something
@@ -374,7 +374,7 @@ TEST(RecoveredBore, ChamferCutByTheBlockFaceMatchesSimpson) {
   const double expected = chamferedPinInBore(kR, kLength, kChamfer, kBore, e, -kBlock - z0, -z0);
   const RecoveredContact got =
       recoveredMeshMeshContact(k.a, pressed(ratio, z0), k.b, Isometry3d::Identity());
-  ASSERT_EQ(got.representation, "revolution_in_bore") << got.reason;
+  ASSERT_EQ(got.representation, Representation::kRevolutionInBore) << got.reason;
   // as above (1.5·ΔR/d), and the block's top plane recognised within its vertices' rounding
   EXPECT_NEAR(got.cv.volume, expected, got.volume_error_bound);
   EXPECT_NEAR(got.cv.volume, expected, 1e-4 * expected);
@@ -385,13 +385,13 @@ TEST(RecoveredBore, RigidMotionAndSwapChangeNothingButTheFrame) {
   const PinAndBlock& k = bodies();
   const Isometry3d X_BA = pressed(1e-3);
   const RecoveredContact first = recoveredMeshMeshContact(k.a, X_BA, k.b, Isometry3d::Identity());
-  ASSERT_EQ(first.representation, "revolution_in_bore") << first.reason;
+  ASSERT_EQ(first.representation, Representation::kRevolutionInBore) << first.reason;
   for (unsigned seed : {3u, 17u, 29u}) {
     const Isometry3d X_WB = test::randomPose(seed);
     for (bool swap : {false, true}) {
       const RecoveredContact got = swap ? recoveredMeshMeshContact(k.b, X_WB, k.a, X_WB * X_BA)
                                         : recoveredMeshMeshContact(k.a, X_WB * X_BA, k.b, X_WB);
-      ASSERT_EQ(got.representation, "revolution_in_bore") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRevolutionInBore) << got.reason;
       // the profile and the bore are read in the bodies' frames; the rigid motion changes the
       // rounding of the pose products only (1e-16 m on a 5 µm overlap: 1e-10 of V)
       EXPECT_NEAR(got.cv.volume, first.cv.volume, 1e-9 * first.cv.volume) << seed;
@@ -417,9 +417,9 @@ TEST(RecoveredBore, TiltedPinMatchesTheRefinement) {
   // the pin's middle (ζ = 15 mm) at the block's middle, e off the bore's axis along x
   X_BA.translation() = Vector3d(e, 0.0, -0.01) - X_BA.linear() * Vector3d(0, 0, 0.015);
   const RecoveredContact got = recoveredMeshMeshContact(k.a, X_BA, k.b, Isometry3d::Identity());
-  ASSERT_EQ(got.representation, "revolution_in_bore") << got.reason;
+  ASSERT_EQ(got.representation, Representation::kRevolutionInBore) << got.reason;
   const RecoveredContact ref = refinedMeshMeshContact(k.a, X_BA, k.b, Isometry3d::Identity());
-  ASSERT_EQ(ref.representation, "refined");
+  ASSERT_EQ(ref.representation, Representation::kRefined);
   EXPECT_NEAR(got.cv.volume, ref.cv.volume, ref.volume_error_bound + got.volume_error_bound);
   EXPECT_NEAR(got.cv.volume, ref.cv.volume, 2e-3 * ref.cv.volume);
   EXPECT_NEAR((got.cv.p_WC - ref.cv.p_WC).norm(), 0.0, 1e-3 * kR);
@@ -430,7 +430,7 @@ TEST(RecoveredBore, TiltedPinMatchesTheRefinement) {
   // under a rigid motion of both, and swapped
   const Isometry3d X_WB = test::randomPose(5);
   const RecoveredContact moved = recoveredMeshMeshContact(k.b, X_WB, k.a, X_WB * X_BA);
-  ASSERT_EQ(moved.representation, "revolution_in_bore") << moved.reason;
+  ASSERT_EQ(moved.representation, Representation::kRevolutionInBore) << moved.reason;
   // the polar breakpoints are found by bisection to 1e-15 of their ranges, the quadratures
   // asked 1e-10: the moved query agrees to far below the refinement's 0.1 %
   EXPECT_NEAR(moved.cv.volume, got.cv.volume, 1e-8 * got.cv.volume);
@@ -443,7 +443,7 @@ TEST(RecoveredBore, PinInItsClearanceTouchesNothing) {
   Isometry3d X_BA = Isometry3d::Identity();
   X_BA.translation() = Vector3d(0.00005, 0.0, -0.025);  // 50 µm off the axis, 100 µm clearance
   const RecoveredContact got = recoveredMeshMeshContact(k.a, X_BA, k.b, Isometry3d::Identity());
-  EXPECT_EQ(got.representation, "revolution_in_bore") << got.reason;
+  EXPECT_EQ(got.representation, Representation::kRevolutionInBore) << got.reason;
   EXPECT_EQ(got.cv.volume, 0.0);
   EXPECT_FALSE(got.cv.inContact());
 }
@@ -458,7 +458,7 @@ TEST(RecoveredBore, OtherPairsStayRefined) {
                                  const RecoveredBody& b, const std::string& why) {
     const RecoveredContact got =
         recoveredMeshMeshContact(a, X_WA, b, Isometry3d::Identity(), quick);
-    EXPECT_EQ(got.representation, "refined") << why;
+    EXPECT_EQ(got.representation, Representation::kRefined) << why;
     EXPECT_NE(got.reason.find(why), std::string::npos) << got.reason;
   };
   // a sphere is not a solid of revolution here (its closed form is the sphere's own)

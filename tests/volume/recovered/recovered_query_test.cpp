@@ -71,7 +71,7 @@ TEST(RecoveredQuery, TiltedPegInItsBoreIsTwoPatchesOnOppositeWalls) {
   const RecoveredContact ref = refinedMeshMeshContact(
       *recoverSurface(std::get<geometry::Mesh>(peg).mesh)->body, X_WA,
       *recoverSurface(std::get<geometry::Mesh>(block).mesh)->body, Isometry3d::Identity());
-  ASSERT_EQ(ref.representation, "refined");
+  ASSERT_EQ(ref.representation, Representation::kRefined);
   EXPECT_NEAR(c.aggregate.volume, ref.cv.volume,
               ref.volume_error_bound + c.surface.volume_error_bound + 1e-3 * ref.cv.volume);
   EXPECT_NEAR(c.aggregate.volume, ref.cv.volume, 1e-3 * ref.cv.volume);

@@ -46,7 +46,7 @@ TEST(RecoveredSurface, SpherePressedIntoAPlaneIsTheSphereCap) {
         Eigen::Isometry3d X_HM = test::randomPose(seed + 100);  // any orientation of the ball
         X_HM.translation() = Eigen::Vector3d(0.002, -0.001, R - d);
         const RecoveredContact r = recoveredHalfspaceContact(m, rec, X_WH * X_HM, X_WH);
-        ASSERT_EQ(r.representation, "sphere") << r.reason;
+        ASSERT_EQ(r.representation, Representation::kSphere) << r.reason;
         EXPECT_NEAR(r.cv.volume, sphereCap(R, d), kRelative * sphereCap(R, d))
             << segments << " segments, d/R " << ratio;
         // the cap's centroid lies below the centre by 3(2R − d)²/(4(3R − d))
@@ -85,7 +85,7 @@ TEST(RecoveredSurface, SideLyingCylinderIsTheCircularSegment) {
       X_HM.translation() = Eigen::Vector3d(0.001, 0.0, R - d);
       const Eigen::Isometry3d X_WH = test::randomPose(9);
       const RecoveredContact r = recoveredHalfspaceContact(m, rec, X_WH * X_HM, X_WH);
-      ASSERT_EQ(r.representation, "cylinder") << r.reason;
+      ASSERT_EQ(r.representation, Representation::kCylinder) << r.reason;
       // the analytic cylinder is adaptive quadrature to 1e-9; the recovered radius adds 1e-12·R
       EXPECT_NEAR(r.cv.volume, cylinderSegment(R, L, d), kRelative * cylinderSegment(R, L, d))
           << segments << " segments, d/R " << ratio;
@@ -99,7 +99,7 @@ TEST(RecoveredSurface, BoxStaysPolyhedralAndExact) {
   X.translation() = Eigen::Vector3d(0, 0, 0.004);
   const RecoveredContact r =
       recoveredHalfspaceContact(m, recogniseSurfaces(m), X, Eigen::Isometry3d::Identity());
-  EXPECT_EQ(r.representation, "mesh");
+  EXPECT_EQ(r.representation, Representation::kShape);
   EXPECT_EQ(r.cv.volume, meshHalfspaceContact(m, X, Eigen::Isometry3d::Identity()).volume);
   EXPECT_EQ(r.volume_error_bound, 0.0);
 }
@@ -110,7 +110,8 @@ TEST(RecoveredSurface, TorusHasNoClosedFormIsRefinedAndSaysSo) {
   X.translation().z() = 0.0099;  // lying flat, pressed 0.1 mm
   const RecoveredContact r =
       recoveredHalfspaceContact(m, recogniseSurfaces(m), X, Eigen::Isometry3d::Identity());
-  EXPECT_EQ(r.representation, "refined");  // recovered/refinement_test.cpp checks its V
+  EXPECT_EQ(r.representation,
+            Representation::kRefined);  // recovered/refinement_test.cpp checks its V
   EXPECT_NE(r.reason.find("torus"), std::string::npos) << r.reason;
   EXPECT_GT(r.volume_error_bound, 0.0);
 }

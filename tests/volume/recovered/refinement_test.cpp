@@ -89,7 +89,7 @@ TEST(RecoveredRefinement, ChamferedPinOnItsSideConvergesToTheTrueSolid) {
       X_HM.translation() = Eigen::Vector3d(0.001, 0.002, r - d);
       ASSERT_NEAR((X_HM.linear() * Eigen::Vector3d(r, 0, 0)).z(), -r, 1e-15);
       const RecoveredContact got = refined(body, X_WH * X_HM, X_WH);
-      ASSERT_EQ(got.representation, "refined") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRefined) << got.reason;
       EXPECT_TRUE(got.converged);
       EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected) << ratio << ' ' << seed;
       // the error estimate is of the size of the error: no smaller than a tenth of it
@@ -125,7 +125,7 @@ TEST(RecoveredRefinement, ConeFrustumOnAGeneratorMatchesAFineTessellation) {
   const Eigen::Isometry3d X_WH = test::randomPose(11);
   const double expected = meshHalfspaceContact(fine, X_WH * X_HM, X_WH).volume;
   const RecoveredContact got = refined(RecoveredBody(coarse, rec), X_WH * X_HM, X_WH);
-  ASSERT_EQ(got.representation, "refined") << got.reason;
+  ASSERT_EQ(got.representation, Representation::kRefined) << got.reason;
   EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected);
 }
 
@@ -139,7 +139,7 @@ TEST(RecoveredRefinement, TorusLyingFlatIsPappusVolume) {
   X.translation().z() = r - d;
   const RecoveredContact got =
       RecoveredBody(m, rec).halfspaceContact(X, Eigen::Isometry3d::Identity());
-  ASSERT_EQ(got.representation, "refined") << got.reason;
+  ASSERT_EQ(got.representation, Representation::kRefined) << got.reason;
   const double expected = 2.0 * M_PI * R * segment(r, d);
   EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected);
   EXPECT_GT(got.level, 1);
@@ -155,7 +155,7 @@ TEST(RecoveredRefinement, PinOnItsFlatEndIsTheRoundDisk) {
   X.translation().z() = -d;
   const RecoveredContact got =
       refined(RecoveredBody(pin, recogniseSurfaces(pin)), X, Eigen::Isometry3d::Identity());
-  ASSERT_EQ(got.representation, "refined");
+  ASSERT_EQ(got.representation, Representation::kRefined);
   const double a = r - c;
   const double expected = M_PI * (std::pow(a + d, 3) - std::pow(a, 3)) / 3.0;
   EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected);
@@ -172,7 +172,7 @@ TEST(RecoveredRefinement, PlanesOnlyStayExactlyTheClip) {
   const Eigen::Isometry3d X_WH = test::randomPose(22);
   const RecoveredContact got =
       RecoveredBody(box, recogniseSurfaces(box)).halfspaceContact(X_WH * X, X_WH);
-  EXPECT_EQ(got.representation, "mesh");
+  EXPECT_EQ(got.representation, Representation::kShape);
   const ContactVolume clip = meshHalfspaceContact(box, X_WH * X, X_WH);
   ASSERT_TRUE(clip.inContact());
   EXPECT_EQ(got.cv.volume, clip.volume);
@@ -204,7 +204,7 @@ TEST(RecoveredRefinement, PinPressedIntoABoreIsTheDiskOutsideTheBore) {
     for (unsigned seed : seeds) {
       const Eigen::Isometry3d X_WB = seed ? test::randomPose(seed) : Eigen::Isometry3d::Identity();
       const RecoveredContact got = refinedMeshMeshContact(a, X_WB * X_BA, b, X_WB);
-      ASSERT_EQ(got.representation, "refined") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRefined) << got.reason;
       EXPECT_NEAR(got.cv.volume, expected, kAccepted * expected) << ratio;
       EXPECT_TRUE(got.converged);
       int refined = 0;
@@ -256,7 +256,7 @@ TEST(RecoveredRefinement, TheDepthOfTwoRefinedSpheresIsTheirOverlapWhenAsked) {
   asked.exact_depth = true;
   const RecoveredContact deep =
       refinedMeshMeshContact(a, X_WA, b, Eigen::Isometry3d::Identity(), asked);
-  ASSERT_EQ(plain.representation, "refined") << plain.reason;
+  ASSERT_EQ(plain.representation, Representation::kRefined) << plain.reason;
   EXPECT_TRUE(std::isnan(plain.cv.depth));
   EXPECT_NEAR(deep.cv.depth, 2 * r - c, 1e-3 * (2 * r - c));
   EXPECT_EQ(deep.cv.volume, plain.cv.volume);

@@ -94,7 +94,7 @@ TEST(RecoveredRevolution, ChamferedPinOnItsSideAgainstSimpson) {
     for (unsigned seed : {0u, 7u}) {
       const Isometry3d X_WH = seed ? test::randomPose(seed) : Isometry3d::Identity();
       const RecoveredContact got = body.halfspaceContact(X_WH * onItsSide(r - d), X_WH);
-      ASSERT_EQ(got.representation, "revolution") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRevolution) << got.reason;
       EXPECT_NEAR(got.cv.volume, expected, kRelative * expected) << ratio << ' ' << seed;
       EXPECT_LE(std::abs(got.cv.volume - expected), got.volume_error_bound + 1e-9 * expected);
       const double poly = meshHalfspaceContact(pin, X_WH * onItsSide(r - d), X_WH).volume;
@@ -116,7 +116,7 @@ TEST(RecoveredRevolution, TenMillimetrePinOnItsSideAgainstSimpson) {
     for (unsigned seed : {0u, 11u}) {
       const Isometry3d X_WH = seed ? test::randomPose(seed) : Isometry3d::Identity();
       const RecoveredContact got = body.halfspaceContact(X_WH * onItsSide(r - d), X_WH);
-      ASSERT_EQ(got.representation, "revolution") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRevolution) << got.reason;
       EXPECT_NEAR(got.cv.volume, expected, kRelative * expected) << ratio << ' ' << seed;
     }
   }
@@ -142,10 +142,10 @@ TEST(RecoveredRevolution, ChamferedPinTiltedAgainstTheRefinement) {
     X.translation().z() = -lowest - 2e-5;
     const Isometry3d X_WH = test::randomPose(31);
     const RecoveredContact got = body.halfspaceContact(X_WH * X, X_WH);
-    ASSERT_EQ(got.representation, "revolution") << got.reason;
+    ASSERT_EQ(got.representation, Representation::kRevolution) << got.reason;
     const RecoveredContact ref =
         refinedHalfspaceContact(body, body.reachingFaces(X), X_WH * X, X_WH, fine);
-    ASSERT_EQ(ref.representation, "refined");
+    ASSERT_EQ(ref.representation, Representation::kRefined);
     EXPECT_NEAR(got.cv.volume, ref.cv.volume, 1e-4 * ref.cv.volume) << tilt;
     EXPECT_LT((got.cv.p_WC - ref.cv.p_WC).norm(), 1e-3 * std::cbrt(ref.cv.volume)) << tilt;
   }
@@ -163,7 +163,7 @@ TEST(RecoveredRevolution, PinOnItsFlatEndIsTheRoundDisk) {
       Isometry3d X = Isometry3d::Identity();
       X.translation().z() = -d;
       const RecoveredContact got = body.halfspaceContact(X_WH * X, X_WH);
-      ASSERT_EQ(got.representation, "revolution") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRevolution) << got.reason;
       const double expected = M_PI * (std::pow(a + d, 3) - std::pow(a, 3)) / 3.0;
       EXPECT_NEAR(got.cv.volume, expected, kRelative * expected) << d;
       EXPECT_NEAR(got.cv.area, M_PI * (a + d) * (a + d), kRelative * got.cv.area) << d;
@@ -183,7 +183,7 @@ TEST(RecoveredRevolution, FrustumOnItsSmallEndIsTheConeFrustum) {
       Isometry3d X = Isometry3d::Identity();
       X.translation().z() = -d;
       const RecoveredContact got = body.halfspaceContact(X_WH * X, X_WH);
-      ASSERT_EQ(got.representation, "revolution") << got.reason;
+      ASSERT_EQ(got.representation, Representation::kRevolution) << got.reason;
       EXPECT_NEAR(got.cv.volume, expected, kRelative * expected) << d;
     }
   }
@@ -200,7 +200,8 @@ TEST(RecoveredRevolution, CapsuleOnItsSideAndOnItsEnd) {
       const Isometry3d X_WH = seed ? test::randomPose(seed) : Isometry3d::Identity();
       // on its side: a vertex row down, the two hemispheres make one sphere's cap
       const RecoveredContact side = body.halfspaceContact(X_WH * onItsSide(R - d), X_WH);
-      ASSERT_EQ(side.representation, "revolution") << side.reason << " / " << recognisedKinds(rec);
+      ASSERT_EQ(side.representation, Representation::kRevolution)
+          << side.reason << " / " << recognisedKinds(rec);
       const double expectedSide = L * segment(R, d) + sphereCap(R, d);
       EXPECT_NEAR(side.cv.volume, expectedSide, kRelative * expectedSide) << ratio;
       // on its end: the bottom hemisphere alone reaches the plane, the sphere's closed form
@@ -243,7 +244,8 @@ TEST(RecoveredRevolution, FilletedPinOnItsSideAgainstSimpson) {
     for (unsigned seed : {0u, 29u}) {
       const Isometry3d X_WH = seed ? test::randomPose(seed) : Isometry3d::Identity();
       const RecoveredContact got = body.halfspaceContact(X_WH * onItsSide(R - d), X_WH);
-      ASSERT_EQ(got.representation, "revolution") << got.reason << " / " << recognisedKinds(rec);
+      ASSERT_EQ(got.representation, Representation::kRevolution)
+          << got.reason << " / " << recognisedKinds(rec);
       EXPECT_NEAR(got.cv.volume, expected, kRelative * expected) << ratio << ' ' << seed;
     }
   }
