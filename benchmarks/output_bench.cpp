@@ -181,7 +181,7 @@ void registerPair(const std::string& name, const std::string& label, const Varia
   // its first-touched slots and the final wait weigh less than in the 0.3 s run.
   registerPair("ball_drop", "discrete_1ms_5s", {Integrator::kDiscrete, 1e-3, 5.0});
   // The mesh scenarios: their output rows are few beside their queries, but each output
-  // time asks the pairs once more for the exact depth (Simulator::fillDepths).
+  // time asks the pairs once more for the exact depth (MotionEquations::snapshot).
   for (const auto& [label, v] : integrators) registerPair("cad_tray_drop", label, v);
   for (const auto& [label, v] : integrators) {
     Variant first = v;

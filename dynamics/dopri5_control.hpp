@@ -1,6 +1,6 @@
 #pragma once
-// The error control of the Dormand–Prince runs, shared by Simulator::runDopri5 and the resolved
-// intervals of the discrete stepper (Simulator::resolveInterval): odeint's controlled
+// The error control of the Dormand–Prince runs, shared by Dopri5Stepper and the resolved
+// intervals of the discrete stepper (DiscreteStepper::resolveInterval): odeint's controlled
 // Dormand–Prince stepper and the one rule added to it. Included by the simulator's sources only
 // (odeint is a heavy header).
 

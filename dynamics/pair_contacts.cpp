@@ -94,12 +94,7 @@ volume::ContactPatches PairContacts::contact(std::size_t k, const std::vector<Bo
 
 bool PairContacts::lacksDepth(std::size_t k) const {
   const volume::ContactPatches& c = latest_[k];
-  const auto missing = [](const volume::ContactVolume& cv) {
-    return cv.inContact() && std::isnan(cv.depth);
-  };
-  bool any = missing(c.aggregate);
-  for (const volume::ContactVolume& p : c.patches) any = any || missing(p);
-  return any;
+  return depthLeftOut(c.aggregate) || std::any_of(c.patches.begin(), c.patches.end(), depthLeftOut);
 }
 
 }  // namespace vcontact::dynamics

@@ -1,5 +1,6 @@
 #pragma once
-// The contact of every pair of a scenario at the bodies' poses, for the Simulator: the one
+// The contact of every pair of a scenario at the bodies' poses, for the equations of motion
+// (motion_equations.hpp): the one
 // caller of the contact query in a run (volume/contact.hpp). It owns what the queries need
 // between right-hand sides: the broad phase that screens the pairs (FCL's dynamic AABB tree
 // over the bodies' placed bounds, geometry/broad_phase.hpp: a pair whose boxes do not overlap
@@ -14,6 +15,7 @@
 
 #include <Eigen/Geometry>
 #include <atomic>
+#include <cmath>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -25,6 +27,12 @@
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
+
+/// Whether a region is in contact with its exact depth left out (NaN: the query skipped the
+/// depth pass, QueryOptions::depth).
+inline bool depthLeftOut(const volume::ContactVolume& cv) {
+  return cv.inContact() && std::isnan(cv.depth);
+}
 
 class PairContacts {
  public:

@@ -322,7 +322,7 @@ TEST_P(Simulation, InvariantUnderRigidMotion) {
   EXPECT_LT((X.linear() * ka.w_WB - kb.w_WB).norm(), 1e-5);
 }
 
-// --- Broad phase (Simulator::screenPairs) ---------------------------------------------------
+// --- Broad phase (PairContacts::screen) ---------------------------------------------------
 
 constexpr double kBallR = 0.005;  // m
 

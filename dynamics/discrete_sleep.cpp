@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/discrete_stepper.hpp"
 
 namespace vcontact::dynamics {
 
@@ -10,17 +10,18 @@ namespace vcontact::dynamics {
 // step is assembled from) and which pairs' boxes overlap (the latest broad phase; a pair that
 // is always queried counts as near only in contact); the bodies that fall asleep now stop with
 // zero velocity, in the state and in the kinematics the step reads.
-void Simulator::sleepBeforeStep(State& x, double t) {
+void DiscreteStepper::sleepBeforeStep(State& x, double t) {
   const std::size_t np = scenario_.pairs.size();
   sleep_contact_.resize(np);
   sleep_near_.resize(np);
   for (std::size_t k = 0; k < np; ++k) {
     sleep_contact_[k] = last_pairs_[k].cv.inContact();
-    sleep_near_[k] = sleep_contact_[k] || (contacts_->screened(k) && contacts_->queried(k));
+    sleep_near_[k] = sleep_contact_[k] || (eq_.contacts().screened(k) && eq_.contacts().queried(k));
   }
   contactBalance(sleep_balanced_);
-  for (const std::size_t i : sleep_.update(t, kin_, sleep_contact_, sleep_near_, sleep_balanced_)) {
-    std::fill_n(x.begin() + offset_[i] + 7, 6, 0.0);  // v (3), ω (3) after p (3), q (4)
+  for (const std::size_t i :
+       eq_.sleep().update(t, kin_, sleep_contact_, sleep_near_, sleep_balanced_)) {
+    std::fill_n(x.begin() + eq_.bodyOffset(i) + 7, 6, 0.0);  // v (3), ω (3) after p (3), q (4)
     kin_[i].v_WBcm.setZero();
     kin_[i].w_WB.setZero();
   }
@@ -34,7 +35,7 @@ void Simulator::sleepBeforeStep(State& x, double t) {
 // that hops about its rest on a stiff contact (docs/DISCRETE.md §5) would never balance and
 // never sleep, and the preview that mode is for keeps its speed (it may sleep within the hop's
 // g h² of its rest, as before).
-void Simulator::contactBalance(std::vector<char>& balanced) const {
+void DiscreteStepper::contactBalance(std::vector<char>& balanced) const {
   const std::size_t nb = scenario_.bodies.size();
   if (scenario_.settings.impacts == ImpactMode::kImplicit) {
     balanced.assign(nb, 1);
@@ -70,7 +71,7 @@ void Simulator::contactBalance(std::vector<char>& balanced) const {
       continue;
     }
     balanced[i] = (force[i] + b.mass * scenario_.gravity_W).norm() <= limit &&
-                  torque[i].norm() <= limit * sleep_.reach(i);
+                  torque[i].norm() <= limit * eq_.sleep().reach(i);
   }
 }
 

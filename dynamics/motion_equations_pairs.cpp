@@ -1,6 +1,6 @@
-// The contact pairs' part of Simulator: each pair's query, its patches' forces on the two
-// bodies, the discrete updates of its patches' states, and the output snapshot with the
-// pairs' depths (simulator.hpp).
+// The contact pairs' part of the equations of motion: each pair's query, its patches' forces on
+// the two bodies, the discrete updates of its patches' states, and the output snapshot with the
+// pairs' depths (motion_equations.hpp).
 
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
@@ -12,7 +12,7 @@
 #include <limits>
 #include <sstream>
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/motion_equations.hpp"
 #include "geometry/error.hpp"
 
 namespace vcontact::dynamics {
@@ -53,7 +53,7 @@ void combine(const std::vector<PatchOutput>& patches, const Eigen::Vector3d& p_c
 // Whether kin_ is kinematics(x, ·, t) for every body: the latest right-hand side was evaluated
 // at the same bits of x and at t. The readers after an accepted step (check, settle, output)
 // then take kin_ instead of converting the quaternions again.
-bool Simulator::kinematicsCurrent(const State& x, double t) const {
+bool MotionEquations::kinematicsCurrent(const State& x, double t) const {
   return shortcuts_ && t == rhs_t_ && x.size() == last_x_.size() &&
          std::memcmp(x.data(), last_x_.data(), x.size() * sizeof(double)) == 0;
 }
@@ -61,7 +61,7 @@ bool Simulator::kinematicsCurrent(const State& x, double t) const {
 // The output at (x, t) in output_, whose vectors keep their capacity from one output time to
 // the next: copying the pairs' figures costs no allocation once their sizes have settled.
 // With `depths`, the depths the force evaluation left out are filled in (fillDepths).
-const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
+const Snapshot& MotionEquations::snapshot(const State& x, double t, bool depths) {
   if (x != last_x_) {
     snapshot_dxdt_.resize(x.size());
     rhs(x, snapshot_dxdt_, t);
@@ -84,12 +84,10 @@ const Snapshot& Simulator::snapshot(const State& x, double t, bool depths) {
 // `out` at kin_: the pair asked once more with the depth pass; each patch takes the depth of
 // the patch of that answer whose centroid is nearest to its own (the same region: the pose is
 // the same, only the order of patches of equal volume could differ).
-void Simulator::fillDepths(std::size_t k, PairOutput& out) {
-  const auto missing = [](const volume::ContactVolume& cv) {
-    return cv.inContact() && std::isnan(cv.depth);
-  };
-  bool any = missing(out.cv);
-  for (const PatchOutput& p : out.patches) any = any || missing(p.cv);
+void MotionEquations::fillDepths(std::size_t k, PairOutput& out) {
+  const bool any =
+      depthLeftOut(out.cv) || std::any_of(out.patches.begin(), out.patches.end(),
+                                          [](const PatchOutput& p) { return depthLeftOut(p.cv); });
   if (!any) return;
   const volume::ContactPatches exact =
       contacts_->contact(k, kin_, sleep_.frozen(k), volume::DepthMode::kDeepest);
@@ -104,7 +102,8 @@ void Simulator::fillDepths(std::size_t k, PairOutput& out) {
 }
 
 // Wrench w on body A at p_c into force_ and torque_; body B gets the opposite.
-void Simulator::addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, const Wrench& w) {
+void MotionEquations::addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c,
+                                const Wrench& w) {
   force_[pair.a] += w.f_W;
   torque_[pair.a] += w.tau_W + (p_c - kin_[pair.a].p_WBcm).cross(w.f_W);
   force_[pair.b] -= w.f_W;
@@ -114,8 +113,8 @@ void Simulator::addWrench(const ContactPair& pair, const Eigen::Vector3d& p_c, c
 // The first effect whose wrench is not finite although its contact is (a formula without a
 // value at this state, such as the root of a negative number): named in the message of a
 // non-finite stop, with the time it was first seen, since by the stop every quantity is NaN.
-void Simulator::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
-                              const ContactResult& r) {
+void MotionEquations::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
+                                    const ContactResult& r) {
   const auto finite = [](const Wrench& w) { return w.f_W.allFinite() && w.tau_W.allFinite(); };
   if (!non_finite_effect_.empty() || finite(r.wrench)) return;
   if (!std::isfinite(cv.volume) || !cv.p_WC.allFinite() || !cv.n_W.allFinite()) return;
@@ -137,7 +136,7 @@ void Simulator::noteNonFinite(std::size_t k, const volume::ContactVolume& cv,
 // (its output, context, caches, tracker and the rates of its states in dxdt) and the query
 // counters, which are atomic; the meshes' shared trees are built under a lock
 // (volume/kernels/mesh_cache.hpp) and the queries' scratch is per thread.
-void Simulator::evaluatePairs(const State& x, State& dxdt) {
+void MotionEquations::evaluatePairs(const State& x, State& dxdt) {
   const std::size_t n = scenario_.pairs.size();
   std::size_t queries = 0;  // the pairs whose evaluation queries their contact
   if (parallel_pairs_ && !contacts_->reusing()) {
@@ -159,7 +158,7 @@ void Simulator::evaluatePairs(const State& x, State& dxdt) {
 // Pair k's wrenches onto its bodies from its latest evaluation (last_pairs_[k]), a one-slot
 // pair's at its single region, a patched pair's patch by patch; the first non-finite force of
 // the run noted on the way.
-void Simulator::applyPair(std::size_t k) {
+void MotionEquations::applyPair(std::size_t k) {
   const ContactPair& pair = scenario_.pairs[k];
   const PairOutput& out = last_pairs_[k];
   if (slots_[k] == 1) {
@@ -176,7 +175,7 @@ void Simulator::applyPair(std::size_t k) {
 // Pair k's contact and model into last_pairs_[k], its state rates into dxdt; the wrench is
 // applied by applyPair. A one-slot pair evaluates its single-region contact (the aggregate)
 // with slot 0.
-void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
+void MotionEquations::evaluatePair(std::size_t k, const State& x, State& dxdt) {
   const ContactPair& pair = scenario_.pairs[k];
   PairOutput& out = last_pairs_[k];
   const volume::ContactPatches contact = contacts_->contact(k, kin_, sleep_.frozen(k));
@@ -208,8 +207,8 @@ void Simulator::evaluatePair(std::size_t k, const State& x, State& dxdt) {
 // A pair with several slots: the model once per patch with the states of its slot
 // (PatchTracker::match), each patch's wrench applied at its own centroid; a slot without a
 // patch has zero rates.
-void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& contact,
-                                const State& x, State& dxdt) {
+void MotionEquations::evaluatePatches(std::size_t k, const volume::ContactPatches& contact,
+                                      const State& x, State& dxdt) {
   const ContactPair& pair = scenario_.pairs[k];
   PairOutput& out = last_pairs_[k];
   PatchMatch& m = matches_[k];
@@ -237,7 +236,7 @@ void Simulator::evaluatePatches(std::size_t k, const volume::ContactPatches& con
 // The pair states' discrete updates (Model::settle) at the contacts of the latest evaluation:
 // a one-slot pair at its single-region contact; with several slots, each slot at its patch
 // (none: reset), and the tracker records the patches' places (PatchTracker::update).
-bool Simulator::settlePairs(State& x, double t) {
+bool MotionEquations::settlePairs(State& x, double t) {
   bool changed = false;
   const bool current = kinematicsCurrent(x, t);
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
@@ -266,19 +265,6 @@ bool Simulator::settlePairs(State& x, double t) {
     }
   }
   return changed;
-}
-
-// The patch figures of one output: the largest count, and the counts of the pairs in contact
-// towards the mean.
-void Simulator::countPatches(const Snapshot& s, SimulationSummary& summary, long& samples,
-                             long& total) const {
-  for (const PairOutput& p : s.pairs) {
-    summary.patches_max = std::max(summary.patches_max, p.patch_count);
-    summary.patches_without_slot += p.without_slot;
-    if (p.patch_count == 0) continue;
-    ++samples;
-    total += p.patch_count;
-  }
 }
 
 }  // namespace vcontact::dynamics

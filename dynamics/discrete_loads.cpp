@@ -1,4 +1,4 @@
-// The loads and springs in the discrete stepper's system (simulator_discrete.cpp,
+// The loads and springs in the discrete stepper's system (discrete_stepper.cpp,
 // docs/DISCRETE.md §1): a drive or a spring is as stiff as a contact for a light body (the peg
 // of peg_insertion turns about its axis at h k / I = 6 per millisecond under the drive's
 // torsional damping), so their wrenches enter implicitly too, linearised by central
@@ -6,9 +6,10 @@
 //
 //   w⁺ = w0 + D (V⁺ − V) + h K V⁺      (per body pair (i, j): the wrench on i, the twist of j)
 //
-// w0 itself is already in force_ and torque_ (applyLoads); this adds the rest.
+// w0 itself is already in the equations' force and torque (MotionEquations::loadWrenches);
+// this adds the rest.
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/discrete_stepper.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -49,8 +50,8 @@ Vector6d aboutCentre(const Wrench& w, const Eigen::Vector3d& p, const BodyKinema
 
 // Load or spring j (loads first, then springs) at kinematics kin: the wrenches about the
 // centres of mass of its bodies (one for a load, a and b for a spring).
-void Simulator::loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
-                          Vector6d out[2]) const {
+void DiscreteStepper::loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin, double t,
+                                Vector6d out[2]) const {
   if (j < scenario_.loads.size()) {
     const ExternalLoad& l = scenario_.loads[j];
     const LoadOutput o = loadWrench(l, kin[l.body], t);
@@ -64,7 +65,7 @@ void Simulator::loadTerms(std::size_t j, const std::vector<BodyKinematics>& kin,
 }
 
 // The implicit part of every load and spring on the free bodies into the step's system.
-void Simulator::assembleLoads(double t, double h) {
+void DiscreteStepper::assembleLoads(double t, double h) {
   const std::size_t loads = scenario_.loads.size(), total = loads + scenario_.springs.size();
   for (std::size_t j = 0; j < total; ++j) {
     std::size_t body[2] = {0, 0};

@@ -1,4 +1,4 @@
-// The discrete stepper of Simulator (Integrator::kDiscrete, docs/DISCRETE.md §3): a fixed
+// The discrete stepper (Integrator::kDiscrete, docs/DISCRETE.md §3): a fixed
 // step h, one contact query per step, the contact wrenches linearised about the step's start
 // (discrete_jacobian.hpp) and solved implicitly for the free bodies' new twists:
 //
@@ -8,17 +8,19 @@
 // a dense solve of 6 × (free bodies) unknowns. The pair states are advanced with the step:
 // the bristle deflections implicitly (PatchStep), the others (dwell) by explicit Euler.
 
+#include "dynamics/discrete_stepper.hpp"
+
 #include <Eigen/LU>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
-#include "dynamics/simulator.hpp"
 #include "geometry/error.hpp"
 
 namespace vcontact::dynamics {
 namespace {
 
-constexpr int kBodyStates = 13;  // as simulator.cpp: p (3), q (w, x, y, z), v (3), ω (3)
+constexpr int kBodyStates = MotionEquations::kBodyStates;
 
 // G of a body at lever arm r = p_c − p_cm: the velocity at p_c and ω from the body's twist
 // (v_cm, ω), v(p_c) = v_cm + ω × r; Gᵀ moves a wrench at p_c to the centre of mass.
@@ -45,8 +47,23 @@ Eigen::Quaterniond rotated(const Eigen::Quaterniond& q, const Eigen::Vector3d& w
 
 }  // namespace
 
-void Simulator::runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on_output,
-                            const ProgressFn& on_progress, SimulationSummary& summary) {
+DiscreteStepper::DiscreteStepper(MotionEquations& equations, ImpactTracker& impacts)
+    : eq_(equations),
+      scenario_(equations.scenario()),
+      impacts_(impacts),
+      dopri5_(equations, impacts),
+      kin_(equations.bodies()),
+      last_pairs_(equations.pairs()) {
+  const double h = scenario_.settings.step;
+  if (!(h >= kMinDiscreteStep && h <= kMaxDiscreteStep)) {
+    std::ostringstream s;
+    s << "step " << h << " s is outside [" << kMinDiscreteStep << ", " << kMaxDiscreteStep << "] s";
+    throw InputError("settings", s.str());
+  }
+}
+
+void DiscreteStepper::run(State& x, State& dxdt, double& t, const OutputFn& on_output,
+                          const ProgressFn& on_progress, SimulationSummary& summary) {
   const SimulationSettings& set = scenario_.settings;
   for (const ContactPair& p : scenario_.pairs) {
     if (p.friction == FrictionMode::kDistributed) {
@@ -62,11 +79,11 @@ void Simulator::runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on
     const double t_target = std::min(static_cast<double>(next_output) * interval, set.duration);
     const bool lands = t_target - t <= set.step * (1.0 + kOutputTimeSlack);
     const double h = lands ? t_target - t : set.step;
-    if (sleep_.enabled()) sleepBeforeStep(x, t);
-    discreteInterval(x, dxdt, t, h, lands ? t_target : t + h, lands, summary);
+    if (eq_.sleep().enabled()) sleepBeforeStep(x, t);
+    advance(x, dxdt, t, h, lands ? t_target : t + h, lands, summary);
     ++summary.steps;
     if (lands) {
-      on_output(snapshot(x, t, output_depths_));
+      on_output(eq_.snapshot(x, t, eq_.outputDepths()));
       ++next_output;
     }
     on_progress(t);
@@ -74,25 +91,23 @@ void Simulator::runDiscrete(State& x, State& dxdt, double& t, const OutputFn& on
 }
 
 // One step from the contacts of the latest query (at x): assemble, solve, update x.
-void Simulator::discreteStep(State& x, double t, double h) {
+void DiscreteStepper::plainStep(State& x, double t, double h) {
   const std::size_t nb = scenario_.bodies.size();
   int n = 0;
   column_.resize(nb);
   next_kin_.resize(nb);
   for (std::size_t i = 0; i < nb; ++i) {
-    const bool integrated = offset_[i] >= 0 && !sleep_.asleep(i);  // a sleeping body stays put
+    const bool integrated =
+        eq_.bodyOffset(i) >= 0 && !eq_.sleep().asleep(i);  // a sleeping body stays put
     column_[i] = integrated ? n : -1;
     if (integrated) n += 6;
-    next_kin_[i] = offset_[i] >= 0 ? kin_[i] : scheduledKinematics(scenario_.bodies[i], t + h);
+    next_kin_[i] =
+        eq_.bodyOffset(i) >= 0 ? kin_[i] : scheduledKinematics(scenario_.bodies[i], t + h);
   }
   step_matrix_.setZero(n, n);
   step_rhs_.setZero(n);
   // explicit parts: loads and springs, gravity, gyroscopic torque; the mass matrix
-  for (std::size_t i = 0; i < nb; ++i) {
-    force_[i].setZero();
-    torque_[i].setZero();
-  }
-  applyLoads(t);
+  eq_.loadWrenches(t);
   for (std::size_t i = 0; i < nb; ++i) {
     if (column_[i] < 0) continue;
     const RigidBody& body = scenario_.bodies[i];
@@ -103,8 +118,8 @@ void Simulator::discreteStep(State& x, double t, double h) {
     step_matrix_.block<3, 3>(c, c) = body.mass * Eigen::Matrix3d::Identity();
     step_matrix_.block<3, 3>(c + 3, c + 3) = I_W;
     step_rhs_.segment<3>(c) =
-        body.mass * kin_[i].v_WBcm + h * (force_[i] + body.mass * scenario_.gravity_W);
-    step_rhs_.segment<3>(c + 3) = I_W * w + h * (torque_[i] - w.cross(I_W * w));
+        body.mass * kin_[i].v_WBcm + h * (eq_.force(i) + body.mass * scenario_.gravity_W);
+    step_rhs_.segment<3>(c + 3) = I_W * w + h * (eq_.torque(i) - w.cross(I_W * w));
   }
   assembleLoads(t, h);
   in_flight_.assign(nb, 1);
@@ -114,16 +129,16 @@ void Simulator::discreteStep(State& x, double t, double h) {
   step_patch_count_ = 0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
-    if (sleep_.frozen(k)) continue;  // neither body in the system: it would add nothing
-    if (slots_[k] == 1) {
+    if (eq_.sleep().frozen(k)) continue;  // neither body in the system: it would add nothing
+    if (eq_.slots(k) == 1) {
       assemblePatch(k, out.cv, 0, 0, x, h);
       continue;
     }
     for (std::size_t i = 0; i < out.patches.size(); ++i) {
-      assemblePatch(k, out.patches[i].cv, matches_[k].host[i], out.patches[i].slot, x, h);
+      assemblePatch(k, out.patches[i].cv, eq_.match(k).host[i], out.patches[i].slot, x, h);
     }
   }
-  if (shortcuts_ && n == 6 && step_patch_count_ == 0 && scenario_.loads.empty() &&
+  if (eq_.shortcuts() && n == 6 && step_patch_count_ == 0 && scenario_.loads.empty() &&
       scenario_.springs.empty()) {
     solveFlight();
   } else {
@@ -135,10 +150,10 @@ void Simulator::discreteStep(State& x, double t, double h) {
     next_kin_[i].v_WBcm = step_twist_.segment<3>(column_[i]);
     next_kin_[i].w_WB = step_twist_.segment<3>(column_[i] + 3);
   }
-  updateDiscreteStates(x, h);
+  updateStates(x, h);
   for (std::size_t i = 0; i < nb; ++i) {
     if (column_[i] < 0) continue;
-    double* s = &x[static_cast<std::size_t>(offset_[i])];
+    double* s = &x[static_cast<std::size_t>(eq_.bodyOffset(i))];
     const Eigen::Vector3d v = next_kin_[i].v_WBcm, w = next_kin_[i].w_WB;
     const Eigen::Quaterniond q = rotated(Eigen::Quaterniond(s[3], s[4], s[5], s[6]), w, h);
     // In free flight the force is constant over the step (gravity), so the trapezoid rule
@@ -170,7 +185,7 @@ void Simulator::discreteStep(State& x, double t, double h) {
 // for several bodies: Eigen's triangular solve sums the columns beyond its panel of 8 in
 // another order, so a body's numbers in a 12 × 12 system differ from its own 6 × 6 ones in
 // the last bits.
-void Simulator::solveFlight() {
+void DiscreteStepper::solveFlight() {
   step_twist_.resize(step_rhs_.size());
   flight_rhs_.resize(3);
   for (std::size_t i = 0; i < column_.size(); ++i) {
@@ -187,8 +202,8 @@ void Simulator::solveFlight() {
 
 // Patch (contact cv of pair k, states of slot `host`, its own slot `slot` or −1) into the
 // step's system: body A gets Gᵀ_A (c + L ξ⁺), body B the opposite at the same point.
-void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
-                              const State& x, double h) {
+void DiscreteStepper::assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host,
+                                    int slot, const State& x, double h) {
   if (!cv.inContact()) return;
   const ContactPair& pair = scenario_.pairs[k];
   in_flight_[pair.a] = in_flight_[pair.b] = 0;
@@ -200,11 +215,11 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
   dp.n = cv.n_W;
   const int size = pair.model.stateLayout().size();
   const PairState state =
-      PairState::unpack(&x[static_cast<std::size_t>(pair_offset_[k] + host * size)], size);
+      PairState::unpack(&x[static_cast<std::size_t>(eq_.pairOffset(k) + host * size)], size);
   const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], cv.p_WC);
-  if (shortcuts_ && evaluatedAt(k, cv, motion, state)) {
+  if (eq_.shortcuts() && evaluatedAt(k, cv, motion, state)) {
     dp.step.start = last_pairs_[k].result;
-    linearisePatch(pair.model, last_context_[k].ctx, motion, h, dp.step);
+    linearisePatch(pair.model, eq_.context(k).ctx, motion, h, dp.step);
   } else {
     linearisePatch(pair.model, cv, motion, state, h, dp.step);
   }
@@ -233,9 +248,9 @@ void Simulator::assemblePatch(std::size_t k, const volume::ContactVolume& cv, in
 // motion and state, to the bit: then its result and context are the step's start. They are
 // unless a settle moved the state by less than its re-evaluation tolerance, or the pair has
 // several slots.
-bool Simulator::evaluatedAt(std::size_t k, const volume::ContactVolume& cv,
-                            const RelativeMotion& motion, const PairState& state) const {
-  const EvaluationContext& e = last_context_[k];
+bool DiscreteStepper::evaluatedAt(std::size_t k, const volume::ContactVolume& cv,
+                                  const RelativeMotion& motion, const PairState& state) const {
+  const EvaluationContext& e = eq_.context(k);
   if (!e.valid || &cv != &last_pairs_[k].cv) return false;
   const auto same = [](const auto& a, const auto& b) {
     return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
@@ -252,13 +267,13 @@ bool Simulator::evaluatedAt(std::size_t k, const volume::ContactVolume& cv,
 // The pair states over the step: explicit Euler from the start's rates, the bristle states
 // from their implicit update at the solved twists. A slot without a patch keeps its states
 // (settle resets them when the contact is gone).
-void Simulator::updateDiscreteStates(State& x, double h) {
+void DiscreteStepper::updateStates(State& x, double h) {
   for (std::size_t j = 0; j < step_patch_count_; ++j) {
     const DiscretePatch& dp = step_patches_[j];
     if (dp.slot < 0) continue;
     const ContactPair& pair = scenario_.pairs[dp.pair];
     const int size = pair.model.stateLayout().size();
-    double* s = &x[static_cast<std::size_t>(pair_offset_[dp.pair] + dp.slot * size)];
+    double* s = &x[static_cast<std::size_t>(eq_.pairOffset(dp.pair) + dp.slot * size)];
     PairState state = PairState::unpack(s, size);
     for (int i = 0; i < size; ++i) state[i] += h * dp.step.start.rates[i];
     if (const ImplicitStates& next = dp.step.implicit; next.any()) {

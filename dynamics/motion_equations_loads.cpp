@@ -1,13 +1,13 @@
-// The loads' and springs' part of Simulator: their wrenches on the bodies at every
-// right-hand side (simulator.hpp, loads.hpp).
+// The loads' and springs' part of the equations of motion: their wrenches on the bodies at
+// every right-hand side (motion_equations.hpp, loads.hpp).
 
-#include "dynamics/simulator.hpp"
+#include "dynamics/motion_equations.hpp"
 #include "geometry/error.hpp"
 
 namespace vcontact::dynamics {
 
 // Every load and spring names bodies of the scenario; a spring joins two different ones.
-void Simulator::checkLoads() const {
+void MotionEquations::checkLoads() const {
   const std::size_t n = scenario_.bodies.size();
   for (const ExternalLoad& l : scenario_.loads) {
     if (l.body >= n) throw InputError("load '" + l.name + "'", "names no body of the scenario");
@@ -25,7 +25,7 @@ void Simulator::checkLoads() const {
 // The loads' and springs' wrenches at kin_ into force_ and torque_ (about each Bcm) and
 // last_loads_. A fixed or prescribed body takes them as a support would: they are reported
 // and move nothing.
-void Simulator::applyLoads(double t) {
+void MotionEquations::applyLoads(double t) {
   last_loads_.resize(scenario_.loads.size() + scenario_.springs.size());
   std::size_t k = 0;
   for (const ExternalLoad& l : scenario_.loads) {
@@ -40,6 +40,16 @@ void Simulator::applyLoads(double t) {
     force_[s.b] -= o.wrench.f_W;
     torque_[s.b] -= o.wrench.tau_W + (o.q_W - kin_[s.b].p_WBcm).cross(o.wrench.f_W);
   }
+}
+
+// Every load's and spring's wrench at kin_, summed into force_ and torque_ from zero (the
+// discrete step's explicit part).
+void MotionEquations::loadWrenches(double t) {
+  for (std::size_t i = 0; i < scenario_.bodies.size(); ++i) {
+    force_[i].setZero();
+    torque_[i].setZero();
+  }
+  applyLoads(t);
 }
 
 }  // namespace vcontact::dynamics

@@ -29,8 +29,8 @@
 #include <limits>
 #include <numbers>
 
+#include "dynamics/discrete_stepper.hpp"
 #include "dynamics/dopri5_control.hpp"
-#include "dynamics/simulator.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -56,22 +56,24 @@ constexpr double kMissedWeightFraction = 0.25;
 
 }  // namespace
 
-double Simulator::impactThreshold(double h) const {
-  return std::max(2.0 * scenario_.gravity_W.norm() * h, kMinImpactSpeed);
+double impactThreshold(const Scenario& scenario, double h) {
+  return std::max(2.0 * scenario.gravity_W.norm() * h, kMinImpactSpeed);
 }
 
 // π sqrt(m_eff / k_n) of a contact region cv of pair k with normal force f_n; infinite
 // without a normal force.
-double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv, double f_n) const {
+double DiscreteStepper::impactDuration(std::size_t k, const volume::ContactVolume& cv,
+                                       double f_n) const {
   const ContactPair& pair = scenario_.pairs[k];
   const double k_n = f_n * cv.area / cv.volume;
   if (!(k_n > 0.0)) return std::numeric_limits<double>::infinity();
   double inverse_mass = 0.0;
   for (const std::size_t b : {pair.a, pair.b}) {
-    if (offset_[b] < 0) continue;
+    if (eq_.bodyOffset(b) < 0) continue;
     const Eigen::Matrix3d R = kin_[b].X_WB.linear();
     const Eigen::Vector3d rn = (cv.p_WC - kin_[b].p_WBcm).cross(cv.n_W);
-    inverse_mass += 1.0 / scenario_.bodies[b].mass + rn.dot(R * I_inv_B_[b] * R.transpose() * rn);
+    inverse_mass +=
+        1.0 / scenario_.bodies[b].mass + rn.dot(R * eq_.inverseInertia(b) * R.transpose() * rn);
   }
   if (inverse_mass == 0.0) return std::numeric_limits<double>::infinity();
   return std::numbers::pi * std::sqrt(1.0 / (inverse_mass * k_n));
@@ -83,7 +85,7 @@ double Simulator::impactDuration(std::size_t k, const volume::ContactVolume& cv,
 // dissipation (a Maxwell element, friction) only lowers the rebound of a head-on impact: the
 // prediction errs towards resolving there; a rocking or tumbling part can leave faster than it
 // came (docs/DISCRETE.md §5).
-double Simulator::predictedRebound(std::size_t k, double approach) const {
+double DiscreteStepper::predictedRebound(std::size_t k, double approach) const {
   return scenario_.pairs[k].model.impactRestitution(approach) * approach;
 }
 
@@ -99,10 +101,11 @@ double Simulator::predictedRebound(std::size_t k, double approach) const {
 // its speed and the approach speed of its pair's open impact, and an open impact is taken as
 // its first fast step was (resolved or left to the plain step); every estimate errs towards
 // resolving.
-bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only,
-                            double h, std::vector<FastRegion>& fast) const {
+bool DiscreteStepper::impactAhead(const std::vector<BodyKinematics>& speed_kin,
+                                  bool approaching_only, double h,
+                                  std::vector<FastRegion>& fast) const {
   const SimulationSettings& set = scenario_.settings;
-  const double threshold = impactThreshold(h);
+  const double threshold = impactThreshold(scenario_, h);
   const double gravity = scenario_.gravity_W.norm();
   bool resolve = false;
   const auto check = [&](std::size_t k, const volume::ContactVolume& cv, double f_n) {
@@ -126,14 +129,14 @@ bool Simulator::impactAhead(const std::vector<BodyKinematics>& speed_kin, bool a
     const PairOutput& out = last_pairs_[k];
     if (!out.cv.inContact()) continue;
     check(k, out.cv, out.result.f_n);
-    if (slots_[k] == 1) continue;
+    if (eq_.slots(k) == 1) continue;
     for (const PatchOutput& p : out.patches) check(k, p.cv, p.result.f_n);
   }
   return resolve;
 }
 
 // Tells the impact tracker what the step under way does with its fast regions.
-void Simulator::markImpacts(bool resolved) {
+void DiscreteStepper::markImpacts(bool resolved) {
   impacts_.beginStep(resolved);
   for (const FastRegion& r : fast_regions_) {
     if (resolved || r.resolve) {
@@ -153,7 +156,7 @@ void Simulator::markImpacts(bool resolved) {
 // whose impact "auto" leaves to the plain step (below the restitution threshold: a fast region
 // of this step, or the open impact of earlier ones) misses by design until that impact is over:
 // the plain step lands it from apart and dissipates it.
-bool Simulator::linearisationMissed(double h) const {
+bool DiscreteStepper::linearisationMissed(double h) const {
   const double g = scenario_.gravity_W.norm();
   const auto left_to_the_step = [&](std::size_t k) {
     return impacts_.openAndPlain(k) ||
@@ -162,11 +165,11 @@ bool Simulator::linearisationMissed(double h) const {
   };
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
-    if (!out.cv.inContact() || sleep_.frozen(k) || left_to_the_step(k)) continue;
+    if (!out.cv.inContact() || eq_.sleep().frozen(k) || left_to_the_step(k)) continue;
     const ContactPair& pair = scenario_.pairs[k];
     double lighter = std::numeric_limits<double>::infinity();
     for (const std::size_t b : {pair.a, pair.b}) {
-      if (offset_[b] >= 0) lighter = std::min(lighter, scenario_.bodies[b].mass);
+      if (eq_.bodyOffset(b) >= 0) lighter = std::min(lighter, scenario_.bodies[b].mass);
     }
     if (!std::isfinite(lighter)) continue;
     const double applied = step_impulse_[k] / h, queried = out.result.f_n;
@@ -181,8 +184,8 @@ bool Simulator::linearisationMissed(double h) const {
 
 // The interval [t, t1] of one step, plain or resolved; x, dxdt and the contacts at t on entry,
 // at t1 (checked, settled, observed by the impact tracker) on return.
-void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, double t1, bool lands,
-                                 SimulationSummary& summary) {
+void DiscreteStepper::advance(State& x, State& dxdt, double& t, double h, double t1, bool lands,
+                              SimulationSummary& summary) {
   const bool resolve = scenario_.settings.impacts != ImpactMode::kImplicit;
   fast_regions_.clear();
   if (resolve && impactAhead(kin_, false, h, fast_regions_)) {
@@ -195,17 +198,17 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
     start_kin_ = kin_;
   }
   const double t0 = t;
-  discreteStep(x, t, h);
+  plainStep(x, t, h);
   stepImpulses(h);
   t = t1;
-  normaliseQuaternions(x);
+  eq_.normaliseQuaternions(x);
   // The step's one contact query, at the new state; on an output time with the exact
-  // depths the output writes, which spares snapshot() a second query (fillDepths).
-  contacts_->setQueryDepths(lands && output_depths_);
-  keep_contexts_ = true;
-  rhs(x, dxdt, t);
-  contacts_->setQueryDepths(false);
-  keep_contexts_ = false;
+  // depths the output writes, which spares eq_.snapshot() a second query (fillDepths).
+  eq_.contacts().setQueryDepths(lands && eq_.outputDepths());
+  eq_.setKeepContexts(true);
+  eq_.rhs(x, dxdt, t);
+  eq_.contacts().setQueryDepths(false);
+  eq_.setKeepContexts(false);
   if (resolve) {
     const bool impact = impactAhead(start_kin_, true, h, fast_regions_);
     const bool missed = !impact && linearisationMissed(h);
@@ -219,47 +222,47 @@ void Simulator::discreteInterval(State& x, State& dxdt, double& t, double h, dou
     }
   }
   markImpacts(false);
-  check(x, t);
-  if (settlePairs(x, t)) {
-    contacts_->setReuse(true);
-    keep_contexts_ = true;
-    rhs(x, dxdt, t);
-    contacts_->setReuse(false);
-    keep_contexts_ = false;
+  eq_.check(x, t);
+  if (eq_.settlePairs(x, t)) {
+    eq_.contacts().setReuse(true);
+    eq_.setKeepContexts(true);
+    eq_.rhs(x, dxdt, t);
+    eq_.contacts().setReuse(false);
+    eq_.setKeepContexts(false);
   }
   impacts_.observe(t, kin_, last_pairs_, &step_impulse_);
 }
 
 // Dormand–Prince from t to t1 as runDopri5 steps (the same control and checks), its step size
 // carried from one resolved interval to the next.
-void Simulator::resolveInterval(State& x, State& dxdt, double& t, double t1,
-                                SimulationSummary& summary) {
+void DiscreteStepper::resolveInterval(State& x, State& dxdt, double& t, double t1,
+                                      SimulationSummary& summary) {
   const SimulationSettings& set = scenario_.settings;
   ++summary.resolved_steps;
   markImpacts(true);
-  const long queries_before = contacts_->queries();
+  const long queries_before = eq_.contacts().queries();
   Dopri5Control control(set.abs_tol, set.rel_tol);
   double dt = std::min(resolve_dt_ > 0.0 ? resolve_dt_ : set.initial_step, set.max_step);
   const double span = t1 - t;
   while (t < t1) {
     const bool capped = t1 - t <= dt * (1.0 + kEndSlack);
     double dt_try = capped ? t1 - t : dt;
-    if (!tryDopri5(control, x, dxdt, t, dt_try, summary)) {
+    if (!dopri5_.attempt(control, x, dxdt, t, dt_try, summary)) {
       dt = dt_try;
       continue;
     }
     ++summary.resolution_substeps;
     dt = control.afterAccept(std::min(capped ? std::max(dt_try, dt) : dt_try, set.max_step));
     if (capped || t1 - t <= kEndSlack * span) t = t1;
-    afterDopri5Step(x, dxdt, t);
+    dopri5_.accepted(x, dxdt, t);
   }
   resolve_dt_ = dt;
-  summary.resolution_queries += contacts_->queries() - queries_before;
+  summary.resolution_queries += eq_.contacts().queries() - queries_before;
 }
 
 // The normal impulse of each pair over the step just solved: h n·f⁺ of its patches, with the
 // implicit wrench f⁺ = c + L ξ⁺ at the new twists.
-void Simulator::stepImpulses(double h) {
+void DiscreteStepper::stepImpulses(double h) {
   step_impulse_.assign(scenario_.pairs.size(), 0.0);
   for (std::size_t j = 0; j < step_patch_count_; ++j) {
     const DiscretePatch& dp = step_patches_[j];
