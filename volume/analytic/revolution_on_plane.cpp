@@ -25,6 +25,10 @@ constexpr double kQuadratureTolerance = 1e-11;
 // (d^{3/2} behaviour dominates), unless the θ range is too narrow to carry ζ accurately.
 constexpr double kThetaRatio = 0.5;
 constexpr double kMinThetaRange = 1e-6;
+// Two runs of wetted slices whose ends are closer than this fraction of the solid's length are
+// one region: their ends are cuts computed twice (a piece's end and its root of d), equal up to
+// round-off; a dry gap of a solid is far wider.
+constexpr double kRunJoinFraction = 1e-9;
 
 // ---------------------------------------------------------------------------------------
 // Cylinder. In the cylinder frame C the half-space is {p : n·p ≤ h}. Write n = s u + n_z e_z
@@ -120,11 +124,48 @@ struct CylinderSetup {
   double depth(double zeta) const { return R + (h - nz * zeta) / s; }  // segment depth d(ζ)
 };
 
-// The slices integrated over the cylinder's length, with what the projected area needs.
+// One run of wetted slices along the axis, ζ ∈ [z0, z1]: one connected region of the contact.
+// The slices of a run meet: each is the segment of its disc on the plane's side, the segments
+// of neighbouring slices overlap, and at a step of the radius the smaller disc's segment lies in
+// the larger one's. Two runs are apart: the slices between them are dry.
+struct WettedRun {
+  double z0 = 0.0, z1 = 0.0;
+  SliceMoments m;
+  double capArea = 0.0;  // |n_z| × the wetted area of the end faces and steps in the run
+};
+
+// The slices integrated over the cylinder's length, with what the projected area needs; for a
+// tilted axis also run by run (the caller asks for `runs` by setting a positive join gap).
 struct CylinderIntegrals {
   SliceMoments total;
   double relErr = 0.0;
   double capArea = 0.0;  // |n_z| × wetted cap area, both caps
+  std::vector<WettedRun> runs;
+  double joinGap = 0.0;  // runs closer than this along ζ are one (the round-off of the cuts)
+
+  // The wetted slices of ζ ∈ [z0, z1] (ascending from one call to the next), moments m.
+  void add(double z0, double z1, const SliceMoments& m) {
+    total += m;
+    if (!(joinGap > 0.0)) return;
+    if (!runs.empty() && z0 <= runs.back().z1 + joinGap) {
+      runs.back().m += m;
+      runs.back().z1 = std::max(runs.back().z1, z1);
+      return;
+    }
+    runs.push_back({z0, z1, m, 0.0});
+  }
+  // A face at ζ, wetted area times |n_z| `shadow`: into the run it bounds.
+  void addFace(double zeta, double shadow) {
+    capArea += shadow;
+    if (!(shadow > 0.0) || runs.empty()) return;
+    WettedRun* nearest = &runs.front();
+    double best = std::numeric_limits<double>::infinity();
+    for (WettedRun& r : runs) {
+      const double gap = std::max({0.0, r.z0 - zeta, zeta - r.z1});
+      if (gap < best) best = gap, nearest = &r;
+    }
+    nearest->capArea += shadow;
+  }
 };
 
 /// Axis along the normal: every slice is a full disc or empty. Wetted length ℓ.
@@ -332,7 +373,7 @@ void addArcPiece(const Revolution& rv, const ProfilePiece& p, CylinderIntegrals&
     if (d <= 0.0 || !(mid.r > 0.0)) continue;
     const QuadratureResult<kSliceSize> q =
         integrateCurved(rv, p, a, b, isSingular(a), isSingular(b), d >= 2.0 * mid.r);
-    out.total += unpack(q.value);
+    out.add(pieceAt(p, a).zeta, pieceAt(p, b).zeta, unpack(q.value));
     out.relErr = std::max(out.relErr, q.relative_error);
   }
 }
@@ -349,8 +390,13 @@ void addLinearPiece(const Revolution& rv, const ProfilePiece& p, CylinderIntegra
   const double x0 = (s * p.r0 + rv.h - rv.nz * p.z0) / (rv.nz - s * k);  // s·d = 0
   const double th0 = angleOf(p.r0, p.r0 + rv.w(p.z0)), th1 = angleOf(p.r1, p.r1 + rv.w(p.z1));
   const double lo = std::min(th0, th1), hi = std::max(th0, th1);
+  // d is linear in ζ: the piece's wetted slices are one interval, from an end or the root of d
+  const double d0 = p.r0 + rv.w(p.z0), d1 = p.r1 + rv.w(p.z1);
+  const double root =
+      d0 != d1 ? std::clamp(p.z0 + (p.z1 - p.z0) * d0 / (d0 - d1), p.z0, p.z1) : p.z0;
+  const double wet0 = d0 > 0.0 ? p.z0 : root, wet1 = d1 > 0.0 ? p.z1 : root;
   const auto add = [&](const QuadratureResult<kSliceSize>& q) {
-    out.total += unpack(q.value);
+    out.add(wet0, wet1, unpack(q.value));
     out.relErr = std::max(out.relErr, q.relative_error);
   };
   // As for the cylinder: θ where the segment runs close to a tangency relative to its range,
@@ -400,11 +446,11 @@ void addConstantPiece(const Revolution& rv, const ProfilePiece& p, CylinderInteg
     const double dMid = c.depth(0.5 * (a + b));
     if (dMid <= 0.0) continue;
     if (dMid >= 2.0 * R) {
-      out.total += shifted(fullDiscs(c, a, b), delta);
+      out.add(a, b, shifted(fullDiscs(c, a, b), delta));
       continue;
     }
     const QuadratureResult<kSliceSize> r = integrateSegments(c, a, b, isTangency(a), isTangency(b));
-    out.total += shifted(unpack(r.value), delta);
+    out.add(a, b, shifted(unpack(r.value), delta));
     out.relErr = std::max(out.relErr, r.relative_error);
   }
 }
@@ -439,6 +485,7 @@ CylinderIntegrals integrateTilted(Revolution& rv, const Vector3d& n_C,
   rv.u = Vector3d(n_C.x() / rv.s, n_C.y() / rv.s, 0.0);
   rv.v = Vector3d::UnitZ().cross(rv.u);
   CylinderIntegrals out;
+  out.joinGap = kRunJoinFraction * (profile.back().z1 - profile.front().z0);
   for (const ProfilePiece& p : profile) {
     if (p.kind == ProfilePiece::Kind::kConstant) {
       addConstantPiece(rv, p, out);
@@ -449,8 +496,8 @@ CylinderIntegrals integrateTilted(Revolution& rv, const Vector3d& n_C,
     }
   }
   for (const Breakpoint& b : breakpoints(profile))
-    out.capArea +=
-        faceShadow(rv, b.zeta, std::min(b.rBelow, b.rAbove), std::max(b.rBelow, b.rAbove));
+    out.addFace(b.zeta,
+                faceShadow(rv, b.zeta, std::min(b.rBelow, b.rAbove), std::max(b.rBelow, b.rAbove)));
   return out;
 }
 
@@ -480,14 +527,18 @@ CylinderIntegrals integrateAlongNormal(Revolution& rv, const RevolutionProfile& 
   return out;
 }
 
-/// The deepest point's depth below the plane, h − min n·p over the solid.
-double deepest(const Revolution& rv, const RevolutionProfile& profile) {
+/// The deepest point's depth below the plane, h − min n·p over the solid's slices in
+/// ζ ∈ [z0, z1] (all of them by default).
+double deepest(const Revolution& rv, const RevolutionProfile& profile,
+               double z0 = -std::numeric_limits<double>::infinity(),
+               double z1 = std::numeric_limits<double>::infinity()) {
   double depth = -std::numeric_limits<double>::infinity();
   const auto at = [&](const PieceAt& e) {
     depth = std::max(depth, rv.h + rv.s * e.r - rv.nz * e.zeta);
   };
   for (const ProfilePiece& p : profile) {
-    const double t0 = parameterOf(p, p.z0), t1 = parameterOf(p, p.z1);
+    if (p.z1 < z0 || p.z0 > z1) continue;
+    const double t0 = parameterOf(p, std::max(p.z0, z0)), t1 = parameterOf(p, std::min(p.z1, z1));
     at(pieceAt(p, t0));
     at(pieceAt(p, t1));
     // An arc's outer half is deepest where its normal is −n: α = atan2(−n_z, s).
@@ -498,32 +549,13 @@ double deepest(const Revolution& rv, const RevolutionProfile& profile) {
   return depth;
 }
 
-ContactVolume revolutionInOwnFrame(const RevolutionProfile& profile, const Vector3d& n_C, double h,
-                                   const Isometry3d& X_WC, const Vector3d& n_W) {
-  Revolution rv{std::hypot(n_C.x(), n_C.y()), n_C.z(), h};
-  rv.zetaDeep = rv.nz > 0.0 ? profile.front().z0 : profile.back().z1;
-  for (const Breakpoint& b : breakpoints(profile))
-    rv.rRef = std::max({rv.rRef, b.rBelow, b.rAbove});
-  for (const ProfilePiece& p : profile)
-    if (p.kind == ProfilePiece::Kind::kArc && p.sign > 0.0 && p.z0 <= p.z_c && p.z_c <= p.z1)
-      rv.rRef = std::max(rv.rRef, p.rho_c + p.a);
-  const double depth = deepest(rv, profile);
-  if (!(depth > 0.0)) return ContactVolume{.method = Method::kAnalytic};
-
-  const bool cylinder = profile.size() == 1 && profile[0].kind == ProfilePiece::Kind::kConstant;
-  CylinderIntegrals in;
-  if (rv.s != 0.0) {
-    in = integrateTilted(rv, n_C, profile);
-  } else if (cylinder) {
-    CylinderSetup c{rv.rRef, profile[0].z1 - profile[0].z0, 0.0, rv.nz, h, {}, {}, rv.zetaDeep};
-    in = integrateAxisAlongNormal(c, depth);
-  } else {
-    in = integrateAlongNormal(rv, profile);
-  }
-  const SliceMoments& total = in.total;
+// One region from its integrated slices: moments about o in C, m1 = S_ξ' u + (∫A z') e_z, m2
+// assembled from the slice terms; the projected area of a convex region, half of ∫|n_s·n| over
+// its boundary. Not in contact when V is not positive.
+ContactVolume regionOf(const Revolution& rv, const SliceMoments& total, double capArea,
+                       double depth, double relErr, const Isometry3d& X_WC, const Vector3d& n_W) {
   const double V = total.area;
   if (!(V > 0.0)) return ContactVolume{.method = Method::kAnalytic};
-  // Moments about o in C: m1 = S_ξ' u + (∫A z') e_z, m2 assembled from the slice terms.
   const Vector3d& u = rv.u;
   const Vector3d& v = rv.v;
   const Vector3d e = Vector3d::UnitZ();
@@ -533,13 +565,47 @@ ContactVolume revolutionInOwnFrame(const RevolutionProfile& profile, const Vecto
   M.m2 = total.s11 * u * u.transpose() + total.s22 * v * v.transpose() +
          total.s1Z * (u * e.transpose() + e * u.transpose()) + total.areaZZ * e * e.transpose();
   const Vector3d o = -rv.rRef * u + rv.zetaDeep * e;
-  // Projected area of a convex region: half of ∫|n_s·n| over its boundary.
-  const double area = 0.5 * (total.sideShadow + total.cutFace + in.capArea);
+  const double area = 0.5 * (total.sideShadow + total.cutFace + capArea);
   // o and the offset are mapped separately: o + offset would round the offset (~d) against
   // the radius, losing digits for shallow contact.
   ContactVolume cv = contactFromMoments(M, o, X_WC, n_W, area, depth, Method::kAnalytic);
-  cv.relative_error = in.relErr;
+  cv.relative_error = relErr;
   return cv;
+}
+
+ContactPatches revolutionInOwnFrame(const RevolutionProfile& profile, const Vector3d& n_C, double h,
+                                    const Isometry3d& X_WC, const Vector3d& n_W) {
+  Revolution rv{std::hypot(n_C.x(), n_C.y()), n_C.z(), h};
+  rv.zetaDeep = rv.nz > 0.0 ? profile.front().z0 : profile.back().z1;
+  for (const Breakpoint& b : breakpoints(profile))
+    rv.rRef = std::max({rv.rRef, b.rBelow, b.rAbove});
+  for (const ProfilePiece& p : profile)
+    if (p.kind == ProfilePiece::Kind::kArc && p.sign > 0.0 && p.z0 <= p.z_c && p.z_c <= p.z1)
+      rv.rRef = std::max(rv.rRef, p.rho_c + p.a);
+  const double depth = deepest(rv, profile);
+  if (!(depth > 0.0)) return singlePatch(ContactVolume{.method = Method::kAnalytic});
+
+  const bool cylinder = profile.size() == 1 && profile[0].kind == ProfilePiece::Kind::kConstant;
+  CylinderIntegrals in;
+  if (rv.s != 0.0) {
+    in = integrateTilted(rv, n_C, profile);
+  } else if (cylinder) {
+    CylinderSetup c{rv.rRef, profile[0].z1 - profile[0].z0, 0.0, rv.nz, h, {}, {}, rv.zetaDeep};
+    in = integrateAxisAlongNormal(c, depth);
+  } else {
+    in = integrateAlongNormal(rv, profile);  // the wetted slices: one run from the deep end
+  }
+  ContactPatches out = singlePatch(regionOf(rv, in.total, in.capArea, depth, in.relErr, X_WC, n_W));
+  if (in.runs.size() < 2 || !out.inContact()) return out;
+  // Several runs: each its own region, the aggregate as computed over all of them.
+  out.patches.clear();
+  for (const WettedRun& r : in.runs) {
+    const ContactVolume cv =
+        regionOf(rv, r.m, r.capArea, deepest(rv, profile, r.z0, r.z1), in.relErr, X_WC, n_W);
+    if (cv.inContact()) out.patches.push_back(cv);
+  }
+  sortPatches(out.patches);
+  return out;
 }
 
 }  // namespace
@@ -552,13 +618,18 @@ RevolutionProfile cylinderProfile(double radius, double length) {
   return {p};
 }
 
-ContactVolume revolutionHalfspace(const RevolutionProfile& profile, const Isometry3d& X_WR,
-                                  const Isometry3d& X_WH) {
+ContactPatches revolutionHalfspacePatches(const RevolutionProfile& profile, const Isometry3d& X_WR,
+                                          const Isometry3d& X_WH) {
   detail::checkProfile(profile, "revolutionHalfspace");
   const Isometry3d X_HR = X_WH.inverse() * X_WR;
   // z_H = n_R·p_R + t_z ≤ 0  ⇔  n_R·p_R ≤ h = −t_z, with n_R the third row of R_HR.
   const Vector3d n_R = X_HR.linear().row(2).transpose();
   return revolutionInOwnFrame(profile, n_R, -X_HR.translation().z(), X_WR, X_WH.linear().col(2));
+}
+
+ContactVolume revolutionHalfspace(const RevolutionProfile& profile, const Isometry3d& X_WR,
+                                  const Isometry3d& X_WH) {
+  return revolutionHalfspacePatches(profile, X_WR, X_WH).aggregate;
 }
 
 }  // namespace vcontact::volume

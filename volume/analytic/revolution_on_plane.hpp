@@ -52,4 +52,13 @@ RevolutionProfile cylinderProfile(double radius, double length);
 ContactVolume revolutionHalfspace(const RevolutionProfile& profile, const Eigen::Isometry3d& X_WR,
                                   const Eigen::Isometry3d& X_WH);
 
+/// revolutionHalfspace with the contact's connected regions: one per run of wetted slices
+/// along the axis (a dumbbell lying on the plane touches it with both balls, a stepped shaft
+/// tilted onto it with its two collars), each a full ContactVolume of its own slices, ends and
+/// steps, in sortPatches order; the aggregate is revolutionHalfspace's. One run (every convex
+/// profile, an axis along the normal): the aggregate is the only patch.
+ContactPatches revolutionHalfspacePatches(const RevolutionProfile& profile,
+                                          const Eigen::Isometry3d& X_WR,
+                                          const Eigen::Isometry3d& X_WH);
+
 }  // namespace vcontact::volume

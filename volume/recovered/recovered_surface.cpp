@@ -109,9 +109,12 @@ RecoveredContact RecoveredBody::onClosedForm(const ClosedForm& form, const Eigen
                           s->max_residual);
   }
   const RevolutionBody& b = form.revolution;
-  return fromClosedForm(revolutionHalfspace(b.profile, X_WM * b.X_MR, X_WH),
-                        b.capped_cylinder ? Representation::kCylinder : Representation::kRevolution,
-                        b.max_residual);
+  ContactPatches c = revolutionHalfspacePatches(b.profile, X_WM * b.X_MR, X_WH);
+  RecoveredContact r = fromClosedForm(
+      c.aggregate, b.capped_cylinder ? Representation::kCylinder : Representation::kRevolution,
+      b.max_residual);
+  if (c.patches.size() > 1) r.patches = std::move(c.patches);  // runs apart along the axis
+  return r;
 }
 
 std::optional<RecoveredContact> RecoveredBody::closedFormContact(const Eigen::Isometry3d& X_WM,

@@ -52,7 +52,8 @@ struct RecoveredContact {
   int level = 0;
   bool converged = true;
   /// The connected regions, where the representation splits them (kRevolutionInBore: the
-  /// runs of the pin's axis, recovered/pin_in_bore.hpp); empty: the contact is one region, cv.
+  /// runs of the pin's axis, recovered/pin_in_bore.hpp; kRevolution on a plane: the runs of
+  /// wetted slices, analytic/revolution_on_plane.hpp); empty: the contact is one region, cv.
   std::vector<ContactVolume> patches;
 };
 

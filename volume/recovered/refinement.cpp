@@ -127,8 +127,11 @@ Converged converge(const std::function<ContactVolume(int)>& eval, double gap, do
   return {cv, k, error, error <= tolerance * cv.volume};
 }
 
-RecoveredContact fromConverged(const Converged& c, double residual, std::vector<PatchPart> parts) {
+// `patches`: the connected regions of the finest level (c.level), kept when there are several.
+RecoveredContact fromConverged(const Converged& c, double residual, std::vector<PatchPart> parts,
+                               std::vector<ContactVolume> patches) {
   RecoveredContact r{c.cv, Representation::kRefined, "", 0.0, {}, 0, true, {}};
+  if (c.cv.inContact() && patches.size() > 1) r.patches = std::move(patches);
   r.parts = std::move(parts);
   r.level = c.level;
   r.converged = c.converged;
@@ -182,8 +185,18 @@ RecoveredContact refinedHalfspaceContact(const RecoveredBody& body, const std::v
   };
   std::vector<PatchPart> parts;
   addParts(body, z, "A", parts);
-  return fromConverged(converge(eval, z.gap, depth, levelCap(z, options), options.tolerance),
-                       z.residual, std::move(parts));
+  const Converged c = converge(eval, z.gap, depth, levelCap(z, options), options.tolerance);
+  // the regions of the finest level: its clip labelled by components (whose aggregate is the
+  // accelerated clip's, equal to the reference clip's above up to rounding)
+  std::vector<ContactVolume> patches;
+  if (c.cv.inContact()) {
+    const geometry::SurfaceRefinement r =
+        geometry::refineSurfaces(body.mesh(), body.recognition(), z.faces, c.level);
+    patches =
+        meshHalfspacePatches(geometry::MeshBvh(r.mesh), geometry::MeshTopology(r.mesh), X_WM, X_WH)
+            .patches;
+  }
+  return fromConverged(c, z.residual, std::move(parts), std::move(patches));
 }
 
 std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
@@ -231,11 +244,17 @@ RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Iso
         geometry::refineSurfaces(b.mesh(), b.recognition(), zb.faces, bodyLevel(k, zb.gap, G));
     const geometry::MeshBvh ta(ra.mesh), tb(rb.mesh);
     const geometry::MeshTopology topoA(ra.mesh), topoB(rb.mesh);
-    return meshMeshContact(ta, topoA, X_WA, tb, topoB, X_WB, nullptr, deepest).aggregate;
+    return meshMeshContact(ta, topoA, X_WA, tb, topoB, X_WB, nullptr, deepest);
   };
-  const auto eval = [&](int k) { return evalAt(k, false); };
+  // every level's regions; the finest's are the result's
+  std::map<int, std::vector<ContactVolume>> regions;
+  const auto eval = [&](int k) {
+    ContactPatches c = evalAt(k, false);
+    regions[k] = std::move(c.patches);
+    return c.aggregate;
+  };
   if (za.curved + zb.curved == 0) {
-    RecoveredContact r{evalAt(1, options.exact_depth),
+    RecoveredContact r{evalAt(1, options.exact_depth).aggregate,
                        Representation::kShape,
                        "no curved recognised surface can reach the other body",
                        0.0,
@@ -254,8 +273,13 @@ RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Iso
   both.curved = za.curved + zb.curved;
   both.residual = std::max(za.residual, zb.residual);
   Converged c = converge(eval, G, 0.0, levelCap(both, options), options.tolerance);
-  if (options.exact_depth && c.cv.inContact()) c.cv.depth = evalAt(c.level, true).depth;
-  return fromConverged(c, both.residual, std::move(parts));
+  std::vector<ContactVolume> patches = std::move(regions[c.level]);
+  if (options.exact_depth && c.cv.inContact()) {
+    const ContactPatches exact = evalAt(c.level, true);
+    c.cv.depth = exact.aggregate.depth;
+    patches = exact.patches;
+  }
+  return fromConverged(c, both.residual, std::move(parts), std::move(patches));
 }
 
 RecoveredContact recoveredMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,

@@ -42,7 +42,9 @@ struct RefinementOptions {
 };
 
 /// The contact of `body` (pose X_WM) on the half-space (pose X_WH, solid z_H ≤ 0) with the
-/// faces in `zone` (RecoveredBody::reachingFaces) refined; representation kRefined.
+/// faces in `zone` (RecoveredBody::reachingFaces) refined; representation kRefined. Several
+/// connected regions at the finest level are its `patches` (the clip's components there,
+/// meshHalfspacePatches); cv is the whole.
 RecoveredContact refinedHalfspaceContact(const RecoveredBody& body, const std::vector<int>& zone,
                                          const Eigen::Isometry3d& X_WM,
                                          const Eigen::Isometry3d& X_WH,
@@ -60,7 +62,8 @@ std::vector<int> facesWithinReach(const RecoveredBody& a, const Eigen::Isometry3
 /// reach of the other refined, the exact `fast` method (fast/surface_integration.hpp) on the two
 /// refinements. representation kRefined when a curved recognised surface of either body can reach
 /// the other, else kShape (the polyhedra, exact for planes; free-form faces stay polyhedral).
-/// `parts` names the body ("A", "B") of each part.
+/// `parts` names the body ("A", "B") of each part; several connected regions at the finest
+/// level are its `patches` (that level's `fast` patches).
 /// @pre both meshes as meshMeshContact requires
 RecoveredContact refinedMeshMeshContact(const RecoveredBody& a, const Eigen::Isometry3d& X_WA,
                                         const RecoveredBody& b, const Eigen::Isometry3d& X_WB,

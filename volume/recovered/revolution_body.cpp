@@ -31,17 +31,32 @@ bool parallel(const Vector3d& a, const Vector3d& b) {
   return std::abs(std::abs(a.dot(b)) - 1.0) <= kParallel;
 }
 
-// The extent [lo, hi] of a surface's vertices along the axis.
-std::pair<double, double> extent(const TriangleMesh& mesh, const RecognisedSurface& s,
-                                 const Axis& axis) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (int f : s.faces)
+// The bands [lo, hi] of a surface's faces along the axis, ascending: the extents of its faces
+// merged where they overlap or meet within tol. One band, the extent of its vertices, for a
+// surface in one piece; several for one whose faces lie apart along the axis (the two collars
+// of a spool on one cylinder, the flanges of a pulley), each a piece of the profile.
+std::vector<std::pair<double, double>> bands(const TriangleMesh& mesh, const RecognisedSurface& s,
+                                             const Axis& axis, double tol) {
+  std::vector<std::pair<double, double>> faces;
+  for (int f : s.faces) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int k = 0; k < 3; ++k) {
       const double t = axis.along(mesh.corner(f, k));
       lo = std::min(lo, t);
       hi = std::max(hi, t);
     }
-  return {lo, hi};
+    faces.emplace_back(lo, hi);
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::pair<double, double>> out;
+  for (const auto& [lo, hi] : faces) {
+    if (!out.empty() && lo <= out.back().second + tol) {
+      out.back().second = std::max(out.back().second, hi);
+    } else {
+      out.emplace_back(lo, hi);
+    }
+  }
+  return out;
 }
 
 // True when every face of s turns away from the axis (the solid lies inside r(ζ)).
@@ -52,20 +67,9 @@ bool facesOutward(const TriangleMesh& mesh, const RecognisedSurface& s, const Ax
   });
 }
 
-// The piece a curved surface contributes, ζ from the axis point; nothing when s is off the
-// axis (reason set).
-std::optional<ProfilePiece> pieceOf(const TriangleMesh& mesh, const RecognisedSurface& s,
-                                    const Axis& axis, double tol, std::string& reason) {
-  const bool hasAxis = s.kind != SurfaceKind::kSphere;
-  if ((hasAxis && !parallel(s.axis, axis.dir)) || axis.radial(s.point).norm() > tol) {
-    reason = std::string("a ") + geometry::surfaceKindName(s.kind) + " off the common axis";
-    return std::nullopt;
-  }
-  if (!facesOutward(mesh, s, axis)) {
-    reason = std::string("a ") + geometry::surfaceKindName(s.kind) + " facing its axis (a bore)";
-    return std::nullopt;
-  }
-  const auto [lo, hi] = extent(mesh, s, axis);
+// The piece of curved surface s over the band [lo, hi] of the axis.
+ProfilePiece pieceOf(const TriangleMesh& mesh, const RecognisedSurface& s, const Axis& axis,
+                     double lo, double hi) {
   ProfilePiece p;
   p.z0 = lo;
   p.z1 = hi;
@@ -94,6 +98,26 @@ std::optional<ProfilePiece> pieceOf(const TriangleMesh& mesh, const RecognisedSu
     }
   }
   return p;
+}
+
+// The pieces a curved surface contributes (one per band), ζ from the axis point; none when s is
+// off the axis (reason set).
+std::optional<std::vector<ProfilePiece>> piecesOf(const TriangleMesh& mesh,
+                                                  const RecognisedSurface& s, const Axis& axis,
+                                                  double tol, std::string& reason) {
+  const bool hasAxis = s.kind != SurfaceKind::kSphere;
+  if ((hasAxis && !parallel(s.axis, axis.dir)) || axis.radial(s.point).norm() > tol) {
+    reason = std::string("a ") + geometry::surfaceKindName(s.kind) + " off the common axis";
+    return std::nullopt;
+  }
+  if (!facesOutward(mesh, s, axis)) {
+    reason = std::string("a ") + geometry::surfaceKindName(s.kind) + " facing its axis (a bore)";
+    return std::nullopt;
+  }
+  std::vector<ProfilePiece> out;
+  for (const auto& [lo, hi] : bands(mesh, s, axis, tol))
+    out.push_back(pieceOf(mesh, s, axis, lo, hi));
+  return out;
 }
 
 // Moves a piece's ends to [z0, z1], a cone's radii along with them.
@@ -178,9 +202,9 @@ std::optional<RevolutionBody> revolutionOf(const TriangleMesh& mesh,
       planes.push_back(axis.along(s.point));
       continue;
     }
-    const std::optional<ProfilePiece> p = pieceOf(mesh, s, axis, tol, reason);
+    const std::optional<std::vector<ProfilePiece>> p = piecesOf(mesh, s, axis, tol, reason);
     if (!p) return std::nullopt;
-    pieces.push_back(*p);
+    pieces.insert(pieces.end(), p->begin(), p->end());
   }
   if (!assemble(pieces, planes, tol, reason)) return std::nullopt;
   // The frame: origin on the axis at the middle of the extent, as the capped cylinder had it.

@@ -2,8 +2,8 @@
 // (volume/analytic/revolution_on_plane.hpp): the curved pieces' path against the cylinder's and the
 // sphere's (a cylinder written as a cone of zero slope, a sphere as one arc), a frustum standing on
 // its small end and a capsule on its side and on its end against the closed forms of MODEL.md §5, a
-// chamfered pin on its side against an independent integration, each also under a random rigid
-// motion.
+// chamfered pin on its side against an independent integration, a dumbbell whose two balls touch
+// as two patches against the sphere's closed form, each also under a random rigid motion.
 
 #include "volume/analytic/revolution_on_plane.hpp"
 
@@ -223,6 +223,46 @@ TEST(AnalyticRevolution, FilletedPinOnItsEndIsItsDiscsIntegrated) {
       // G's terms cancel to the volume's size: ~1e-16 of π ρ_c² f over V, 4e-9 at d = 1e-7
       EXPECT_NEAR(cv.volume, expected, 1e-8 * expected + 1e-15 * M_PI * rho * rho * f);
       EXPECT_LT((M.inverse() * cv.p_WC).head<2>().norm(), 1e-9 * R);  // on the axis
+    }
+  }
+}
+
+// A dumbbell (two balls of radius R, their centres Lc apart, joined by a bar of radius rb)
+// lying on the plane, tilted by ε so that the balls sink to different depths while the bar
+// stays dry: two regions, each the closed-form cap of its ball (its slices, a sphere arc cut
+// where the bar joins it, are the whole cap because the cap's slices end before the joint,
+// √(R² − (R − d)²) < √(R² − rb²)). The aggregate is the one region of all the slices, with the
+// summed volume. Tilted the other way, the far ball lifts off: one patch, the aggregate.
+TEST(AnalyticRevolution, DumbbellOnThePlaneIsTwoPatchesOneCapPerBall) {
+  const double R = 0.005, rb = 0.002, Lc = 0.03, zj = std::sqrt(R * R - rb * rb);
+  const RevolutionProfile dumbbell = {arc(-R, zj, 0.0, 0.0, R), constant(zj, Lc - zj, rb),
+                                      arc(Lc - zj, Lc + R, 0.0, Lc, R)};
+  for (double d : {1e-6, 1e-5, 2e-4}) {
+    for (unsigned seed : {0u, 5u, 11u}) {
+      const Isometry3d M = seed == 0 ? Isometry3d::Identity() : randomPose(seed);
+      const double eps = 1e-3;  // the far ball 30 µm deeper
+      Isometry3d X = Isometry3d::Identity();
+      X.linear() = Eigen::AngleAxisd(M_PI / 2 + eps, Vector3d::UnitY()).toRotationMatrix();
+      X.translation() = Vector3d(0.0, 0.0, R - d);
+      const Isometry3d near = M * X, far = M * X * Eigen::Translation3d(0.0, 0.0, Lc);
+      const ContactPatches c = revolutionHalfspacePatches(dumbbell, near, M);
+      SCOPED_TRACE(testing::Message() << "d " << d << " seed " << seed);
+      ASSERT_EQ(c.patches.size(), 2u);
+      // sortPatches: the deeper (far) ball's cap first
+      expectSameContact(c.patches[0], sphereHalfspace(R, far, M), kPromised);
+      expectSameContact(c.patches[1], sphereHalfspace(R, near, M), kPromised);
+      EXPECT_NEAR(c.aggregate.volume, c.patches[0].volume + c.patches[1].volume,
+                  1e-14 * c.aggregate.volume);
+      const ContactVolume whole = revolutionHalfspace(dumbbell, near, M);
+      EXPECT_EQ(whole.volume, c.aggregate.volume);  // the same numbers, to the bit
+      EXPECT_EQ(whole.p_WC, c.aggregate.p_WC);
+      // tilted the other way by 10 d / Lc about the near ball's centre, the far ball lifts off
+      Isometry3d Y = X;
+      Y.linear() =
+          Eigen::AngleAxisd(M_PI / 2 - 10.0 * d / Lc, Vector3d::UnitY()).toRotationMatrix();
+      const ContactPatches one = revolutionHalfspacePatches(dumbbell, M * Y, M);
+      ASSERT_EQ(one.patches.size(), 1u);
+      EXPECT_EQ(one.patches[0].volume, one.aggregate.volume);
     }
   }
 }

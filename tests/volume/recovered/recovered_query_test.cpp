@@ -2,11 +2,12 @@
 // query, computeContact: the bundled peg tilted 5° in the bundled block touches the bore's wall
 // at both ends on opposite sides, and the slices give two patches as `fast` does on the
 // polyhedra, and the whole agrees with the refinement of both meshes; each patch is summed from
-// its own slices, so the patches add up to the whole
-// (volume, first and second moments) to rounding, an independent check of the split. A peg
-// pressed sideways along its length is one patch, the whole. A mesh on a half-space without a
-// closed form falls back to the exact clip, says why, and keeps the clip's patches; a sphere on
-// the plane is the closed form; the row refuses primitives.
+// its own slices, so the patches add up to the whole (volume, first and second moments) to
+// rounding, an independent check of the split. A peg pressed sideways along its length is one
+// patch, the whole. A spool on its side on the plane touches it with both collars: two patches on
+// the recovered surfaces as on the polyhedra; three balls of one mesh, refined, three. A mesh on a
+// half-space without a closed form falls back to the exact clip, says why, and keeps the clip's
+// patches; a sphere on the plane is the closed form; the row refuses primitives.
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 #include "volume/contact.hpp"
 #include "volume/recovered/recovered_surface.hpp"
 #include "volume/recovered/refinement.hpp"
+#include "volume/revolution_references.hpp"
 
 namespace vcontact::volume {
 namespace {
@@ -117,6 +119,94 @@ TEST(RecoveredQuery, PegPressedSidewaysIsOnePatch) {
   EXPECT_EQ(c.patches[0].volume, c.aggregate.volume);
   EXPECT_EQ(c.patches[0].p_WC, c.aggregate.p_WC);
   EXPECT_TRUE(c.surface.reason.empty());
+}
+
+// A spool (two collars of radius R and width w joined by 45° cones to a waist of radius rb, each
+// cone tessellated in four rings, so that its faces lie on no sphere or torus) lying on its side
+// 100 µm into the plane touches it with both collars: two patches on the recovered surfaces as
+// on the polyhedra. Each recovered patch is one collar's segment times w plus the wetted slices
+// of its cone, which are a pin's chamfer (pinOnItsSide(R, w + 2c, c, d) is a collar of width w
+// with such a chamfer at each end); the polyhedra's patches lie at the same places, their
+// volumes within the 64-gon's faceting (its flats sit R(1 − cos π/64) = 6 µm inside the circle,
+// a few tens of percent of V at this depth).
+TEST(RecoveredQuery, SpoolOnItsSideIsTwoPatchesOnEveryRepresentation) {
+  const double R = 0.005, rb = 0.003, w = 0.004, L = 0.03, d = 1e-4, c = R - rb;
+  std::vector<Eigen::Vector2d> profile = {{R, 0.0}, {R, w}};
+  for (int i = 1; i <= 4; ++i) profile.emplace_back(R - 0.25 * i * c, w + 0.25 * i * c);
+  for (int i = 3; i >= 0; --i) profile.emplace_back(R - 0.25 * i * c, L - w - 0.25 * i * c);
+  profile.emplace_back(R, L);
+  const geometry::Shape spool{geometry::Mesh{
+      std::make_shared<geometry::TriangleMesh>(geometry::tessellateRevolution(profile, 64)),
+      "spool"}};
+  Isometry3d X_WA = Isometry3d::Identity();
+  X_WA.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitY()).toRotationMatrix();
+  X_WA.translation().z() = R - d;
+  const geometry::Shape plane = geometry::HalfSpace{};
+  const ContactPatches rec =
+      computeContact(spool, X_WA, plane, Isometry3d::Identity(), recovered());
+  ASSERT_EQ(rec.surface.representation, Representation::kRevolution) << rec.surface.reason;
+  ASSERT_EQ(rec.patches.size(), 2u);
+  const double collar = 0.5 * (test::pinOnItsSide(R, w + 2.0 * c, c, d) + w * test::segment(R, d));
+  for (const ContactVolume& p : rec.patches) {
+    EXPECT_NEAR(p.volume, collar, 1e-7 * collar);
+    EXPECT_NEAR(p.p_WC.y(), 0.0, 1e-9);
+  }
+  EXPECT_NEAR(rec.aggregate.volume, rec.patches[0].volume + rec.patches[1].volume,
+              1e-14 * rec.aggregate.volume);
+  for (const Method m : {Method::kHalfspace, Method::kCgal, Method::kColumns}) {
+    QueryOptions q;
+    q.method = m;
+    const ContactPatches poly = computeContact(spool, X_WA, plane, Isometry3d::Identity(), q);
+    SCOPED_TRACE(methodName(m));
+    ASSERT_EQ(poly.patches.size(), 2u);
+    for (const ContactVolume& p : poly.patches) {
+      // the recovered patch at the same end of the spool
+      const ContactVolume& same = (p.p_WC.x() < 0.5 * L) == (rec.patches[0].p_WC.x() < 0.5 * L)
+                                      ? rec.patches[0]
+                                      : rec.patches[1];
+      EXPECT_LT((p.p_WC - same.p_WC).norm(), 0.05 * w);
+      EXPECT_NEAR(p.volume, same.volume, 0.5 * same.volume);
+    }
+  }
+}
+
+// Three 32 × 16 balls of one mesh, their centres a triangle, 50 µm into the plane with
+// refinement: no closed form takes three spheres off one axis, so the faces that reach the plane
+// are refined, and the finest level's regions are three patches, each its ball's cap within the
+// refinement's tolerance (0.1 %, RefinementOptions::tolerance; the Richardson estimate
+// volume_error_bound is an estimate: here 7.0e-14 m³ for an error of 7.2e-14 m³).
+TEST(RecoveredQuery, ThreeBallsRefinedOnThePlaneAreThreePatches) {
+  const double R = 0.005, d = 5e-5;
+  const geometry::TriangleMesh ball = geometry::tessellateSphere(R, 32, 16);
+  const Vector3d centres[3] = {{0.0, 0.0, 0.0}, {0.02, 0.0, 0.0}, {0.01, 0.015, 0.0}};
+  geometry::TriangleMesh balls;
+  const Eigen::Index nv = ball.vertexCount(), nt = ball.triangleCount();
+  balls.vertices.resize(3 * nv, 3);
+  balls.triangles.resize(3 * nt, 3);
+  for (int i = 0; i < 3; ++i) {
+    balls.vertices.middleRows(i * nv, nv) = ball.vertices.rowwise() + centres[i].transpose();
+    balls.triangles.middleRows(i * nt, nt) = ball.triangles.array() + static_cast<int>(i * nv);
+  }
+  const geometry::Shape shape{
+      geometry::Mesh{std::make_shared<geometry::TriangleMesh>(balls), "three balls"}};
+  Isometry3d X_WA = Isometry3d::Identity();
+  X_WA.translation().z() = R - d;
+  QueryOptions q = recovered();
+  q.refine = true;
+  const geometry::Shape plane = geometry::HalfSpace{};
+  const ContactPatches c = computeContact(shape, X_WA, plane, Isometry3d::Identity(), q);
+  ASSERT_EQ(c.surface.representation, Representation::kRefined) << c.surface.reason;
+  ASSERT_EQ(c.patches.size(), 3u);
+  const double cap = M_PI * d * d * (3 * R - d) / 3;
+  double sum = 0.0;
+  const double tolerance = RefinementOptions{}.tolerance;
+  ASSERT_TRUE(c.surface.converged);
+  for (const ContactVolume& p : c.patches) {
+    EXPECT_NEAR(p.volume, cap, tolerance * cap);
+    sum += p.volume;
+  }
+  EXPECT_NEAR(sum, c.aggregate.volume, 1e-12 * c.aggregate.volume);
+  EXPECT_NEAR(c.aggregate.volume, 3.0 * cap, tolerance * 3.0 * cap);
 }
 
 // A 32 × 16 sphere 10 µm into the plane: the cap's closed form; a box (planes only) has none
