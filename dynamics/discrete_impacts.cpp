@@ -53,6 +53,9 @@ constexpr double kEndSlack = 1e-9;
 // whose tilt stiffness or missing cross terms (§2.2) are off by more than two, does not.
 constexpr double kMissedForceFraction = 0.5;
 constexpr double kMissedWeightFraction = 0.25;
+// Newton iterations of a plain step whose linearisation missed, before its interval is resolved
+// by Dormand–Prince instead.
+constexpr int kNewtonIterations = 12;
 
 }  // namespace
 
@@ -198,20 +201,32 @@ void DiscreteStepper::advance(State& x, State& dxdt, double& t, double h, double
     start_kin_ = kin_;
   }
   const double t0 = t;
-  plainStep(x, t, h);
-  stepImpulses(h);
-  t = t1;
-  eq_.normaliseQuaternions(x);
   // The step's one contact query, at the new state; on an output time with the exact
   // depths the output writes, which spares eq_.snapshot() a second query (fillDepths).
-  eq_.contacts().setQueryDepths(lands && eq_.outputDepths());
-  eq_.setKeepContexts(true);
-  eq_.rhs(x, dxdt, t);
-  eq_.contacts().setQueryDepths(false);
-  eq_.setKeepContexts(false);
+  const auto query = [&] {
+    stepImpulses(h);
+    eq_.normaliseQuaternions(x);
+    eq_.contacts().setQueryDepths(lands && eq_.outputDepths());
+    eq_.setKeepContexts(true);
+    eq_.rhs(x, dxdt, t1);
+    eq_.contacts().setQueryDepths(false);
+    eq_.setKeepContexts(false);
+  };
+  plainStep(x, t, h);
+  t = t1;
+  query();
   if (resolve) {
     const bool impact = impactAhead(start_kin_, true, h, fast_regions_);
-    const bool missed = !impact && linearisationMissed(h);
+    bool missed = !impact && linearisationMissed(h);
+    // A missed linearisation is first taken again about the step's end (a Newton iteration of
+    // the implicit step, one query each), and resolved only when that does not meet it.
+    for (int i = 0; missed && i < kNewtonIterations; ++i) {
+      ++summary.newton_iterations;
+      x = start_x_;
+      newtonStep(x, h);
+      query();
+      missed = linearisationMissed(h);
+    }
     if (impact || missed) {
       if (missed) ++summary.resolved_for_linearisation;
       x = start_x_;

@@ -25,15 +25,15 @@ ContactJacobians contactJacobians(const Model& model, const volume::ContactVolum
 }
 
 void linearisePatch(const Model& model, const volume::ContactVolume& cv,
-                    const RelativeMotion& motion, const PairState& state, double h,
-                    PatchStep& out) {
+                    const RelativeMotion& motion, const PairState& state, double h, PatchStep& out,
+                    bool about_end) {
   ContactContext ctx;
   model.evaluate(cv, motion, state, out.start, nullptr, &ctx);
-  linearisePatch(model, ctx, motion, h, out);
+  linearisePatch(model, ctx, motion, h, out, about_end);
 }
 
 void linearisePatch(const Model& model, const ContactContext& ctx, const RelativeMotion& motion,
-                    double h, PatchStep& out) {
+                    double h, PatchStep& out, bool about_end) {
   StepTerms terms;
   terms.h = h;
   model.linearise(ctx, terms);
@@ -42,6 +42,7 @@ void linearisePatch(const Model& model, const ContactContext& ctx, const Relativ
   w0 << out.start.wrench.f_W, out.start.wrench.tau_W;
   out.c = w0 - terms.D * xi0;
   out.L = terms.D + h * terms.K;
+  if (about_end) out.c -= h * (terms.K * xi0);
   out.implicit = terms.implicit;
   if (!out.implicit.any()) return;
   // the shares of the implicit states at the start (c_now + L_now ξ0: exactly the bristle and

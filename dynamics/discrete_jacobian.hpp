@@ -49,14 +49,19 @@ struct PatchStep {
 };
 
 /// The step of length h (> 0) of a patch in contact (cv.inContact()), lumped friction.
+/// about_end: cv and motion are not the step's start but a guess of its end reached from the
+/// start by h ξ0 (ξ0 the twist of `motion`; a Newton iteration of the step, the state still the
+/// start's), so that the displacement over the step is h (ξ⁺ − ξ0) from there: c gains
+/// −h K ξ0.
 void linearisePatch(const Model& model, const volume::ContactVolume& cv,
-                    const RelativeMotion& motion, const PairState& state, double h, PatchStep& out);
+                    const RelativeMotion& motion, const PairState& state, double h, PatchStep& out,
+                    bool about_end = false);
 
 /// The same from an evaluation already made at (cv, motion, state): `ctx` is its context
 /// (Model::evaluate's `context`, whose cv must still be alive) and out.start its result. The
 /// discrete stepper passes the evaluation of the step's query, which is the step's start: one
 /// evaluation of the model per step instead of three, and the same numbers.
 void linearisePatch(const Model& model, const ContactContext& ctx, const RelativeMotion& motion,
-                    double h, PatchStep& out);
+                    double h, PatchStep& out, bool about_end = false);
 
 }  // namespace vcontact::dynamics

@@ -125,21 +125,56 @@ void DiscreteStepper::plainStep(State& x, double t, double h) {
   in_flight_.assign(nb, 1);
   for (const ExternalLoad& l : scenario_.loads) in_flight_[l.body] = 0;
   for (const BodySpring& s : scenario_.springs) in_flight_[s.a] = in_flight_[s.b] = 0;
-  // the contact patches
+  if (scenario_.settings.impacts != ImpactMode::kImplicit) {  // for newtonStep
+    base_matrix_ = step_matrix_;
+    base_rhs_ = step_rhs_;
+    base_in_flight_ = in_flight_;
+  }
+  assembleContacts(x, h, false);
+  solveAndMove(x, kin_, h);
+}
+
+// The step again from its start (x = the start's state) with the contacts of the latest query,
+// at the end of the step before: a Newton iteration of the implicit step (docs/DISCRETE.md §5).
+// The bodies' inertia, gravity, gyroscopic torque, loads and springs are the start's, as in
+// plainStep; each patch is linearised about the latest query's pose and twist, which lie h ξ
+// beyond the start.
+void DiscreteStepper::newtonStep(State& x, double h) {
+  step_matrix_ = base_matrix_;
+  step_rhs_ = base_rhs_;
+  in_flight_ = base_in_flight_;
+  // the free bodies' twists after the solve are taken at the poses the patches are linearised
+  // about (stepImpulses, updateStates), as plainStep takes them at the start's
+  for (std::size_t i = 0; i < next_kin_.size(); ++i) {
+    if (eq_.bodyOffset(i) >= 0) next_kin_[i] = kin_[i];
+  }
+  assembleContacts(x, h, true);
+  solveAndMove(x, start_kin_, h);
+}
+
+// Every patch of the latest query into the step's system (assemblePatch).
+void DiscreteStepper::assembleContacts(const State& x, double h, bool about_end) {
   step_patch_count_ = 0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
     if (eq_.sleep().frozen(k)) continue;  // neither body in the system: it would add nothing
     if (eq_.slots(k) == 1) {
-      assemblePatch(k, out.cv, 0, 0, x, h);
+      assemblePatch(k, out.cv, 0, 0, x, h, about_end);
       continue;
     }
     for (std::size_t i = 0; i < out.patches.size(); ++i) {
-      assemblePatch(k, out.patches[i].cv, eq_.match(k).host[i], out.patches[i].slot, x, h);
+      assemblePatch(k, out.patches[i].cv, eq_.match(k).host[i], out.patches[i].slot, x, h,
+                    about_end);
     }
   }
-  if (eq_.shortcuts() && n == 6 && step_patch_count_ == 0 && scenario_.loads.empty() &&
-      scenario_.springs.empty()) {
+}
+
+// The step's system solved, and x (the start's state) moved over h: the pair states, then the
+// bodies from the start's poses and velocities `start`.
+void DiscreteStepper::solveAndMove(State& x, const std::vector<BodyKinematics>& start, double h) {
+  const std::size_t nb = scenario_.bodies.size();
+  if (eq_.shortcuts() && step_matrix_.rows() == 6 && step_patch_count_ == 0 &&
+      scenario_.loads.empty() && scenario_.springs.empty()) {
     solveFlight();
   } else {
     step_lu_.compute(step_matrix_);
@@ -159,7 +194,7 @@ void DiscreteStepper::plainStep(State& x, double t, double h) {
     // In free flight the force is constant over the step (gravity), so the trapezoid rule
     // moves the centre of mass exactly; in contact the displacement is h v⁺, with which (1.3)
     // linearised the stiffness (docs/DISCRETE.md §1).
-    const Eigen::Vector3d u = in_flight_[i] ? Eigen::Vector3d(0.5 * (kin_[i].v_WBcm + v)) : v;
+    const Eigen::Vector3d u = in_flight_[i] ? Eigen::Vector3d(0.5 * (start[i].v_WBcm + v)) : v;
     const double next[kBodyStates] = {s[0] + h * u.x(),
                                       s[1] + h * u.y(),
                                       s[2] + h * u.z(),
@@ -202,8 +237,9 @@ void DiscreteStepper::solveFlight() {
 
 // Patch (contact cv of pair k, states of slot `host`, its own slot `slot` or −1) into the
 // step's system: body A gets Gᵀ_A (c + L ξ⁺), body B the opposite at the same point.
+// about_end: cv and the bodies' kinematics are the end of an earlier iterate (newtonStep).
 void DiscreteStepper::assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host,
-                                    int slot, const State& x, double h) {
+                                    int slot, const State& x, double h, bool about_end) {
   if (!cv.inContact()) return;
   const ContactPair& pair = scenario_.pairs[k];
   in_flight_[pair.a] = in_flight_[pair.b] = 0;
@@ -219,9 +255,9 @@ void DiscreteStepper::assemblePatch(std::size_t k, const volume::ContactVolume& 
   const RelativeMotion motion = relativeMotion(kin_[pair.a], kin_[pair.b], cv.p_WC);
   if (eq_.shortcuts() && evaluatedAt(k, cv, motion, state)) {
     dp.step.start = last_pairs_[k].result;
-    linearisePatch(pair.model, eq_.context(k).ctx, motion, h, dp.step);
+    linearisePatch(pair.model, eq_.context(k).ctx, motion, h, dp.step, about_end);
   } else {
-    linearisePatch(pair.model, cv, motion, state, h, dp.step);
+    linearisePatch(pair.model, cv, motion, state, h, dp.step, about_end);
   }
   const std::size_t body[2] = {pair.a, pair.b};
   const double sign[2] = {1.0, -1.0};  // ξ = G_A V_A − G_B V_B; B gets the opposite wrench

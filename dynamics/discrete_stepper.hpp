@@ -54,10 +54,13 @@ class DiscreteStepper final : public Stepper {
     bool resolve = false;
   };
 
-  // the plain step (discrete_stepper.cpp)
+  // the plain step and its Newton iterations (discrete_stepper.cpp)
   void plainStep(State& x, double t, double h);
+  void newtonStep(State& x, double h);
+  void assembleContacts(const State& x, double h, bool about_end);
+  void solveAndMove(State& x, const std::vector<BodyKinematics>& start, double h);
   void assemblePatch(std::size_t k, const volume::ContactVolume& cv, int host, int slot,
-                     const State& x, double h);
+                     const State& x, double h, bool about_end);
   bool evaluatedAt(std::size_t k, const volume::ContactVolume& cv, const RelativeMotion& motion,
                    const PairState& state) const;
   void solveFlight();
@@ -96,6 +99,11 @@ class DiscreteStepper final : public Stepper {
   Eigen::MatrixXd step_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> step_lu_;
   Eigen::VectorXd step_rhs_, step_twist_;
+  // The system before its contact patches (inertia, gravity, loads and springs at the step's
+  // start), kept for the Newton iterations of the step.
+  Eigen::MatrixXd base_matrix_;
+  Eigen::VectorXd base_rhs_;
+  std::vector<char> base_in_flight_;
   // solveFlight()'s 3 × 3 system of one body's rotation, kept to avoid allocations
   Eigen::MatrixXd flight_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> flight_lu_;

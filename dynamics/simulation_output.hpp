@@ -101,6 +101,9 @@ struct SimulationSummary {
   long resolution_substeps = 0;
   long resolved_for_linearisation = 0;
   long resolution_queries = 0;
+  /// Discrete runs: the Newton iterations of plain steps whose linearisation missed (one query
+  /// each), taken before such a step is resolved.
+  long newton_iterations = 0;
   /// Discrete runs with sleep (dynamics/sleep.hpp): the bodies falling asleep and waking, in
   /// order, and the contact queries not made because a pair's bodies slept.
   std::vector<SleepEvent> sleep_events;

@@ -91,6 +91,7 @@ nlohmann::json simulationSummaryJson(const dynamics::SimulationSummary& s,
     j["resolved_for_linearisation"] = s.resolved_for_linearisation;
     j["resolution_queries"] = s.resolution_queries;
   }
+  if (s.newton_iterations > 0) j["newton_iterations"] = s.newton_iterations;
   if (!s.sleep_events.empty()) j["sleep"] = sleepJson(s);
   if (stop) {
     j["stopped_at_s"] = stop->time;

@@ -220,6 +220,25 @@ TEST(DiscreteJacobian, FlatFaceStiffnessMatchesDifferences) {
   }
 }
 
+// A Newton iteration of the step linearises about a guess of its end, reached from the start by
+// h ξ0: its wrench over the step is w0 + D (ξ⁺ − ξ0) + h K (ξ⁺ − ξ0), so that at ξ⁺ = ξ0 (the
+// iteration's fixed point) it is the wrench at the guess itself, and it differs from the
+// start's form (whose displacement is h ξ⁺) by −h K ξ0 alone.
+TEST(DiscreteJacobian, AboutTheEndTheStepIsTheWrenchAtItsFixedPoint) {
+  const Model m = soft({"stiffness", "damping", "coulomb"});
+  const volume::ContactVolume cv = cubeContact(cubePose(1e-4, 0.0005, 0.3));
+  const Vector6d xi = (Vector6d() << 0.002, -0.001, -0.01, 0.05, 0.02, 0.1).finished();
+  const double h = 1e-3;
+  dynamics::PatchStep start, end;
+  linearisePatch(m, cv, motionOf(xi), PairState{}, h, start);
+  linearisePatch(m, cv, motionOf(xi), PairState{}, h, end, true);
+  const Vector6d w0 = asVector(end.start.wrench);
+  EXPECT_LE((end.c + end.L * xi - w0).norm(), 1e-12 * w0.norm());
+  EXPECT_EQ(end.L, start.L);
+  const ContactJacobians J = contactJacobians(m, cv, motionOf(xi), PairState{});
+  EXPECT_LE((start.c - end.c - h * J.K * xi).norm(), 1e-12 * w0.norm());
+}
+
 // A sphere: ∂V/∂δ = A exactly, but rotating a curved face about p_c slides its depth profile
 // rather than tilting it. The true tilt stiffness is R f_n = kv π a⁴/4 (small depth); the
 // flat-face form gives kv Σ_s/d̄ = kv π a⁴/6: 2/3 of it (docs/DISCRETE.md §2).
