@@ -22,7 +22,7 @@
 // resolution costs at least six queries per Dormand–Prince step and max(1, h / max_step) steps
 // against the plain step's one query, and a rebound slower than the threshold is a hop below
 // v² / 2g that the plain step may dissipate. The safety net of a plain step whose linearisation
-// missed (linearisationMissed) resolves in either mode, except for a pair whose impact "auto"
+// missed (linearisationMiss) resolves in either mode, except for a pair whose impact "auto"
 // left to the plain step.
 #include <algorithm>
 #include <cmath>
@@ -56,6 +56,11 @@ constexpr double kMissedWeightFraction = 0.25;
 // Newton iterations of a plain step whose linearisation missed, before its interval is resolved
 // by Dormand–Prince instead.
 constexpr int kNewtonIterations = 12;
+// Once iterating, a step's Newton iterations go on until its worst pair misses by a tenth of
+// the allowance (5 % of the force) or the count runs out: a step accepted just inside the
+// allowance would start the next one half a weight out of balance, and a resting part would
+// hop from one missed step to the next instead of coming to rest.
+constexpr double kNewtonTarget = 0.1;
 
 }  // namespace
 
@@ -159,13 +164,17 @@ void DiscreteStepper::markImpacts(bool resolved) {
 // whose impact "auto" leaves to the plain step (below the restitution threshold: a fast region
 // of this step, or the open impact of earlier ones) misses by design until that impact is over:
 // the plain step lands it from apart and dissipates it.
-bool DiscreteStepper::linearisationMissed(double h) const {
+//
+// Returned as the worst such pair's miss over its allowance (kMissedForceFraction of the larger
+// force): missed when above 1, 0 when no pair misses by more than the weight share.
+double DiscreteStepper::linearisationMiss(double h) const {
   const double g = scenario_.gravity_W.norm();
   const auto left_to_the_step = [&](std::size_t k) {
     return impacts_.openAndPlain(k) ||
            std::any_of(fast_regions_.begin(), fast_regions_.end(),
                        [k](const FastRegion& r) { return r.pair == k && !r.resolve; });
   };
+  double worst = 0.0;
   for (std::size_t k = 0; k < scenario_.pairs.size(); ++k) {
     const PairOutput& out = last_pairs_[k];
     if (!out.cv.inContact() || eq_.sleep().frozen(k) || left_to_the_step(k)) continue;
@@ -177,12 +186,26 @@ bool DiscreteStepper::linearisationMissed(double h) const {
     if (!std::isfinite(lighter)) continue;
     const double applied = step_impulse_[k] / h, queried = out.result.f_n;
     const double miss = std::abs(queried - applied);
-    if (miss > kMissedForceFraction * std::max(std::abs(applied), std::abs(queried)) &&
-        miss > kMissedWeightFraction * lighter * g) {
-      return true;
-    }
+    if (miss <= kMissedWeightFraction * lighter * g) continue;
+    const double allowance = kMissedForceFraction * std::max(std::abs(applied), std::abs(queried));
+    worst = std::max(worst,
+                     allowance > 0.0 ? miss / allowance : std::numeric_limits<double>::infinity());
   }
-  return false;
+  return worst;
+}
+
+// The Newton iterate in x (and its twists in next_kin_) moved back halfway to the previous one,
+// previous_x_: a damped iteration, for a step whose last iteration missed by more than the one
+// before (two contacts of a resting stack that the linearisations push to and fro).
+void DiscreteStepper::relaxNewtonIterate(State& x) {
+  for (std::size_t j = 0; j < x.size(); ++j) x[j] = previous_x_[j] + 0.5 * (x[j] - previous_x_[j]);
+  for (std::size_t i = 0; i < next_kin_.size(); ++i) {
+    const int o = eq_.bodyOffset(i);
+    if (o < 0) continue;
+    const double* s = &x[static_cast<std::size_t>(o)];
+    next_kin_[i].v_WBcm = Eigen::Vector3d(s[7], s[8], s[9]);
+    next_kin_[i].w_WB = Eigen::Vector3d(s[10], s[11], s[12]);
+  }
 }
 
 // The interval [t, t1] of one step, plain or resolved; x, dxdt and the contacts at t on entry,
@@ -203,8 +226,8 @@ void DiscreteStepper::advance(State& x, State& dxdt, double& t, double h, double
   const double t0 = t;
   // The step's one contact query, at the new state; on an output time with the exact
   // depths the output writes, which spares eq_.snapshot() a second query (fillDepths).
-  const auto query = [&] {
-    stepImpulses(h);
+  const auto query = [&](bool impulses) {
+    if (impulses) stepImpulses(h);
     eq_.normaliseQuaternions(x);
     eq_.contacts().setQueryDepths(lands && eq_.outputDepths());
     eq_.setKeepContexts(true);
@@ -214,19 +237,38 @@ void DiscreteStepper::advance(State& x, State& dxdt, double& t, double h, double
   };
   plainStep(x, t, h);
   t = t1;
-  query();
+  query(true);
   if (resolve) {
     const bool impact = impactAhead(start_kin_, true, h, fast_regions_);
-    bool missed = !impact && linearisationMissed(h);
+    double miss = impact ? 0.0 : linearisationMiss(h);
     // A missed linearisation is first taken again about the step's end (a Newton iteration of
-    // the implicit step, one query each), and resolved only when that does not meet it.
-    for (int i = 0; missed && i < kNewtonIterations; ++i) {
+    // the implicit step, one query each; damped halfway after an iteration that missed by more
+    // than the one before), and resolved only when that does not meet it.
+    double before = std::numeric_limits<double>::infinity(), best = miss;
+    for (int i = 0; miss > (i == 0 ? 1.0 : kNewtonTarget) && i < kNewtonIterations; ++i) {
       ++summary.newton_iterations;
+      const bool damp = miss > before;
+      before = miss;
+      previous_x_ = x;
       x = start_x_;
       newtonStep(x, h);
-      query();
-      missed = linearisationMissed(h);
+      if (damp) relaxNewtonIterate(x);
+      query(true);
+      miss = linearisationMiss(h);
+      if (miss < best) {
+        best = miss;
+        best_x_ = x;
+        best_impulse_ = step_impulse_;
+      }
     }
+    // iterations that ran out short of the target: their best iterate, if within the allowance
+    if (miss > 1.0 && best <= 1.0) {
+      x = best_x_;
+      step_impulse_ = best_impulse_;
+      query(false);
+      miss = best;
+    }
+    const bool missed = miss > 1.0;
     if (impact || missed) {
       if (missed) ++summary.resolved_for_linearisation;
       x = start_x_;

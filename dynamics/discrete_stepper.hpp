@@ -77,7 +77,8 @@ class DiscreteStepper final : public Stepper {
   bool impactAhead(const std::vector<BodyKinematics>& speed_kin, bool approaching_only, double h,
                    std::vector<FastRegion>& fast) const;
   void markImpacts(bool resolved);
-  bool linearisationMissed(double h) const;
+  double linearisationMiss(double h) const;
+  void relaxNewtonIterate(State& x);
   void resolveInterval(State& x, State& dxdt, double& t, double t1, SimulationSummary& summary);
   void stepImpulses(double h);
   // sleep (discrete_sleep.cpp)
@@ -114,6 +115,9 @@ class DiscreteStepper final : public Stepper {
   // into an impact; the normal impulse of each pair over the latest step; the fast regions of
   // the step under way; the latest accepted step of the resolutions.
   State start_x_, start_dxdt_;
+  State previous_x_;  ///< the Newton iteration's previous iterate (relaxNewtonIterate)
+  State best_x_;      ///< and its best iterate so far, with that iterate's step impulses
+  std::vector<double> best_impulse_;
   std::vector<BodyKinematics> start_kin_;
   std::vector<double> step_impulse_;
   std::vector<FastRegion> fast_regions_;

@@ -61,14 +61,16 @@ class ImpactTracker {
   /// Discrete runs: a region of pair k was fast in the step begun last, predicted to rebound at
   /// `rebound` (m/s), and the step is resolved for it.
   void markResolved(std::size_t k, double rebound);
-  /// Whether pair k has an open impact whose fast steps have all been left to the plain step.
+  /// Whether pair k has an open impact of which a fast step has been left to the plain step.
   bool openAndPlain(std::size_t k) const {
     const Open& o = open_[k];
-    return o.active && o.plain_steps > 0 && o.resolved_steps == 0;
+    return o.active && o.plain_steps > 0;
   }
-  /// Whether pair k has an open impact of which a step has been resolved.
+  /// Whether pair k has an open impact of which a step has been resolved and none left to the
+  /// plain step (an impact the plain step took first stays the plain step's when a later step of
+  /// it is resolved for a missed linearisation).
   bool openAndResolved(std::size_t k) const {
-    return open_[k].active && open_[k].resolved_steps > 0;
+    return open_[k].active && open_[k].resolved_steps > 0 && open_[k].plain_steps == 0;
   }
   /// The approach speed of pair k's open impact (m/s), 0 without one.
   double openApproach(std::size_t k) const { return open_[k].active ? open_[k].approach : 0.0; }
