@@ -101,7 +101,7 @@ class Model {
 
   /// The shared context after both passes of evaluate() (lumped friction): the final f_n, s,
   /// μ_max, Contensou factors and the configured parameters, for the linearisation of the
-  /// discrete stepper (dynamics/discrete_jacobian.hpp). @pre cv.inContact()
+  /// discrete stepper (dynamics/steppers/discrete_jacobian.hpp). @pre cv.inContact()
   ContactContext context(const volume::ContactVolume& cv, const RelativeMotion& motion,
                          const PairState& state) const;
 

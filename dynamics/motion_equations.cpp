@@ -211,7 +211,7 @@ bool MotionEquations::settle(State& x, double t) {
   return settlePairs(x, t);
 }
 
-// The blow-up guard after an accepted step (energy_guard.hpp): O(bodies + pairs).
+// The blow-up guard after an accepted step (trackers/energy_guard.hpp): O(bodies + pairs).
 void MotionEquations::checkEnergy(const State& x, double t) {
   const bool current = kinematicsCurrent(x, t);
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i)

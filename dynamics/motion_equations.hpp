@@ -1,5 +1,5 @@
 #pragma once
-// The equations of motion of a Scenario, as every integrator sees them (dynamics/stepper.hpp):
+// The equations of motion of a Scenario, as every integrator sees them (steppers/stepper.hpp):
 //
 // - the state: each free body's 13 states (p_WBcm, q_WB as w x y z, v_WBcm, ω_WB), then each
 //   pair's model states, slot by slot (patchSlots); x0 from the bodies' initial poses and
@@ -18,19 +18,19 @@
 //
 // The checks stop a run with a SimulationError naming time, pair or body and the quantity: a
 // non-finite state, a mean penetration V/A beyond a set fraction of a body, or kinetic energy
-// far beyond what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
+// far beyond what the scenario can supply (a blow-up, dynamics/trackers/energy_guard.hpp).
 
 #include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "dynamics/energy_guard.hpp"
 #include "dynamics/pair_contacts.hpp"
-#include "dynamics/patch_tracker.hpp"
 #include "dynamics/scenario.hpp"
 #include "dynamics/simulation_output.hpp"
-#include "dynamics/sleep.hpp"
+#include "dynamics/trackers/energy_guard.hpp"
+#include "dynamics/trackers/patch_tracker.hpp"
+#include "dynamics/trackers/sleep.hpp"
 
 namespace vcontact::dynamics {
 
@@ -182,7 +182,7 @@ class MotionEquations {
   /// The pairs' contacts: broad phase, caches, δ maps, recovered surfaces, the discrete
   /// stepper's latest contacts (pair_contacts.hpp); the only caller of the contact query.
   std::optional<PairContacts> contacts_;
-  SleepTracker sleep_;  ///< sleeping islands (sleep.hpp); updated by the discrete stepper
+  SleepTracker sleep_;  ///< sleeping islands (trackers/sleep.hpp); updated by the discrete stepper
   std::optional<EnergyGuard> energy_guard_;  ///< set by firstOutput()
   std::vector<BodyKinematics> guard_kin_;    ///< checkEnergy()'s scratch
   /// The first effect whose wrench was not finite at a finite contact, and when ("" if none).

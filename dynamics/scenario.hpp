@@ -30,7 +30,7 @@ constexpr int kMinColumnResolution = 8;
 constexpr int kMaxColumnResolution = 512;
 
 /// State slots of a pair whose bodies can touch in several regions (docs/SCENARIO.md,
-/// "Contact patches"): one per patch followed (patch_tracker.hpp), up to this many.
+/// "Contact patches"): one per patch followed (trackers/patch_tracker.hpp), up to this many.
 constexpr int kDefaultMaxPatches = 4;
 /// Bounds of that count: each slot carries the model's states in the integrator.
 constexpr int kMinMaxPatches = 1;
@@ -81,7 +81,7 @@ enum class ImpactMode {
 /// m/s, the default SimulationSettings::restitution_threshold (docs/DISCRETE.md §5).
 constexpr double kDefaultRestitutionThreshold = 0.05;
 
-/// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/SLEEP.md); dopri5
+/// Sleeping islands of the discrete stepper (dynamics/trackers/sleep.hpp, docs/SLEEP.md); dopri5
 /// and bdf ignore them (an error-controlled integrator freezes nothing).
 struct SleepSettings {
   bool enabled = true;

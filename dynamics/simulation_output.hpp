@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/impact_tracker.hpp"
 #include "dynamics/loads.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/pair_state.hpp"
 #include "dynamics/recovered_pairs.hpp"
 #include "dynamics/rigid_body.hpp"
 #include "dynamics/scenario.hpp"
-#include "dynamics/sleep.hpp"
+#include "dynamics/trackers/impact_tracker.hpp"
+#include "dynamics/trackers/sleep.hpp"
 #include "volume/contact_volume.hpp"
 
 namespace vcontact::dynamics {
@@ -27,8 +27,8 @@ enum class StopCause {
   kStepCollapse,       ///< the step size fell below SimulationSettings::min_step
   kPenetration,        ///< a pair's mean penetration exceeds max_penetration_fraction
   kIntegratorFailure,  ///< another failure of the integrator (CVODE), in its words
-  kBlowUp,             ///< the free bodies gained energy no input gave them (energy_guard.hpp)
-  kInterrupted         ///< the user asked the run to stop (SIGINT, SIGTERM: io/interrupt.hpp)
+  kBlowUp,      ///< the free bodies gained energy no input gave them (trackers/energy_guard.hpp)
+  kInterrupted  ///< the user asked the run to stop (SIGINT, SIGTERM: io/interrupt.hpp)
 };
 
 /// "non_finite_state", "step_size_collapse", "penetration_beyond_bound", "integrator_failure",
@@ -91,7 +91,7 @@ struct SimulationSummary {
   /// empty when no body has "surface": "recovered".
   std::vector<SurfaceBodyUse> surface_bodies;
   std::vector<SurfacePairUse> surface_pairs;
-  /// The impacts of the pairs (dynamics/impact_tracker.hpp); dopri5 and discrete runs.
+  /// The impacts of the pairs (dynamics/trackers/impact_tracker.hpp); dopri5 and discrete runs.
   std::vector<ImpactRecord> impacts;
   /// Discrete runs: the steps whose interval was integrated by Dormand–Prince to resolve an
   /// impact or a missed linearisation, and the accepted Dormand–Prince steps they took
@@ -104,8 +104,8 @@ struct SimulationSummary {
   /// Discrete runs: the Newton iterations of plain steps whose linearisation missed (one query
   /// each), taken before such a step is resolved.
   long newton_iterations = 0;
-  /// Discrete runs with sleep (dynamics/sleep.hpp): the bodies falling asleep and waking, in
-  /// order, and the contact queries not made because a pair's bodies slept.
+  /// Discrete runs with sleep (dynamics/trackers/sleep.hpp): the bodies falling asleep and waking,
+  /// in order, and the contact queries not made because a pair's bodies slept.
   std::vector<SleepEvent> sleep_events;
   long sleep_skipped_queries = 0;
   double realTimeFactor() const { return wall_time > 0.0 ? simulated_time / wall_time : 0.0; }

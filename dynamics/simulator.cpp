@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "dynamics/bdf_stepper.hpp"
-#include "dynamics/discrete_stepper.hpp"
-#include "dynamics/dopri5_stepper.hpp"
+#include "dynamics/steppers/bdf_stepper.hpp"
+#include "dynamics/steppers/discrete_stepper.hpp"
+#include "dynamics/steppers/dopri5_stepper.hpp"
 #include "io/interrupt.hpp"
 
 namespace vcontact::dynamics {

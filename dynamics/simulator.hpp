@@ -5,12 +5,12 @@
 //   (the bodies under gravity, loads, springs and the contact wrenches of every pair, the
 //   pairs' contacts from PairContacts, pair_contacts.hpp), the settle after an accepted step,
 //   the checks that stop a run and the output snapshot;
-// - one stepper (stepper.hpp), the integrator the scenario names (SimulationSettings::
-//   integrator): Dormand–Prince (dopri5_stepper.hpp), BDF (bdf_stepper.hpp) or the discrete
-//   stepper (discrete_stepper.hpp);
-// - the trackers every run reports from: impacts (impact_tracker.hpp), the patches' counts;
-//   the blow-up guard and the sleeping islands are the equations' own (energy_guard.hpp,
-//   sleep.hpp), the patches' slots each pair's (patch_tracker.hpp).
+// - one stepper (steppers/stepper.hpp), the integrator the scenario names
+//   (SimulationSettings::integrator): Dormand–Prince (steppers/dopri5_stepper.hpp), BDF
+//   (steppers/bdf_stepper.hpp) or the discrete stepper (steppers/discrete_stepper.hpp);
+// - the trackers every run reports from (trackers/): impacts (impact_tracker.hpp), the
+//   patches' counts; the blow-up guard and the sleeping islands are the equations' own
+//   (energy_guard.hpp, sleep.hpp), the patches' slots each pair's (patch_tracker.hpp).
 //
 // The run loop settles the initial state, writes the first output, hands the state to the
 // stepper, looks after each accepted step whether it was asked to stop, and fills the summary
@@ -21,16 +21,16 @@
 // Any run stops with a SimulationError naming time, pair or body and the quantity on: a
 // non-finite state or rate, a mean penetration V/A beyond a set fraction of a body, a step
 // size below the minimum (or another failure of CVODE, in words), or kinetic energy far beyond
-// what the scenario can supply (a blow-up, dynamics/energy_guard.hpp).
+// what the scenario can supply (a blow-up, dynamics/trackers/energy_guard.hpp).
 
 #include <functional>
 #include <memory>
 #include <vector>
 
-#include "dynamics/impact_tracker.hpp"
 #include "dynamics/motion_equations.hpp"
 #include "dynamics/scenario.hpp"
 #include "dynamics/simulation_output.hpp"
+#include "dynamics/trackers/impact_tracker.hpp"
 
 namespace vcontact::dynamics {
 

@@ -33,7 +33,7 @@ nlohmann::json surfacesJson(const dynamics::SimulationSummary& s) {
   return {{"bodies", bodies}, {"pairs", pairs}};
 }
 
-// "impacts": one object per impact of a pair (dynamics/impact_tracker.hpp).
+// "impacts": one object per impact of a pair (dynamics/trackers/impact_tracker.hpp).
 nlohmann::json impactsJson(const dynamics::SimulationSummary& s) {
   nlohmann::json out = nlohmann::json::array();
   for (const dynamics::ImpactRecord& r : s.impacts) {

@@ -7,7 +7,7 @@
 #include <map>
 #include <variant>
 
-#include "dynamics/patch_tracker.hpp"
+#include "dynamics/trackers/patch_tracker.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::validation {
@@ -294,8 +294,8 @@ Prediction Replayer::runWhole(const Model& model, bool regime) {
 }
 
 // Some sample touches in several regions: one set of friction states per tracked patch
-// (dynamics/patch_tracker.hpp), with as many slots as the most patches of any sample, so every
-// patch has its own. A sample of one region is its own single patch.
+// (dynamics/trackers/patch_tracker.hpp), with as many slots as the most patches of any sample, so
+// every patch has its own. A sample of one region is its own single patch.
 Prediction Replayer::runPatches(const Model& model, int slots, bool regime) {
   const auto& geometry = *geometry_;
   const auto& samples = dataset_.samples;

@@ -12,8 +12,8 @@
 // A payload that touches the plate in several regions (feet, a ring, a rocking part) has one
 // contact patch per region: steps 3–5 run per patch, each with its own friction states, and
 // the wrenches are summed about Ao. Patches are followed from sample to sample by the
-// simulator's rule (dynamics/patch_tracker.hpp): a new patch starts from rest, a vanished one
-// is dropped. A record whose contact is one region throughout is replayed exactly as before.
+// simulator's rule (dynamics/trackers/patch_tracker.hpp): a new patch starts from rest, a vanished
+// one is dropped. A record whose contact is one region throughout is replayed exactly as before.
 //
 // Friction states (bristle z, θ_n, dwell s_dw) are integrated from sample i to i+1 with the
 // exponential Euler method on the kinematics of sample i:

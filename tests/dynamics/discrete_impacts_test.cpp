@@ -1,8 +1,8 @@
 // Impacts in the discrete stepper (docs/DISCRETE.md §5–6): the steps that hold an impact
 // shorter than h are integrated by Dormand–Prince ("impacts": "resolve"), so ball_drop's
 // restitution at h = 1 ms and 0.5 ms is that of the exact relation (MODEL.md §5); and the
-// impact records of the summary (dynamics/impact_tracker.hpp) balance the momentum. An impact
-// is looked for per patch and resolved up to 250 steps per impact (issue 18's rest pose).
+// impact records of the summary (dynamics/trackers/impact_tracker.hpp) balance the momentum. An
+// impact is looked for per patch and resolved up to 250 steps per impact (issue 18's rest pose).
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-// The discrete stepper's linearisation (dynamics/discrete_jacobian.hpp, docs/DISCRETE.md §2)
-// against central finite differences of the model's wrench: in the twist at a fixed contact,
+// The discrete stepper's linearisation (dynamics/steppers/discrete_jacobian.hpp, docs/DISCRETE.md
+// §2) against central finite differences of the model's wrench: in the twist at a fixed contact,
 // and in the pose (through the geometry) at a fixed twist. Friction laws are linearised with
 // their magnitudes frozen (a secant): where that equals the derivative (the regularised core,
 // across the slip) the columns are compared; along the slip the secant must give the force.
 
-#include "dynamics/discrete_jacobian.hpp"
+#include "dynamics/steppers/discrete_jacobian.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// PatchTracker (dynamics/patch_tracker.hpp): the slot rules 1–4 on hand-made patches.
+// PatchTracker (dynamics/trackers/patch_tracker.hpp): the slot rules 1–4 on hand-made patches.
 
-#include "dynamics/patch_tracker.hpp"
+#include "dynamics/trackers/patch_tracker.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Sleeping islands of the discrete stepper (dynamics/sleep.hpp, docs/SLEEP.md): a resting
+// Sleeping islands of the discrete stepper (dynamics/trackers/sleep.hpp, docs/SLEEP.md): a resting
 // box falls asleep where the awake run keeps it, a dropped ball wakes it, a sliding block and a
 // body under a load never sleep, and the hooks change nothing while nobody sleeps.
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "dynamics/simulator.hpp"
-#include "dynamics/sleep.hpp"
+#include "dynamics/trackers/sleep.hpp"
 #include "formats/scenario_file.hpp"
 #include "geometry/broad_phase.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "dynamics/stepper.hpp"
+#include "dynamics/steppers/stepper.hpp"
 
 namespace vcontact::dynamics {
 

@@ -1,4 +1,4 @@
-#include "dynamics/bdf_integrator.hpp"
+#include "dynamics/steppers/bdf_integrator.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>

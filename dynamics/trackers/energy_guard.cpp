@@ -1,4 +1,4 @@
-#include "dynamics/energy_guard.hpp"
+#include "dynamics/trackers/energy_guard.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "dynamics/patch_tracker.hpp"
+#include "dynamics/trackers/patch_tracker.hpp"
 
 #include <algorithm>
 #include <limits>

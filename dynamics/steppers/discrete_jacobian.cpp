@@ -1,7 +1,7 @@
 // The linearised contact wrench of the discrete stepper; the derivation is docs/DISCRETE.md
 // §2. Each effect writes its own terms (Effect::linearise, in dynamics/effects/); this file
 // puts them together for one patch and one step.
-#include "dynamics/discrete_jacobian.hpp"
+#include "dynamics/steppers/discrete_jacobian.hpp"
 
 namespace vcontact::dynamics {
 namespace {

@@ -8,7 +8,7 @@
 // a dense solve of 6 × (free bodies) unknowns. The pair states are advanced with the step:
 // the bristle deflections implicitly (PatchStep), the others (dwell) by explicit Euler.
 
-#include "dynamics/discrete_stepper.hpp"
+#include "dynamics/steppers/discrete_stepper.hpp"
 
 #include <Eigen/LU>
 #include <cmath>

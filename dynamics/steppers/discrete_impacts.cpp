@@ -29,8 +29,8 @@
 #include <limits>
 #include <numbers>
 
-#include "dynamics/discrete_stepper.hpp"
-#include "dynamics/dopri5_control.hpp"
+#include "dynamics/steppers/discrete_stepper.hpp"
+#include "dynamics/steppers/dopri5_control.hpp"
 
 namespace vcontact::dynamics {
 namespace {
@@ -241,9 +241,10 @@ void DiscreteStepper::advance(State& x, State& dxdt, double& t, double h, double
   if (resolve) {
     const bool impact = impactAhead(start_kin_, true, h, fast_regions_);
     double miss = impact ? 0.0 : linearisationMiss(h);
-    // A missed linearisation is first taken again about the step's end (a Newton iteration of
-    // the implicit step, one query each; damped halfway after an iteration that missed by more
-    // than the one before), and resolved only when that does not meet it.
+    // A missed linearisation is first taken again about the step's end (Newton iterations of
+    // the implicit step, one query each, to kNewtonTarget of the allowance; one that follows an
+    // iteration that missed by more than the one before is damped halfway), and resolved only
+    // when none of them meets the allowance.
     double before = std::numeric_limits<double>::infinity(), best = miss;
     for (int i = 0; miss > (i == 0 ? 1.0 : kNewtonTarget) && i < kNewtonIterations; ++i) {
       ++summary.newton_iterations;
@@ -262,7 +263,7 @@ void DiscreteStepper::advance(State& x, State& dxdt, double& t, double h, double
       }
     }
     // iterations that ran out short of the target: their best iterate, if within the allowance
-    if (miss > 1.0 && best <= 1.0) {
+    if (best < miss && best <= 1.0) {
       x = best_x_;
       step_impulse_ = best_impulse_;
       query(false);

@@ -1,10 +1,10 @@
-#include "dynamics/bdf_stepper.hpp"
+#include "dynamics/steppers/bdf_stepper.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "dynamics/bdf_integrator.hpp"
+#include "dynamics/steppers/bdf_integrator.hpp"
 
 namespace vcontact::dynamics {
 namespace {

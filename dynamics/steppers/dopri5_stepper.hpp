@@ -6,8 +6,8 @@
 // every pair state is settled (Model::settle: z projected onto the contact plane, reset on loss
 // of contact, dwell jumps): Dopri5Steps, which the discrete stepper's resolved intervals share.
 
-#include "dynamics/impact_tracker.hpp"
-#include "dynamics/stepper.hpp"
+#include "dynamics/steppers/stepper.hpp"
+#include "dynamics/trackers/impact_tracker.hpp"
 
 namespace vcontact::dynamics {
 

@@ -9,7 +9,7 @@
 // w0 itself is already in the equations' force and torque (MotionEquations::loadWrenches);
 // this adds the rest.
 
-#include "dynamics/discrete_stepper.hpp"
+#include "dynamics/steppers/discrete_stepper.hpp"
 
 namespace vcontact::dynamics {
 namespace {

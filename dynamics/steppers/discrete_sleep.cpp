@@ -1,8 +1,8 @@
-// The discrete stepper's hooks of sleeping islands (dynamics/sleep.hpp, docs/SLEEP.md).
+// The discrete stepper's hooks of sleeping islands (dynamics/trackers/sleep.hpp, docs/SLEEP.md).
 
 #include <cmath>
 
-#include "dynamics/discrete_stepper.hpp"
+#include "dynamics/steppers/discrete_stepper.hpp"
 
 namespace vcontact::dynamics {
 

@@ -13,10 +13,10 @@
 #include <Eigen/LU>
 #include <vector>
 
-#include "dynamics/discrete_jacobian.hpp"
-#include "dynamics/dopri5_stepper.hpp"
-#include "dynamics/impact_tracker.hpp"
-#include "dynamics/stepper.hpp"
+#include "dynamics/steppers/discrete_jacobian.hpp"
+#include "dynamics/steppers/dopri5_stepper.hpp"
+#include "dynamics/steppers/stepper.hpp"
+#include "dynamics/trackers/impact_tracker.hpp"
 
 namespace vcontact::dynamics {
 

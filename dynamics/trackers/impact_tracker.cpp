@@ -1,4 +1,4 @@
-#include "dynamics/impact_tracker.hpp"
+#include "dynamics/trackers/impact_tracker.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "dynamics/sleep.hpp"
+#include "dynamics/trackers/sleep.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-#include "dynamics/dopri5_stepper.hpp"
+#include "dynamics/steppers/dopri5_stepper.hpp"
 
-#include "dynamics/dopri5_control.hpp"
+#include "dynamics/steppers/dopri5_control.hpp"
 
 namespace vcontact::dynamics {
 
