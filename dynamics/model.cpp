@@ -113,6 +113,11 @@ bool Model::has(std::string_view id) const {
                      [&](const auto& e) { return e->id() == id; });
 }
 
+bool Model::hasStage(Stage stage) const {
+  return std::any_of(effects_.begin(), effects_.end(),
+                     [&](const auto& e) { return e->stage() == stage; });
+}
+
 std::vector<std::string> Model::effectIds() const {
   std::vector<std::string> ids;
   for (const auto& e : effects_) ids.emplace_back(e->id());

@@ -48,6 +48,9 @@ class Model {
   void validate() const;
 
   bool has(std::string_view id) const;
+  /// Whether an effect of the model runs at `stage` (its place in the chain, effect.hpp): a
+  /// question about what a model does that needs no effect's name.
+  bool hasStage(Stage stage) const;
   std::vector<std::string> effectIds() const;
   std::size_t effectCount() const { return effects_.size(); }
   const Effect& effect(std::size_t i) const { return *effects_[i]; }

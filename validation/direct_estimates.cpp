@@ -184,13 +184,15 @@ void lags(const Dataset& d, const Prediction& p, std::vector<DirectEstimate>& ou
 }
 
 // The value the model gives the estimate's parameter: its own, or the neutral value of an
-// effect it lacks (power_law.p = 1 when the normal law is kv V alone); NaN: not comparable.
+// effect it lacks (power_law.p = 1 when the normal law is kv V alone: a normal force, and no
+// stage that relaxes or damps it); NaN: not comparable.
 double fittedValue(const dynamics::Model& m, const DirectEstimate& e) {
   const auto names = m.parameterNames();
   if (std::find(names.begin(), names.end(), e.parameter) != names.end())
     return m.parameter(e.parameter);
-  if (e.parameter == "power_law.p" && !m.has("viscoelastic") && !m.has("damping") &&
-      m.has("stiffness"))
+  using dynamics::Stage;
+  if (e.parameter == "power_law.p" && m.hasStage(Stage::kNormalForce) &&
+      !m.hasStage(Stage::kNormalRelaxation) && !m.hasStage(Stage::kNormalDamping))
     return 1.0;
   return std::nan("");
 }

@@ -27,6 +27,17 @@ TEST(Model, ParameterNamesFollowEffectStageOrderAndRoundTrip) {
   EXPECT_EQ(m.parameter("coulomb.mu"), 0.3);
 }
 
+// A model answers what its effects do by stage, without their names: the normal force and its
+// damping here, no relaxation.
+TEST(Model, SaysWhichStagesItsEffectsRunAt) {
+  const Model m = Model::withEffects({"coulomb", "stiffness", "damping"});
+  EXPECT_TRUE(m.hasStage(Stage::kNormalForce));
+  EXPECT_TRUE(m.hasStage(Stage::kNormalDamping));
+  EXPECT_TRUE(m.hasStage(Stage::kFriction));
+  EXPECT_FALSE(m.hasStage(Stage::kNormalRelaxation));
+  EXPECT_FALSE(m.hasStage(Stage::kNormalLaw));
+}
+
 TEST(Model, RejectsOutOfBoundsNonFiniteAndUnknown) {
   Model m = Model::withEffects({"stiffness", "coulomb"});
   EXPECT_THROW(m.setParameter("coulomb.mu", -0.1), InputError);
