@@ -4,11 +4,14 @@
 // (discrete_jacobian.hpp) and solved implicitly for the free bodies' new twists, the loads and
 // springs linearised by differences (discrete_loads.cpp). Impacts are resolved by
 // Dormand–Prince intervals (Dopri5Steps) or by the implicit step itself
-// (discrete_impacts.cpp), and bodies at rest put to sleep (discrete_sleep.cpp, sleep.hpp).
+// (discrete_impacts.cpp), and bodies at rest put to sleep (discrete_sleep.cpp,
+// trackers/sleep.hpp). A step whose linearisation missed the force queried at its end is taken
+// again about its end, by Newton iterations (newtonStep), before Dormand–Prince is asked.
 //
 // Each step is assembled from the equations' latest evaluation (the query that ended the
-// previous step) and ends with one more (MotionEquations::rhs at the new state); the stepper
-// writes nothing of the equations' own but the sleeping bodies' velocities.
+// previous step) and ends with one more (MotionEquations::rhs at the new state; one more per
+// Newton iteration); the stepper writes nothing of the equations' own but the sleeping bodies'
+// velocities.
 
 #include <Eigen/LU>
 #include <vector>
