@@ -13,13 +13,6 @@ namespace {
 
 constexpr int kBodyStates = MotionEquations::kBodyStates;
 
-std::string where(double t) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "t = " << t << " s";
-  return s.str();
-}
-
 Eigen::Quaterniond quaternionAt(const double* q) {
   return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
 }
@@ -217,7 +210,7 @@ void MotionEquations::checkEnergy(const State& x, double t) {
   for (std::size_t i = 0; i < scenario_.bodies.size(); ++i)
     guard_kin_[i] = current ? kin_[i] : kinematics(x, i, t);
   const std::string message = energy_guard_->check(guard_kin_, last_pairs_, last_loads_, t);
-  if (!message.empty()) throw SimulationError(t, StopCause::kBlowUp, where(t) + ", " + message);
+  if (!message.empty()) throw SimulationError(t, StopCause::kBlowUp, stopTime(t) + ", " + message);
 }
 
 // Failures that stop the run: non-finite state, too deep a penetration, a blow-up.
@@ -227,7 +220,7 @@ void MotionEquations::check(const State& x, double t) {
     for (int j = 0; j < kBodyStates; ++j) {
       if (std::isfinite(x[static_cast<std::size_t>(offset_[i] + j)])) continue;
       throw SimulationError(t, StopCause::kNonFinite,
-                            where(t) + ", body '" + scenario_.bodies[i].name +
+                            stopTime(t) + ", body '" + scenario_.bodies[i].name +
                                 "': state is not finite (position, attitude or velocity)" +
                                 non_finite_effect_);
     }
@@ -242,7 +235,7 @@ void MotionEquations::check(const State& x, double t) {
     }
     if (!std::isfinite(depth) || depth > limit) {
       std::ostringstream s;
-      s << where(t) << ", pair '" << pair.name << "': mean penetration V/A " << depth
+      s << stopTime(t) << ", pair '" << pair.name << "': mean penetration V/A " << depth
         << " m exceeds " << scenario_.settings.max_penetration_fraction
         << " of the smaller body's size (" << size << " m); the contact is too soft or the "
         << "bodies passed through each other";
@@ -271,7 +264,7 @@ std::string MotionEquations::stiffestPair() const {
 
 SimulationError MotionEquations::stepCollapse(double t, double h, const std::string& detail) const {
   std::ostringstream s;
-  s << where(t) << stiffestPair() << ": step size " << h << " s fell below the minimum "
+  s << stopTime(t) << stiffestPair() << ": step size " << h << " s fell below the minimum "
     << scenario_.settings.min_step << " s (contact too stiff for the tolerances, or a "
     << "discontinuity" << detail << ")";
   return SimulationError(t, StopCause::kStepCollapse, s.str());

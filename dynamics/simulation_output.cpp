@@ -1,9 +1,18 @@
 #include "dynamics/simulation_output.hpp"
 
+#include <sstream>
+
 #include "geometry/error.hpp"
 #include "volume/contact.hpp"
 
 namespace vcontact::dynamics {
+
+std::string stopTime(double t) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "t = " << t << " s";
+  return s.str();
+}
 
 const char* stopCauseName(StopCause cause) {
   switch (cause) {

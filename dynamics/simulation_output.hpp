@@ -35,6 +35,9 @@ enum class StopCause {
 /// "blow_up", "interrupted".
 const char* stopCauseName(StopCause cause);
 
+/// "t = 0.0123 s" (9 digits): how a SimulationError's message says when the run stopped.
+std::string stopTime(double t);
+
 class SimulationError : public std::runtime_error {
  public:
   SimulationError(double t, StopCause cause, const std::string& message)

@@ -13,13 +13,6 @@ namespace {
 // weights of q change by as much, relatively: negligible.
 constexpr double kQuaternionNormDrift = 1e-3;
 
-std::string where(double t) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "t = " << t << " s";
-  return s.str();
-}
-
 // True when some state moved from `before` to `after` by more than its error tolerance.
 bool exceedsTolerance(const MotionEquations::State& before, const MotionEquations::State& after,
                       const SimulationSettings& set) {
@@ -59,11 +52,11 @@ SimulationError BdfStepper::failure(const BdfError& e, double t_last) const {
     return eq_.stepCollapse(t, std::abs(e.stepSize()), "; BDF: " + std::string(e.what()));
   std::ostringstream s;
   if (e.rhsFailed()) {
-    s << where(t) << ", " << non_finite_ << ": the rate of change is not finite at every step "
+    s << stopTime(t) << ", " << non_finite_ << ": the rate of change is not finite at every step "
       << "size tried, down to " << std::abs(e.stepSize()) << " s" << eq_.nonFiniteEffect();
     return SimulationError(t, StopCause::kNonFinite, s.str());
   }
-  s << where(t) << eq_.stiffestPair() << ": the implicit (BDF) integrator stopped at step size "
+  s << stopTime(t) << eq_.stiffestPair() << ": the implicit (BDF) integrator stopped at step size "
     << std::abs(e.stepSize()) << " s: " << e.what();
   return SimulationError(t, StopCause::kIntegratorFailure, s.str());
 }
