@@ -485,7 +485,11 @@ CylinderIntegrals integrateTilted(Revolution& rv, const Vector3d& n_C,
   rv.u = Vector3d(n_C.x() / rv.s, n_C.y() / rv.s, 0.0);
   rv.v = Vector3d::UnitZ().cross(rv.u);
   CylinderIntegrals out;
-  out.joinGap = kRunJoinFraction * (profile.back().z1 - profile.front().z0);
+  // One piece whose radius is linear or concave in ζ (a cylinder, a cone, a sphere, a torus'
+  // outer half) has a concave slice depth d(ζ), wetted in one run: no runs to keep.
+  const bool oneRun =
+      profile.size() == 1 && (profile[0].kind != ProfilePiece::Kind::kArc || profile[0].sign > 0.0);
+  if (!oneRun) out.joinGap = kRunJoinFraction * (profile.back().z1 - profile.front().z0);
   for (const ProfilePiece& p : profile) {
     if (p.kind == ProfilePiece::Kind::kConstant) {
       addConstantPiece(rv, p, out);
